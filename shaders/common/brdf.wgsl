@@ -1,0 +1,44 @@
+// Cook-Torrance microfacet terms used by the split-sum integrals.
+// Mirror of src/math/brdf.rs (same function names); conventions in DESIGN.md:
+// perceptual roughness r, alpha = r^2, Schlick-GGX k = r^2 / 2 for IBL (Karis 2013).
+
+// GGX alpha from perceptual roughness: alpha = r^2 (Burley 2012, Karis 2013).
+fn alpha_from_roughness(roughness: f32) -> f32 {
+    return roughness * roughness;
+}
+
+// Schlick-GGX k for image-based lighting: k = alpha / 2 = r^2 / 2 (Karis 2013).
+fn k_ibl(roughness: f32) -> f32 {
+    return 0.5 * alpha_from_roughness(roughness);
+}
+
+// GGX / Trowbridge-Reitz NDF (Walter et al. 2007, eq. 33):
+// D(h) = alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2).
+fn d_ggx(n_dot_h: f32, alpha: f32) -> f32 {
+    let a2 = alpha * alpha;
+    let d = n_dot_h * n_dot_h * (a2 - 1.0) + 1.0;
+    return a2 / (PI * d * d);
+}
+
+// Schlick-GGX masking G1(x) = x / (x (1 - k) + k) (Schlick 1994, Karis 2013).
+fn g1_schlick_ggx(n_dot_x: f32, k: f32) -> f32 {
+    return n_dot_x / (n_dot_x * (1.0 - k) + k);
+}
+
+// G1(n.v) / (n.v) = 1 / (n.v (1 - k) + k): the 1/(n.v) of the BRDF divided out analytically.
+fn g1_over_n_dot_v(n_dot_v: f32, k: f32) -> f32 {
+    return 1.0 / (n_dot_v * (1.0 - k) + k);
+}
+
+// Fresnel-Schlick weight (1 - v.h)^5: F = F0 (1 - w) + w (Schlick 1994).
+fn fresnel_schlick_weight(v_dot_h: f32) -> f32 {
+    let m = clamp(1.0 - v_dot_h, 0.0, 1.0);
+    let m2 = m * m;
+    return m2 * m2 * m;
+}
+
+// Fresnel-Schlick for a given F0.
+fn fresnel_schlick(f0: f32, v_dot_h: f32) -> f32 {
+    let w = fresnel_schlick_weight(v_dot_h);
+    return f0 * (1.0 - w) + w;
+}

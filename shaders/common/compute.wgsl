@@ -1,0 +1,8 @@
+// Workgroup size of every kernel, set by the Rust side at pipeline creation
+// (`gpu::compute::ComputeKernel`), so the dispatch arithmetic and the shader agree.
+override WORKGROUP_X: u32;
+override WORKGROUP_Y: u32;
+override WORKGROUP_Z: u32;
+
+const PI: f32 = 3.14159265358979323846;
+const FRAC_PI_2: f32 = 1.57079632679489661923;

@@ -1,0 +1,97 @@
+//! The compute backends: one trait, a CPU implementation (the reference, usable on machines
+//! without a GPU) and a GPU one (wgpu). Tests run every kernel through both.
+
+use crate::gpu::GpuContext;
+use crate::lut::{validate_lut_size, BrdfLut, LutQuadrature};
+use crate::{cpu, gpu, Error, Result};
+
+/// Which backend the user asked for.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum BackendChoice {
+    /// A GPU adapter when one exists (lavapipe counts), the CPU otherwise.
+    #[default]
+    Auto,
+    /// wgpu only; fails when no adapter exists.
+    Gpu,
+    /// The CPU reference implementation.
+    Cpu,
+}
+
+/// The kernels splitsum runs; each backend implements all of them.
+pub trait Backend {
+    /// A human-readable description ("cpu (rayon, 2 threads)", "gpu: NVIDIA ... (Vulkan)").
+    fn description(&self) -> String;
+
+    /// The split-sum BRDF LUT (see [`crate::lut`]).
+    fn brdf_lut(&self, width: u32, height: u32) -> Result<BrdfLut>;
+}
+
+/// The CPU reference backend.
+#[derive(Debug, Default)]
+pub struct CpuBackend;
+
+impl Backend for CpuBackend {
+    fn description(&self) -> String {
+        format!("cpu (rayon, {} threads)", rayon::current_num_threads())
+    }
+
+    fn brdf_lut(&self, width: u32, height: u32) -> Result<BrdfLut> {
+        validate_lut_size(width, height)?;
+        Ok(cpu::brdf_lut::brdf_lut(
+            width,
+            height,
+            &LutQuadrature::default(),
+        ))
+    }
+}
+
+/// The wgpu backend.
+#[derive(Debug)]
+pub struct GpuBackend {
+    /// The device every kernel runs on.
+    pub ctx: GpuContext,
+}
+
+impl GpuBackend {
+    /// Opens the default adapter.
+    pub fn new() -> Result<Self> {
+        Ok(GpuBackend {
+            ctx: GpuContext::new()?,
+        })
+    }
+}
+
+impl Backend for GpuBackend {
+    fn description(&self) -> String {
+        format!("gpu: {}", self.ctx.adapter_description())
+    }
+
+    fn brdf_lut(&self, width: u32, height: u32) -> Result<BrdfLut> {
+        validate_lut_size(width, height)?;
+        let lut = gpu::brdf_lut::brdf_lut(
+            &self.ctx.device,
+            &self.ctx.queue,
+            width,
+            height,
+            &LutQuadrature::default(),
+        )?;
+        self.ctx.take_uncaptured_error("brdf_lut")?;
+        Ok(lut)
+    }
+}
+
+/// A backend picked by `choice`, and a note for the user when `Auto` fell back to the CPU.
+pub fn create_backend(choice: BackendChoice) -> Result<(Box<dyn Backend>, Option<String>)> {
+    match choice {
+        BackendChoice::Cpu => Ok((Box::new(CpuBackend), None)),
+        BackendChoice::Gpu => Ok((Box::new(GpuBackend::new()?), None)),
+        BackendChoice::Auto => match GpuBackend::new() {
+            Ok(gpu) => Ok((Box::new(gpu), None)),
+            Err(e @ (Error::NoAdapter { .. } | Error::Gpu { .. })) => Ok((
+                Box::new(CpuBackend),
+                Some(format!("using the CPU backend: {e}")),
+            )),
+            Err(e) => Err(e),
+        },
+    }
+}

@@ -1,0 +1,160 @@
+//! CPU reference for `shaders/brdf_lut.wgsl`: the split-sum BRDF LUT by deterministic
+//! panel Gauss-Legendre quadrature in the GGX-sampled domain. The method and its derivation
+//! are in [`crate::lut`]; the functions here have the same names as the WGSL ones.
+
+use std::f32::consts::{FRAC_PI_2, PI};
+
+use rayon::prelude::*;
+
+use crate::lut::{lut_texel_coords, BrdfLut, LutQuadrature};
+use crate::math::brdf::{
+    alpha_from_roughness, fresnel_schlick_weight, g1_over_n_dot_v, g1_schlick_ggx, k_ibl,
+};
+use crate::math::sampling::{ggx_q_from_theta, ggx_theta_from_q};
+
+/// Per-texel constants of the integrand.
+struct LutTexel {
+    cos_v: f32,
+    sin_v: f32,
+    alpha2: f32,
+    k: f32,
+    g_vis: f32,
+}
+
+/// Maps a Gauss-Legendre abscissa t ∈ [0, 1] to the panel variable x ∈ [0, 1] and returns
+/// (x, dx/dt). Ends flagged singular get a quadratic change of variable (x ≈ t² there),
+/// which turns the panel's √ end behaviour into a smooth one.
+pub fn panel_map(t: f32, lower_singular: bool, upper_singular: bool) -> (f32, f32) {
+    if lower_singular && upper_singular {
+        (t * t * (3.0 - 2.0 * t), 6.0 * t * (1.0 - t))
+    } else if lower_singular {
+        (t * t, 2.0 * t)
+    } else if upper_singular {
+        let s = 1.0 - t;
+        (1.0 - s * s, 2.0 * s)
+    } else {
+        (t, 1.0)
+    }
+}
+
+/// q at polar angle θ of the half vector.
+pub fn ggx_q_at_theta(theta: f32, alpha2: f32) -> f32 {
+    let c = theta.cos();
+    let s = theta.sin();
+    ggx_q_from_theta(c * c, s * s, alpha2)
+}
+
+/// ∫ over one θh panel [q_a, q_b] (q falls as θh grows) and over φ of the split-sum
+/// integrand, returning (A, B) contributions. `full` panels cover φ ∈ [0, π]; partial ones
+/// stop where n·l = 0.
+#[allow(clippy::too_many_arguments)]
+fn integrate_panel(
+    tx: &LutTexel,
+    q_a: f32,
+    q_b: f32,
+    full: bool,
+    lower_singular: bool,
+    upper_singular: bool,
+    theta_rule: &[[f32; 2]],
+    phi_rule: &[[f32; 2]],
+) -> [f32; 2] {
+    let mut sum = [0.0f32; 2];
+    let width = q_a - q_b;
+    for &[t, w] in theta_rule {
+        let (x, dx) = panel_map(t, lower_singular, upper_singular);
+        let q = q_a - width * x;
+        let weight_q = width * w * dx;
+        let (cos2_h, sin2_h) = ggx_theta_from_q(q, tx.alpha2);
+        let cos_h = cos2_h.sqrt();
+        let sin_h = sin2_h.sqrt();
+        let phi_max = if full {
+            PI
+        } else {
+            let c0 = tx.cos_v * (1.0 - 2.0 * cos2_h) / (2.0 * tx.sin_v * sin_h * cos_h);
+            c0.clamp(-1.0, 1.0).acos()
+        };
+        // dφ/π over [0, φmax] (the integrand is even in φ).
+        let weight_panel = weight_q * phi_max / PI;
+        for &[tp, wp] in phi_rule {
+            let phi = phi_max * tp;
+            let v_dot_h = tx.sin_v * sin_h * phi.cos() + tx.cos_v * cos_h;
+            let n_dot_l = 2.0 * v_dot_h * cos_h - tx.cos_v;
+            if n_dot_l > 0.0 {
+                // f (n·l) / pdf(l) without F = G1(n·l) · G1(n·v)/(n·v) · (v·h)/(n·h)
+                let g = g1_schlick_ggx(n_dot_l, tx.k) * tx.g_vis * v_dot_h / cos_h;
+                let fc = fresnel_schlick_weight(v_dot_h);
+                let wgt = weight_panel * wp * g;
+                sum[0] += wgt * (1.0 - fc);
+                sum[1] += wgt * fc;
+            }
+        }
+    }
+    sum
+}
+
+/// (A, B) for one (n·v, roughness) pair.
+pub fn brdf_lut_texel(n_dot_v: f32, roughness: f32, quad: &LutQuadrature) -> [f32; 2] {
+    let alpha = alpha_from_roughness(roughness);
+    let alpha2 = alpha * alpha;
+    let k = k_ibl(roughness);
+    let tx = LutTexel {
+        cos_v: n_dot_v,
+        sin_v: (1.0 - n_dot_v * n_dot_v).max(0.0).sqrt(),
+        alpha2,
+        k,
+        g_vis: g1_over_n_dot_v(n_dot_v, k),
+    };
+    let theta_v = n_dot_v.clamp(-1.0, 1.0).acos();
+    // Horizon breakpoints in θh (see crate::lut).
+    let theta_full = 0.5 * (FRAC_PI_2 - theta_v);
+    let theta_end = 0.5 * (FRAC_PI_2 + theta_v);
+
+    let full_rule = quad.rule(quad.full);
+    let partial_rule = quad.rule(quad.partial);
+    let phi_rule = quad.rule(quad.phi);
+
+    let q_full = ggx_q_at_theta(theta_full, alpha2);
+    let q_mid = ggx_q_at_theta(theta_full / quad.panel_growth, alpha2);
+    let mut ab = integrate_panel(&tx, 1.0, q_mid, true, false, false, full_rule, phi_rule);
+    let ab2 = integrate_panel(&tx, q_mid, q_full, true, false, false, full_rule, phi_rule);
+    ab[0] += ab2[0];
+    ab[1] += ab2[1];
+    let mut t0 = theta_full;
+    let mut q0 = q_full;
+    for panel in 0..quad.max_panels {
+        if t0 >= theta_end {
+            break;
+        }
+        let last = panel + 1 == quad.max_panels || t0 * quad.panel_growth >= theta_end;
+        let t1 = if last {
+            theta_end
+        } else {
+            t0 * quad.panel_growth
+        };
+        let q1 = ggx_q_at_theta(t1, alpha2);
+        let part = integrate_panel(&tx, q0, q1, false, panel == 0, last, partial_rule, phi_rule);
+        ab[0] += part[0];
+        ab[1] += part[1];
+        t0 = t1;
+        q0 = q1;
+    }
+    ab
+}
+
+/// The whole LUT on the CPU (rayon over rows).
+pub fn brdf_lut(width: u32, height: u32, quad: &LutQuadrature) -> BrdfLut {
+    let mut data = vec![[0.0f32; 2]; (width * height) as usize];
+    data.par_chunks_mut(width as usize)
+        .enumerate()
+        .for_each(|(j, row)| {
+            for (i, texel) in row.iter_mut().enumerate() {
+                let (n_dot_v, roughness) = lut_texel_coords(i as u32, j as u32, width, height);
+                *texel = brdf_lut_texel(n_dot_v, roughness, quad);
+            }
+        });
+    BrdfLut {
+        width,
+        height,
+        data,
+    }
+}

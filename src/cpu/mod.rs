@@ -1,0 +1,4 @@
+//! CPU reference kernels. Each file mirrors one WGSL kernel in `shaders/` function for
+//! function; they are the ground the GPU results are checked against, and the `cpu` backend.
+
+pub mod brdf_lut;

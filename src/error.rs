@@ -1,0 +1,81 @@
+//! The library's error type. Every variant names what failed (a file, a parameter, the
+//! GPU) and why, so the binary can print one clear line per failure.
+
+use std::path::PathBuf;
+
+/// Everything that can go wrong in splitsum. The library never panics on bad input and
+/// never prints: it returns one of these.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// Reading or writing a file failed at the OS level.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file or folder involved.
+        path: PathBuf,
+        /// The underlying I/O error.
+        #[source]
+        source: std::io::Error,
+    },
+
+    /// The output path's extension does not name a format this output can be written as.
+    #[error("{path}: cannot write {what} as '.{extension}' (supported: {supported})")]
+    UnsupportedOutputFormat {
+        /// The requested output path.
+        path: PathBuf,
+        /// What was being written (for example "a BRDF LUT").
+        what: &'static str,
+        /// The extension found (empty when there is none).
+        extension: String,
+        /// The extensions that are supported, comma separated.
+        supported: &'static str,
+    },
+
+    /// Encoding an output file failed (the encoder rejected the data).
+    #[error("{path}: could not encode {format}: {message}")]
+    Encode {
+        /// The output path.
+        path: PathBuf,
+        /// The file format being written.
+        format: &'static str,
+        /// The encoder's message.
+        message: String,
+    },
+
+    /// A parameter is outside the range splitsum supports.
+    #[error("invalid {name}: {message}")]
+    InvalidParameter {
+        /// The parameter's name as the user knows it (for example "--size").
+        name: &'static str,
+        /// What is wrong and what is allowed.
+        message: String,
+    },
+
+    /// `--backend gpu` was requested but no wgpu adapter could be found.
+    #[error("no GPU adapter found ({reason}); on Linux without a GPU install Mesa's lavapipe (apt-get install mesa-vulkan-drivers libvulkan1), or use --backend cpu")]
+    NoAdapter {
+        /// What wgpu reported.
+        reason: String,
+    },
+
+    /// The GPU device could not be created, or reported an error while running a kernel.
+    #[error("GPU error in {stage}: {message}")]
+    Gpu {
+        /// What was being done (for example "brdf_lut dispatch").
+        stage: String,
+        /// wgpu's message.
+        message: String,
+    },
+}
+
+/// Shorthand for results in this crate.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+impl Error {
+    /// Wraps an I/O error with the path it concerns.
+    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        Error::Io {
+            path: path.into(),
+            source,
+        }
+    }
+}

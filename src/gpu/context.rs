@@ -1,0 +1,96 @@
+//! Headless wgpu context: instance, adapter (real GPUs through Vulkan/Metal/DX12, or Mesa's
+//! lavapipe on machines without one), device and queue.
+
+use std::sync::{Arc, Mutex};
+
+use crate::{Error, Result};
+
+/// Set this environment variable (to anything but "0") to make splitsum behave as if no
+/// GPU adapter existed: `--backend auto` then uses the CPU backend.
+pub const HIDE_GPU_ENV: &str = "SPLITSUM_NO_GPU";
+
+/// A device and queue with the adapter they came from.
+pub struct GpuContext {
+    /// The logical device.
+    pub device: wgpu::Device,
+    /// Its queue.
+    pub queue: wgpu::Queue,
+    /// What wgpu reports about the adapter.
+    pub adapter_info: wgpu::AdapterInfo,
+    /// The first error wgpu reported outside an error scope, if any (instead of wgpu's
+    /// default handler, which panics).
+    uncaptured: Arc<Mutex<Option<String>>>,
+}
+
+impl std::fmt::Debug for GpuContext {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("GpuContext")
+            .field("adapter", &self.adapter_description())
+            .finish()
+    }
+}
+
+impl GpuContext {
+    /// Finds an adapter (preferring a high-performance one; `WGPU_BACKEND` restricts the
+    /// backends) and creates a device with the adapter's own limits.
+    pub fn new() -> Result<Self> {
+        if std::env::var(HIDE_GPU_ENV).is_ok_and(|v| v != "0") {
+            return Err(Error::NoAdapter {
+                reason: format!("{HIDE_GPU_ENV} is set"),
+            });
+        }
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            force_fallback_adapter: false,
+            compatible_surface: None,
+            apply_limit_buckets: false,
+        }))
+        .map_err(|e| Error::NoAdapter {
+            reason: e.to_string(),
+        })?;
+        let adapter_info = adapter.get_info();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("splitsum"),
+            required_features: wgpu::Features::empty(),
+            required_limits: adapter.limits(),
+            ..Default::default()
+        }))
+        .map_err(|e| Error::Gpu {
+            stage: format!("creating a device on {}", adapter_info.name),
+            message: e.to_string(),
+        })?;
+        let uncaptured = Arc::new(Mutex::new(None::<String>));
+        let sink = uncaptured.clone();
+        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+            if let Ok(mut slot) = sink.lock() {
+                slot.get_or_insert_with(|| e.to_string());
+            }
+        }));
+        Ok(GpuContext {
+            device,
+            queue,
+            adapter_info,
+            uncaptured,
+        })
+    }
+
+    /// "name (backend, device type)", for `-v` output and manifests.
+    pub fn adapter_description(&self) -> String {
+        let i = &self.adapter_info;
+        format!("{} ({:?}, {:?})", i.name, i.backend, i.device_type)
+    }
+
+    /// Returns the first error wgpu reported outside an error scope since the last call.
+    pub fn take_uncaptured_error(&self, stage: &str) -> Result<()> {
+        let taken = self.uncaptured.lock().ok().and_then(|mut s| s.take());
+        match taken {
+            Some(message) => Err(Error::Gpu {
+                stage: stage.to_string(),
+                message,
+            }),
+            None => Ok(()),
+        }
+    }
+}

@@ -1,0 +1,12 @@
+//! The wgpu side: a headless context, a small compute-pass helper with one readback
+//! routine, the assembled WGSL sources, and one file per kernel that binds its shader.
+//!
+//! Kernels take `&wgpu::Device, &wgpu::Queue`, so tests, the CLI and library users share
+//! one [`GpuContext`].
+
+pub mod brdf_lut;
+pub mod compute;
+pub mod context;
+pub mod shaders;
+
+pub use context::GpuContext;

@@ -1,0 +1,19 @@
+//! WGSL sources assembled at compile time: each kernel is the shared files it uses from
+//! `shaders/common/` followed by its own file, concatenated, so shared functions exist once.
+
+/// Declares an assembled kernel source: common files first, then the kernel.
+macro_rules! kernel_source {
+    ($kernel:literal, [$($common:literal),*]) => {
+        concat!(
+            include_str!("../../shaders/common/compute.wgsl"), "\n",
+            $(include_str!(concat!("../../shaders/common/", $common)), "\n",)*
+            include_str!(concat!("../../shaders/", $kernel))
+        )
+    };
+}
+
+/// `shaders/brdf_lut.wgsl` with brdf and sampling.
+pub const BRDF_LUT: &str = kernel_source!("brdf_lut.wgsl", ["brdf.wgsl", "sampling.wgsl"]);
+
+/// Every assembled kernel by name, for validation.
+pub const ALL: &[(&str, &str)] = &[("brdf_lut", BRDF_LUT)];

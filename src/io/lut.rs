@@ -1,0 +1,76 @@
+//! Writes a BRDF LUT in the format its path's extension names.
+
+use std::path::Path;
+
+use super::format::{EncodedTexture, PixelFormat};
+use super::{atomic::write_atomic, dds, exr, extension_of, ktx2, png};
+use crate::lut::BrdfLut;
+use crate::{Error, Result};
+
+/// Extensions a LUT can be written as.
+pub const LUT_EXTENSIONS: &str = "png, exr, ktx2, dds";
+
+/// Options for LUT outputs.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct LutWriteOptions {
+    /// KTX2/DDS: store 32-bit floats instead of 16-bit.
+    pub f32: bool,
+}
+
+/// Checks that `path` names a LUT format, before any work is done.
+pub fn check_lut_path(path: &Path) -> Result<()> {
+    match extension_of(path).as_str() {
+        "png" | "exr" | "ktx2" | "dds" => Ok(()),
+        ext => Err(Error::UnsupportedOutputFormat {
+            path: path.to_path_buf(),
+            what: "a BRDF LUT",
+            extension: ext.to_string(),
+            supported: LUT_EXTENSIONS,
+        }),
+    }
+}
+
+/// Encodes `lut` for `path`'s extension: `.png` 16-bit RGB (R = A, G = B, B = 0), `.exr`
+/// float32 R and G, `.ktx2` and `.dds` R16G16 float (R32G32 with `f32`). Row 0
+/// (roughness ≈ 0) is the first row in every format.
+pub fn encode_lut(path: &Path, lut: &BrdfLut, opts: LutWriteOptions) -> Result<Vec<u8>> {
+    let ext = extension_of(path);
+    let encode_err = |format: &'static str| {
+        move |message: String| Error::Encode {
+            path: path.to_path_buf(),
+            format,
+            message,
+        }
+    };
+    let texture = || {
+        let format = if opts.f32 {
+            PixelFormat::Rg32f
+        } else {
+            PixelFormat::Rg16f
+        };
+        let values: Vec<f32> = lut.data.iter().flatten().copied().collect();
+        EncodedTexture {
+            format,
+            width: lut.width,
+            height: lut.height,
+            faces: 1,
+            levels: vec![format.encode(&values)],
+        }
+    };
+    match ext.as_str() {
+        "png" => {
+            let rgb: Vec<f32> = lut.data.iter().flat_map(|t| [t[0], t[1], 0.0]).collect();
+            png::encode_rgb16(lut.width, lut.height, &rgb).map_err(encode_err("PNG"))
+        }
+        "exr" => exr::encode_rg32(lut.width, lut.height, &lut.data).map_err(encode_err("OpenEXR")),
+        "ktx2" => Ok(ktx2::encode(&texture())),
+        "dds" => Ok(dds::encode(&texture())),
+        _ => check_lut_path(path).map(|_| Vec::new()),
+    }
+}
+
+/// Encodes and writes `lut` to `path` atomically.
+pub fn write_lut(path: &Path, lut: &BrdfLut, opts: LutWriteOptions) -> Result<()> {
+    let bytes = encode_lut(path, lut, opts)?;
+    write_atomic(path, &bytes)
+}

@@ -1,0 +1,30 @@
+//! # splitsum
+//!
+//! Bakes image-based lighting for physically based renderers: the split-sum BRDF lookup
+//! table (and, as the project grows, prefiltered GGX specular cubemaps, diffuse irradiance
+//! and spherical harmonics) with WGSL compute kernels run through wgpu, checked against a
+//! CPU reference that is written function for function like the WGSL.
+//!
+//! ```no_run
+//! use splitsum::{create_backend, BackendChoice};
+//! use splitsum::io::lut::{write_lut, LutWriteOptions};
+//!
+//! let (backend, _note) = create_backend(BackendChoice::Auto)?;
+//! let lut = backend.brdf_lut(512, 512)?;
+//! write_lut("out/brdf_lut.png".as_ref(), &lut, LutWriteOptions::default())?;
+//! # Ok::<(), splitsum::Error>(())
+//! ```
+//!
+//! The library never prints and never panics on bad input; every failure is an [`Error`].
+
+pub mod backend;
+pub mod cpu;
+pub mod error;
+pub mod gpu;
+pub mod io;
+pub mod lut;
+pub mod math;
+
+pub use backend::{create_backend, Backend, BackendChoice, CpuBackend, GpuBackend};
+pub use error::{Error, Result};
+pub use lut::BrdfLut;

@@ -1,0 +1,179 @@
+//! The split-sum BRDF lookup table: its data type, its texel convention and the
+//! quadrature tables that both backends integrate it with.
+//!
+//! # What the LUT holds
+//! For n·v and roughness r, with F = F0 (1 − Fc) + Fc and Fc = (1 − v·h)⁵ (Karis 2013):
+//!
+//! A = ∫ f/F · (1 − Fc) (n·l) dl,   B = ∫ f/F · Fc (n·l) dl,
+//!
+//! so that ∫ f (n·l) dl = F0·A + B. Texel (i, j) of a W×H table holds n·v = (i + ½)/W and
+//! r = (j + ½)/H; row 0 (roughness ≈ 0) is stored first (DESIGN.md "BRDF LUT").
+//!
+//! # How it is integrated (deterministic quadrature, not Monte Carlo)
+//! Substituting the GGX half-vector density pdf(h) = D (n·h) turns each integral into
+//! ∫₀¹ dq ∫₀^π dφ/π · G1(n·l) · G1(n·v)/(n·v) · (v·h)/(n·h) · {1 − Fc, Fc}
+//! where q is the GGX CDF variable of θ_h (see `math::sampling`). The integrand is smooth
+//! except where l crosses the horizon. With v = (sin θv, 0, cos θv), n·l ≥ 0 for every φ
+//! when θh ≤ (π/2 − θv)/2, for no φ when θh ≥ (π/2 + θv)/2, and in between for
+//! cos φ ≥ cos θv (1 − 2cos²θh) / (2 sin θv sin θh cos θh). So the θh range is split into
+//! a "full" panel and "partial" panels whose φ range ends exactly on the horizon; partial
+//! panels grow geometrically from (π/2 − θv)/2, where the φ range changes on the scale of
+//! θh itself (at grazing n·v this is tiny), and the panels touching the two breakpoints use
+//! a quadratic change of variable that removes the square-root behaviour of the φ range
+//! there. Each panel is integrated with Gauss-Legendre in q and in φ. G1(n·v)/(n·v) is
+//! divided out analytically, so the grazing column is as accurate as the rest.
+//! Measured against an adaptive f64 integral: max |error| ≈ 2e-5 over the 512² grid.
+
+use crate::math::quadrature::gauss_legendre_unit;
+
+/// Gauss-Legendre nodes in q for the full panel (θh below the first horizon breakpoint).
+pub const FULL_PANEL_NODES: usize = 16;
+/// Gauss-Legendre nodes in q for each partial panel.
+pub const PARTIAL_PANEL_NODES: usize = 16;
+/// Gauss-Legendre nodes in φ within every panel.
+pub const PHI_NODES: usize = 8;
+/// Ratio between consecutive partial panels' upper and lower θh bounds.
+pub const PANEL_GROWTH: f32 = 1.5;
+/// At most this many partial panels per texel (enough for n·v ≥ 1/32768 with growth 1.5;
+/// the last panel always ends at the second breakpoint).
+pub const MAX_PARTIAL_PANELS: u32 = 32;
+
+/// Largest LUT edge accepted (per side).
+pub const MAX_LUT_SIZE: u32 = 8192;
+
+/// A BRDF lookup table: `data[j * width + i] = [A, B]` for n·v = (i + ½)/width and
+/// roughness = (j + ½)/height.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BrdfLut {
+    /// Number of n·v columns.
+    pub width: u32,
+    /// Number of roughness rows.
+    pub height: u32,
+    /// Row-major (scale A, bias B) pairs; row 0 is roughness ≈ 0.
+    pub data: Vec<[f32; 2]>,
+}
+
+impl BrdfLut {
+    /// The (A, B) pair at column `i` (n·v) and row `j` (roughness).
+    pub fn get(&self, i: u32, j: u32) -> [f32; 2] {
+        self.data[(j * self.width + i) as usize]
+    }
+}
+
+/// n·v and roughness at the centre of LUT texel (i, j) of a width×height table.
+pub fn lut_texel_coords(i: u32, j: u32, width: u32, height: u32) -> (f32, f32) {
+    (
+        (i as f32 + 0.5) / width as f32,
+        (j as f32 + 0.5) / height as f32,
+    )
+}
+
+/// Checks a LUT size requested by the user.
+pub fn validate_lut_size(width: u32, height: u32) -> crate::Result<()> {
+    for (name, v) in [("width", width), ("height", height)] {
+        if v == 0 || v > MAX_LUT_SIZE {
+            return Err(crate::Error::InvalidParameter {
+                name: "--size",
+                message: format!("LUT {name} {v} is outside 1..={MAX_LUT_SIZE}"),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Where one Gauss-Legendre rule sits inside [`LutQuadrature::nodes`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RuleRange {
+    /// Index of the rule's first node.
+    pub offset: u32,
+    /// Number of nodes.
+    pub count: u32,
+}
+
+/// The quadrature tables and panel parameters used by both LUT backends. The GPU kernel
+/// receives exactly these numbers (nodes in a storage buffer, the rest in [`LutParams`]).
+#[derive(Clone, Debug)]
+pub struct LutQuadrature {
+    /// All rules' (x, w) pairs on [0, 1], concatenated.
+    pub nodes: Vec<[f32; 2]>,
+    /// Rule in q for the full panel.
+    pub full: RuleRange,
+    /// Rule in q for each partial panel.
+    pub partial: RuleRange,
+    /// Rule in φ.
+    pub phi: RuleRange,
+    /// Geometric growth of partial panels in θh.
+    pub panel_growth: f32,
+    /// Maximum number of partial panels.
+    pub max_panels: u32,
+}
+
+impl Default for LutQuadrature {
+    fn default() -> Self {
+        let mut nodes = Vec::new();
+        let mut push = |n: usize| {
+            let offset = nodes.len() as u32;
+            nodes.extend(
+                gauss_legendre_unit(n)
+                    .into_iter()
+                    .map(|q| [q.x as f32, q.w as f32]),
+            );
+            RuleRange {
+                offset,
+                count: n as u32,
+            }
+        };
+        let full = push(FULL_PANEL_NODES);
+        let partial = push(PARTIAL_PANEL_NODES);
+        let phi = push(PHI_NODES);
+        LutQuadrature {
+            nodes,
+            full,
+            partial,
+            phi,
+            panel_growth: PANEL_GROWTH,
+            max_panels: MAX_PARTIAL_PANELS,
+        }
+    }
+}
+
+impl LutQuadrature {
+    /// The (x, w) pairs of one rule.
+    pub fn rule(&self, r: RuleRange) -> &[[f32; 2]] {
+        &self.nodes[r.offset as usize..(r.offset + r.count) as usize]
+    }
+
+    /// The uniform block the GPU kernel reads, for a width×height table.
+    pub fn params(&self, width: u32, height: u32) -> LutParams {
+        LutParams {
+            size: [width, height],
+            full_rule: [self.full.offset, self.full.count],
+            partial_rule: [self.partial.offset, self.partial.count],
+            phi_rule: [self.phi.offset, self.phi.count],
+            panel_growth: self.panel_growth,
+            max_panels: self.max_panels,
+            _pad: [0; 2],
+        }
+    }
+}
+
+/// Uniform block of `shaders/brdf_lut.wgsl` (`struct LutParams`); a test checks that the
+/// WGSL member offsets equal these fields' offsets.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct LutParams {
+    /// Table width (n·v) and height (roughness).
+    pub size: [u32; 2],
+    /// (offset, count) of the full-panel rule.
+    pub full_rule: [u32; 2],
+    /// (offset, count) of the partial-panel rule.
+    pub partial_rule: [u32; 2],
+    /// (offset, count) of the φ rule.
+    pub phi_rule: [u32; 2],
+    /// Geometric growth of partial panels.
+    pub panel_growth: f32,
+    /// Maximum number of partial panels.
+    pub max_panels: u32,
+    /// Pads the block to 16 bytes as uniform buffers require.
+    pub _pad: [u32; 2],
+}

@@ -1,0 +1,200 @@
+//! Shared helpers for the integration tests: an independent, converged reference for the
+//! split-sum BRDF integrals, and temporary output folders under `target/`.
+#![allow(dead_code)]
+
+use std::f64::consts::PI;
+use std::path::PathBuf;
+
+/// One Gauss-Kronrod (7, 15) step on [a, b]: (K15 estimate, |K15 − G7|).
+fn gk15(f: &mut dyn FnMut(f64) -> f64, a: f64, b: f64) -> (f64, f64) {
+    const XGK: [f64; 8] = [
+        0.991455371120812639206854697526329,
+        0.949107912342758524526189684047851,
+        0.864864423359769072789712788640926,
+        0.741531185599394439863864773280788,
+        0.586087235467691130294144845693013,
+        0.405845151377397166906606412076961,
+        0.207784955007898467600689403773245,
+        0.0,
+    ];
+    const WGK: [f64; 8] = [
+        0.022935322010529224963732008058970,
+        0.063092092629978553290700663189204,
+        0.104790010322250183839876322541518,
+        0.140653259715525918745189590510238,
+        0.169004726639267902826583426598550,
+        0.190350578064785409913256402421014,
+        0.204432940075298892414161999234649,
+        0.209482141084727828012999174891714,
+    ];
+    const WG: [f64; 4] = [
+        0.129484966168869693270611432679082,
+        0.279705391489276667901467771423780,
+        0.381830050505118944950369775488975,
+        0.417959183673469387755102040816327,
+    ];
+    let c = 0.5 * (a + b);
+    let h = 0.5 * (b - a);
+    let fc = f(c);
+    let mut rk = fc * WGK[7];
+    let mut rg = fc * WG[3];
+    for j in 0..7 {
+        let x = h * XGK[j];
+        let s = f(c - x) + f(c + x);
+        rk += WGK[j] * s;
+        if j % 2 == 1 {
+            rg += WG[j / 2] * s;
+        }
+    }
+    (rk * h, ((rk - rg) * h).abs())
+}
+
+/// Adaptive Gauss-Kronrod quadrature with absolute tolerance `tol`.
+pub fn adaptive(f: &mut dyn FnMut(f64) -> f64, a: f64, b: f64, tol: f64) -> f64 {
+    fn rec(f: &mut dyn FnMut(f64) -> f64, a: f64, b: f64, tol: f64, depth: u32) -> f64 {
+        let (r, e) = gk15(f, a, b);
+        if e <= tol.max(1e-16) || depth >= 40 {
+            return r;
+        }
+        let m = 0.5 * (a + b);
+        rec(f, a, m, 0.5 * tol, depth + 1) + rec(f, m, b, 0.5 * tol, depth + 1)
+    }
+    rec(f, a, b, tol, 0)
+}
+
+/// The converged split-sum integrals (A, B) at (n·v, roughness), in f64, written from the
+/// textbook formula independently of the library: f = D G F / (4 (n·l)(n·v)) with
+/// GGX D (α = r²), Smith/Schlick-GGX G (k = r²/2) and Schlick F, integrated as
+/// E_h[f (n·l) / pdf(l)] with pdf(l) = D (n·h) / (4 v·h), by nested adaptive
+/// Gauss-Kronrod over the GGX CDF variable u of θh and over φ ∈ [0, π]. The φ range is cut
+/// where n·l reaches 0 (found by bisection), and the u range at θh = (π/2 ∓ θv)/2, so the
+/// adaptive rule never straddles the horizon kink.
+pub fn reference_lut(n_dot_v: f64, roughness: f64) -> (f64, f64) {
+    let alpha = roughness * roughness;
+    let a2 = alpha * alpha;
+    let k = alpha / 2.0;
+    let v = [(1.0 - n_dot_v * n_dot_v).sqrt(), 0.0, n_dot_v];
+    let g1 = |x: f64| x / (x * (1.0 - k) + k);
+    let integrand = |u: f64, phi: f64| -> (f64, f64) {
+        let den = (1.0 - u) + a2 * u;
+        let ct = ((1.0 - u) / den).sqrt();
+        let st = (a2 * u / den).sqrt();
+        let h = [st * phi.cos(), st * phi.sin(), ct];
+        let v_dot_h = v[0] * h[0] + v[2] * h[2];
+        let n_dot_l = 2.0 * v_dot_h * h[2] - v[2];
+        if n_dot_l <= 0.0 || v_dot_h <= 0.0 {
+            return (0.0, 0.0);
+        }
+        let d = a2 / (PI * (ct * ct * (a2 - 1.0) + 1.0).powi(2));
+        let g = g1(n_dot_l) * g1(n_dot_v);
+        let f_no_fresnel = d * g / (4.0 * n_dot_l * n_dot_v);
+        let pdf_l = d * ct / (4.0 * v_dot_h);
+        let val = f_no_fresnel * n_dot_l / pdf_l;
+        let fc = (1.0 - v_dot_h).powi(5);
+        (val * (1.0 - fc), val * fc)
+    };
+    let n_dot_l_at = |u: f64, phi: f64| {
+        let den = (1.0 - u) + a2 * u;
+        let ct = ((1.0 - u) / den).sqrt();
+        let st = (a2 * u / den).sqrt();
+        2.0 * (v[0] * st * phi.cos() + v[2] * ct) * ct - v[2]
+    };
+    // Largest φ with n·l ≥ 0 (n·l decreases with φ on [0, π]).
+    let phi_limit = |u: f64| {
+        if n_dot_l_at(u, PI) >= 0.0 {
+            return PI;
+        }
+        if n_dot_l_at(u, 0.0) <= 0.0 {
+            return 0.0;
+        }
+        let (mut lo, mut hi) = (0.0, PI);
+        for _ in 0..80 {
+            let mid = 0.5 * (lo + hi);
+            if n_dot_l_at(u, mid) >= 0.0 {
+                lo = mid
+            } else {
+                hi = mid
+            }
+        }
+        lo
+    };
+    let theta_v = n_dot_v.acos();
+    let u_of = |th: f64| {
+        let (s2, c2) = (th.sin().powi(2), th.cos().powi(2));
+        s2 / (s2 + a2 * c2)
+    };
+    let b1 = u_of(0.5 * (PI / 2.0 - theta_v));
+    let b2 = u_of(0.5 * (PI / 2.0 + theta_v));
+    let mut result = [0.0; 2];
+    for (ch, out) in result.iter_mut().enumerate() {
+        let mut outer = |u: f64| {
+            let pm = phi_limit(u);
+            let mut inner = |phi: f64| {
+                let (a, b) = integrand(u, phi);
+                if ch == 0 {
+                    a
+                } else {
+                    b
+                }
+            };
+            adaptive(&mut inner, 0.0, pm, 1e-11) / PI
+        };
+        *out = adaptive(&mut outer, 0.0, b1, 1e-10) + adaptive(&mut outer, b1, b2, 1e-10);
+    }
+    (result[0], result[1])
+}
+
+/// Texels to check in a W×H LUT: a spread grid plus the grazing column, the first and last
+/// columns and rows (roughness ≈ 0 and ≈ 1). At least 32.
+pub fn check_texels(width: u32, height: u32) -> Vec<(u32, u32)> {
+    let mut out = Vec::new();
+    let n = 6;
+    for a in 0..n {
+        for b in 0..n {
+            let i = ((a as f64 + 0.37) / n as f64 * width as f64) as u32;
+            let j = ((b as f64 + 0.61) / n as f64 * height as f64) as u32;
+            out.push((i, j));
+        }
+    }
+    for b in 0..n {
+        let j = ((b as f64 + 0.5) / n as f64 * height as f64) as u32;
+        out.push((0, j));
+        out.push((width - 1, j));
+    }
+    for a in 0..n {
+        let i = ((a as f64 + 0.5) / n as f64 * width as f64) as u32;
+        out.push((i, 0));
+        out.push((i, height - 1));
+    }
+    out.extend([
+        (0, 0),
+        (0, height - 1),
+        (width - 1, 0),
+        (width - 1, height - 1),
+    ]);
+    out
+}
+
+/// A fresh folder under `target/test-output/<name>` for a test's files.
+pub fn output_dir(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// The GPU context for GPU tests. Without an adapter the test is skipped with a message,
+/// unless `SPLITSUM_REQUIRE_GPU=1` (set by `.ci/run`, which installs lavapipe), in which
+/// case a missing adapter fails the test.
+pub fn gpu() -> Option<splitsum::gpu::GpuContext> {
+    match splitsum::gpu::GpuContext::new() {
+        Ok(ctx) => Some(ctx),
+        Err(e) => {
+            if std::env::var("SPLITSUM_REQUIRE_GPU").is_ok_and(|v| v == "1") {
+                panic!("SPLITSUM_REQUIRE_GPU=1 but no GPU context: {e}");
+            }
+            eprintln!("skipping GPU test: {e}");
+            None
+        }
+    }
+}

@@ -1,0 +1,63 @@
+//! The BRDF LUT against a converged reference integral computed independently in f64.
+mod common;
+
+use splitsum::cpu::brdf_lut::brdf_lut_texel;
+use splitsum::lut::{lut_texel_coords, LutQuadrature};
+
+/// Quality bar from DESIGN.md: max |error| ≤ 1e-4 over the grid, grazing column included.
+const LUT_TOLERANCE: f64 = 1e-4;
+
+#[test]
+fn cpu_lut_matches_converged_integral() {
+    let quad = LutQuadrature::default();
+    for (w, h) in [(128u32, 128u32), (512, 512)] {
+        let mut worst = (0.0f64, 0, 0);
+        for (i, j) in common::check_texels(w, h) {
+            let (nv, r) = lut_texel_coords(i, j, w, h);
+            let got = brdf_lut_texel(nv, r, &quad);
+            let (ra, rb) = common::reference_lut(nv as f64, r as f64);
+            let err = (got[0] as f64 - ra).abs().max((got[1] as f64 - rb).abs());
+            if err > worst.0 {
+                worst = (err, i, j);
+            }
+        }
+        println!(
+            "{w}x{h}: worst |error| {:.2e} at texel {:?}",
+            worst.0,
+            (worst.1, worst.2)
+        );
+        assert!(worst.0 <= LUT_TOLERANCE, "{w}x{h}: {:?}", worst);
+    }
+}
+
+/// A denser scan (every 8th texel of the 512² table, plus all edge texels); slow, so run on
+/// demand: `cargo test --release --test lut_accuracy -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn dense_scan_512() {
+    let quad = LutQuadrature::default();
+    let (w, h) = (512u32, 512u32);
+    let mut texels: Vec<(u32, u32)> = (0..w)
+        .step_by(8)
+        .flat_map(|i| (0..h).step_by(8).map(move |j| (i, j)))
+        .collect();
+    for t in 0..w {
+        texels.extend([(0, t), (w - 1, t), (t, 0), (t, h - 1)]);
+    }
+    let mut worst = (0.0f64, 0, 0);
+    for (i, j) in texels {
+        let (nv, r) = lut_texel_coords(i, j, w, h);
+        let got = brdf_lut_texel(nv, r, &quad);
+        let (ra, rb) = common::reference_lut(nv as f64, r as f64);
+        let err = (got[0] as f64 - ra).abs().max((got[1] as f64 - rb).abs());
+        if err > worst.0 {
+            worst = (err, i, j);
+        }
+    }
+    println!(
+        "dense 512: worst |error| {:.2e} at texel {:?}",
+        worst.0,
+        (worst.1, worst.2)
+    );
+    assert!(worst.0 <= LUT_TOLERANCE);
+}

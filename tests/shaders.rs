@@ -1,0 +1,63 @@
+//! Every assembled WGSL kernel parses and validates with naga (no GPU needed), and the
+//! uniform blocks the Rust side fills have the layout the WGSL declares.
+
+use naga::valid::{Capabilities, ValidationFlags, Validator};
+
+fn parse(name: &str, source: &str) -> naga::Module {
+    naga::front::wgsl::parse_str(source)
+        .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)))
+}
+
+#[test]
+fn all_kernels_validate() {
+    for (name, source) in splitsum::gpu::shaders::ALL {
+        let module = parse(name, source);
+        Validator::new(ValidationFlags::all(), Capabilities::empty())
+            .validate(&module)
+            .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)));
+        assert!(
+            module.entry_points.iter().any(|e| e.name == "main"),
+            "{name} has no main"
+        );
+    }
+}
+
+/// (member name, byte offset) of a WGSL struct, and its size.
+fn struct_layout(module: &naga::Module, name: &str) -> (Vec<(String, u32)>, u32) {
+    for (_, ty) in module.types.iter() {
+        if ty.name.as_deref() == Some(name) {
+            if let naga::TypeInner::Struct { members, span } = &ty.inner {
+                return (
+                    members
+                        .iter()
+                        .map(|m| (m.name.clone().unwrap_or_default(), m.offset))
+                        .collect(),
+                    *span,
+                );
+            }
+        }
+    }
+    panic!("struct {name} not found");
+}
+
+#[test]
+fn lut_params_layout_matches_rust() {
+    use splitsum::lut::LutParams;
+    use std::mem::{offset_of, size_of};
+    let module = parse("brdf_lut", splitsum::gpu::shaders::BRDF_LUT);
+    let (members, span) = struct_layout(&module, "LutParams");
+    let rust = [
+        ("size", offset_of!(LutParams, size)),
+        ("full_rule", offset_of!(LutParams, full_rule)),
+        ("partial_rule", offset_of!(LutParams, partial_rule)),
+        ("phi_rule", offset_of!(LutParams, phi_rule)),
+        ("panel_growth", offset_of!(LutParams, panel_growth)),
+        ("max_panels", offset_of!(LutParams, max_panels)),
+    ];
+    assert_eq!(members.len(), rust.len());
+    for ((wname, woff), (rname, roff)) in members.iter().zip(rust) {
+        assert_eq!((wname.as_str(), *woff as usize), (rname, roff));
+    }
+    assert!(size_of::<LutParams>() >= span as usize);
+    assert_eq!(size_of::<LutParams>() % 16, 0);
+}
