@@ -1,1 +1,123 @@
-fn main() {}
+//! `cargo bench`: timings and accuracy of the BRDF LUT on both backends, printed as tables.
+//!
+//! CPU seconds come from /proc/self/stat (user + system, all threads), wall seconds from a
+//! monotonic clock. GPU times are measured around the whole kernel call (upload, dispatch,
+//! readback) after one warm-up call that also pays the driver's shader compilation.
+
+#[path = "../tests/common/mod.rs"]
+mod common;
+
+use std::time::Instant;
+
+use splitsum::lut::{lut_texel_coords, LutQuadrature};
+use splitsum::math::brdf::{fresnel_schlick_weight, g1_schlick_ggx, k_ibl};
+use splitsum::math::sampling::{hammersley, importance_sample_ggx};
+
+/// User + system CPU seconds of this process so far (Linux; USER_HZ is 100 on every
+/// mainstream architecture). None elsewhere.
+fn cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    let after = &stat[stat.rfind(')')? + 2..];
+    let fields: Vec<&str> = after.split_whitespace().collect();
+    let utime: f64 = fields.get(11)?.parse().ok()?;
+    let stime: f64 = fields.get(12)?.parse().ok()?;
+    Some((utime + stime) / 100.0)
+}
+
+/// Runs `f` `runs` times; returns (median wall s, mean CPU s).
+fn measure(runs: usize, mut f: impl FnMut()) -> (f64, f64) {
+    let mut walls = Vec::new();
+    let cpu0 = cpu_seconds().unwrap_or(0.0);
+    for _ in 0..runs {
+        let t = Instant::now();
+        f();
+        walls.push(t.elapsed().as_secs_f64());
+    }
+    let cpu = (cpu_seconds().unwrap_or(0.0) - cpu0) / runs as f64;
+    walls.sort_by(f64::total_cmp);
+    (walls[runs / 2], cpu)
+}
+
+/// The LearnOpenGL-style estimator the quality bar compares against: N Hammersley GGX
+/// samples, A += G_vis (1 − Fc), B += G_vis Fc with G_vis = G (v·h) / ((n·h)(n·v)).
+fn monte_carlo_texel(n_dot_v: f32, roughness: f32, samples: u32) -> [f32; 2] {
+    let v = [(1.0 - n_dot_v * n_dot_v).sqrt(), 0.0, n_dot_v];
+    let alpha = roughness * roughness;
+    let k = k_ibl(roughness);
+    let mut ab = [0.0f32; 2];
+    for i in 0..samples {
+        let h = importance_sample_ggx(hammersley(i, samples), alpha);
+        let v_dot_h = v[0] * h[0] + v[2] * h[2];
+        let n_dot_l = 2.0 * v_dot_h * h[2] - v[2];
+        if n_dot_l > 0.0 {
+            let g = g1_schlick_ggx(n_dot_l, k) * g1_schlick_ggx(n_dot_v, k);
+            let g_vis = g * v_dot_h / (h[2] * n_dot_v);
+            let fc = fresnel_schlick_weight(v_dot_h);
+            ab[0] += (1.0 - fc) * g_vis;
+            ab[1] += fc * g_vis;
+        }
+    }
+    [ab[0] / samples as f32, ab[1] / samples as f32]
+}
+
+fn main() {
+    let quad = LutQuadrature::default();
+    println!("## BRDF LUT timings\n");
+    println!("| size | backend | wall s (median) | CPU s | notes |");
+    println!("|---|---|---|---|---|");
+    let ctx = splitsum::gpu::GpuContext::new();
+    for size in [128u32, 512] {
+        match &ctx {
+            Ok(ctx) => {
+                let t = Instant::now();
+                splitsum::gpu::brdf_lut::brdf_lut(&ctx.device, &ctx.queue, size, size, &quad)
+                    .unwrap();
+                let first = t.elapsed().as_secs_f64();
+                let (wall, cpu) = measure(3, || {
+                    splitsum::gpu::brdf_lut::brdf_lut(&ctx.device, &ctx.queue, size, size, &quad)
+                        .unwrap();
+                });
+                println!(
+                    "| {size} | gpu | {wall:.3} | {cpu:.3} | {}; first call {first:.3} s |",
+                    ctx.adapter_description()
+                );
+            }
+            Err(e) => println!("| {size} | gpu | - | - | unavailable: {e} |"),
+        }
+        let (wall, cpu) = measure(3, || {
+            splitsum::cpu::brdf_lut::brdf_lut(size, size, &quad);
+        });
+        println!(
+            "| {size} | cpu | {wall:.3} | {cpu:.3} | rayon, {} threads |",
+            rayon::current_num_threads()
+        );
+    }
+
+    println!("\n## BRDF LUT accuracy against the converged integral (max |error| over A and B)\n");
+    println!("| n·v | roughness | splitsum | 1024-sample Hammersley MC |");
+    println!("|---|---|---|---|");
+    let mut worst = [0.0f64; 2];
+    for (i, j) in common::check_texels(512, 512) {
+        let (nv, r) = lut_texel_coords(i, j, 512, 512);
+        let (ra, rb) = common::reference_lut(nv as f64, r as f64);
+        let err = |v: [f32; 2]| (v[0] as f64 - ra).abs().max((v[1] as f64 - rb).abs());
+        let ours = err(splitsum::cpu::brdf_lut::brdf_lut_texel(nv, r, &quad));
+        let mc = err(monte_carlo_texel(nv, r, 1024));
+        worst = [worst[0].max(ours), worst[1].max(mc)];
+    }
+    for (nv, r) in [(0.5f32, 0.5f32), (0.05, 0.3), (0.9, 0.1), (0.3, 0.9)] {
+        let (ra, rb) = common::reference_lut(nv as f64, r as f64);
+        let err = |v: [f32; 2]| (v[0] as f64 - ra).abs().max((v[1] as f64 - rb).abs());
+        println!(
+            "| {nv} | {r} | {:.1e} | {:.1e} |",
+            err(splitsum::cpu::brdf_lut::brdf_lut_texel(nv, r, &quad)),
+            err(monte_carlo_texel(nv, r, 1024))
+        );
+    }
+    println!(
+        "| worst of {} texels of a 512² LUT | | {:.1e} | {:.1e} |",
+        common::check_texels(512, 512).len(),
+        worst[0],
+        worst[1]
+    );
+}

@@ -42,6 +42,15 @@ fn panel_map(t: f32, lower_singular: bool, upper_singular: bool) -> vec2<f32> {
     return vec2<f32>(t, 1.0);
 }
 
+// End of the partial panel starting at theta_h = t0: geometric growth away from both
+// breakpoints, which are mirror images about pi/4.
+fn next_panel_end(t0: f32, growth: f32) -> f32 {
+    if (t0 < 0.5 * FRAC_PI_2) {
+        return min(t0 * growth, 0.5 * FRAC_PI_2);
+    }
+    return FRAC_PI_2 - (FRAC_PI_2 - t0) / growth;
+}
+
 fn ggx_q_at_theta(theta: f32, alpha2: f32) -> f32 {
     let c = cos(theta);
     let s = sin(theta);
@@ -105,8 +114,9 @@ fn brdf_lut_texel(n_dot_v: f32, roughness: f32) -> vec2<f32> {
         if (t0 >= theta_end) {
             break;
         }
-        let last = panel + 1u == params.max_panels || t0 * params.panel_growth >= theta_end;
-        var t1 = t0 * params.panel_growth;
+        let next = next_panel_end(t0, params.panel_growth);
+        let last = panel + 1u == params.max_panels || next >= theta_end;
+        var t1 = next;
         if (last) {
             t1 = theta_end;
         }

@@ -16,27 +16,34 @@
 //! except where l crosses the horizon. With v = (sin θv, 0, cos θv), n·l ≥ 0 for every φ
 //! when θh ≤ (π/2 − θv)/2, for no φ when θh ≥ (π/2 + θv)/2, and in between for
 //! cos φ ≥ cos θv (1 − 2cos²θh) / (2 sin θv sin θh cos θh). So the θh range is split into
-//! a "full" panel and "partial" panels whose φ range ends exactly on the horizon; partial
-//! panels grow geometrically from (π/2 − θv)/2, where the φ range changes on the scale of
-//! θh itself (at grazing n·v this is tiny), and the panels touching the two breakpoints use
+//! "full" panels (two: [0, θ₁/g] and [θ₁/g, θ₁], θ₁ the first breakpoint, g the panel
+//! growth, because the integrand varies quickly just below θ₁ where l nears the horizon at
+//! φ = π) and "partial" panels whose φ range ends exactly on the horizon. The φ range
+//! changes on the scale of θh near the first breakpoint (π/2 − θv)/2 and of π/2 − θh near
+//! the second, both tiny at grazing n·v, so partial panels grow geometrically away from
+//! both breakpoints (mirror images about π/4), and the panels touching them use
 //! a quadratic change of variable that removes the square-root behaviour of the φ range
 //! there. Each panel is integrated with Gauss-Legendre in q and in φ. G1(n·v)/(n·v) is
 //! divided out analytically, so the grazing column is as accurate as the rest.
-//! Measured against an adaptive f64 integral: max |error| ≈ 2e-5 over the 512² grid.
+//! Measured against an adaptive f64 integral (tests/lut_accuracy.rs): max |error| ≈ 3e-5
+//! over the 512² grid, grazing column and roughness ≈ 0 and ≈ 1 included.
 
-use crate::math::quadrature::gauss_legendre_unit;
+use crate::math::quadrature::{gauss_legendre_even_half, gauss_legendre_unit, Node};
 
 /// Gauss-Legendre nodes in q for the full panel (θh below the first horizon breakpoint).
-pub const FULL_PANEL_NODES: usize = 16;
+pub const FULL_PANEL_NODES: usize = 12;
 /// Gauss-Legendre nodes in q for each partial panel.
-pub const PARTIAL_PANEL_NODES: usize = 16;
-/// Gauss-Legendre nodes in φ within every panel.
-pub const PHI_NODES: usize = 8;
-/// Ratio between consecutive partial panels' upper and lower θh bounds.
-pub const PANEL_GROWTH: f32 = 1.5;
-/// At most this many partial panels per texel (enough for n·v ≥ 1/32768 with growth 1.5;
-/// the last panel always ends at the second breakpoint).
-pub const MAX_PARTIAL_PANELS: u32 = 32;
+pub const PARTIAL_PANEL_NODES: usize = 8;
+/// Nodes in φ within every panel: the integrand is even in φ, so the rule is the positive
+/// half of a 2n-point Gauss-Legendre rule on [−φmax, φmax] (see
+/// [`gauss_legendre_even_half`]).
+pub const PHI_NODES: usize = 6;
+/// Geometric growth of partial panels away from the two breakpoints (see
+/// `cpu::brdf_lut::next_panel_end`).
+pub const PANEL_GROWTH: f32 = 2.5;
+/// At most this many partial panels per texel (growth 2.5 needs 2·log₂.₅(π/2 / n·v) of
+/// them: 24 at n·v = 1/16384; the last panel always ends at the second breakpoint).
+pub const MAX_PARTIAL_PANELS: u32 = 64;
 
 /// Largest LUT edge accepted (per side).
 pub const MAX_LUT_SIZE: u32 = 8192;
@@ -111,21 +118,15 @@ pub struct LutQuadrature {
 impl Default for LutQuadrature {
     fn default() -> Self {
         let mut nodes = Vec::new();
-        let mut push = |n: usize| {
+        let mut push = |rule: Vec<Node>| {
             let offset = nodes.len() as u32;
-            nodes.extend(
-                gauss_legendre_unit(n)
-                    .into_iter()
-                    .map(|q| [q.x as f32, q.w as f32]),
-            );
-            RuleRange {
-                offset,
-                count: n as u32,
-            }
+            let count = rule.len() as u32;
+            nodes.extend(rule.into_iter().map(|q| [q.x as f32, q.w as f32]));
+            RuleRange { offset, count }
         };
-        let full = push(FULL_PANEL_NODES);
-        let partial = push(PARTIAL_PANEL_NODES);
-        let phi = push(PHI_NODES);
+        let full = push(gauss_legendre_unit(FULL_PANEL_NODES));
+        let partial = push(gauss_legendre_unit(PARTIAL_PANEL_NODES));
+        let phi = push(gauss_legendre_even_half(PHI_NODES));
         LutQuadrature {
             nodes,
             full,

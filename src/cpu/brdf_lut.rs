@@ -2,7 +2,7 @@
 //! panel Gauss-Legendre quadrature in the GGX-sampled domain. The method and its derivation
 //! are in [`crate::lut`]; the functions here have the same names as the WGSL ones.
 
-use std::f32::consts::{FRAC_PI_2, PI};
+use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
 use rayon::prelude::*;
 
@@ -34,6 +34,18 @@ pub fn panel_map(t: f32, lower_singular: bool, upper_singular: bool) -> (f32, f3
         (1.0 - s * s, 2.0 * s)
     } else {
         (t, 1.0)
+    }
+}
+
+/// End of the partial panel that starts at θh = `t0`. The φ range changes on the scale of
+/// θh's distance to 0 near the first breakpoint and of its distance to π/2 near the second
+/// (the two breakpoints are mirror images about π/4), so panels grow geometrically by
+/// `growth` away from both: t0·growth below π/4, π/2 − (π/2 − t0)/growth above.
+pub fn next_panel_end(t0: f32, growth: f32) -> f32 {
+    if t0 < FRAC_PI_4 {
+        (t0 * growth).min(FRAC_PI_4)
+    } else {
+        FRAC_PI_2 - (FRAC_PI_2 - t0) / growth
     }
 }
 
@@ -125,12 +137,9 @@ pub fn brdf_lut_texel(n_dot_v: f32, roughness: f32, quad: &LutQuadrature) -> [f3
         if t0 >= theta_end {
             break;
         }
-        let last = panel + 1 == quad.max_panels || t0 * quad.panel_growth >= theta_end;
-        let t1 = if last {
-            theta_end
-        } else {
-            t0 * quad.panel_growth
-        };
+        let next = next_panel_end(t0, quad.panel_growth);
+        let last = panel + 1 == quad.max_panels || next >= theta_end;
+        let t1 = if last { theta_end } else { next };
         let q1 = ggx_q_at_theta(t1, alpha2);
         let part = integrate_panel(&tx, q0, q1, false, panel == 0, last, partial_rule, phi_rule);
         ab[0] += part[0];

@@ -57,7 +57,7 @@ fn key_value(key: &str, value: &str) -> Vec<u8> {
     kv.push(0);
     let mut out = (kv.len() as u32).to_le_bytes().to_vec();
     out.extend(kv);
-    while out.len() % 4 != 0 {
+    while !out.len().is_multiple_of(4) {
         out.push(0);
     }
     out
@@ -112,9 +112,9 @@ pub fn encode(tex: &EncodedTexture) -> Vec<u8> {
         offsets[m] = cursor;
         cursor += tex.levels[m].len();
     }
-    for m in 0..level_count {
-        let len = tex.levels[m].len() as u64;
-        out.extend_from_slice(&(offsets[m] as u64).to_le_bytes());
+    for (level, offset) in tex.levels.iter().zip(&offsets) {
+        let len = level.len() as u64;
+        out.extend_from_slice(&(*offset as u64).to_le_bytes());
         out.extend_from_slice(&len.to_le_bytes());
         out.extend_from_slice(&len.to_le_bytes()); // uncompressedByteLength
     }

@@ -59,6 +59,21 @@ pub fn gauss_legendre_unit(n: usize) -> Vec<Node> {
     nodes
 }
 
+/// An n-node rule on [0, 1] for integrands that are even about 0, f(x) = f(−x): the
+/// non-negative half of the 2n-point Gauss-Legendre rule on [−1, 1]. Its nodes cluster only
+/// at x = 1, and it is exact for even polynomials of degree ≤ 4n − 2.
+pub fn gauss_legendre_even_half(n: usize) -> Vec<Node> {
+    let full = gauss_legendre_unit(2 * n);
+    // Nodes of the [0, 1] rule above 0.5 are (1 + z)/2 for z > 0; weights double.
+    full.into_iter()
+        .filter(|q| q.x > 0.5)
+        .map(|q| Node {
+            x: 2.0 * q.x - 1.0,
+            w: 2.0 * q.w,
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -74,6 +89,21 @@ mod tests {
                 assert!((approx - exact).abs() < 1e-13, "n={n} degree={degree}");
             }
             assert!(rule.windows(2).all(|p| p[0].x < p[1].x));
+        }
+    }
+
+    #[test]
+    fn even_half_rule_integrates_even_polynomials() {
+        for n in [1usize, 4, 8] {
+            let rule = gauss_legendre_even_half(n);
+            assert_eq!(rule.len(), n);
+            for k in 0..(2 * n) {
+                let approx: f64 = rule.iter().map(|q| q.w * q.x.powi(2 * k as i32)).sum();
+                assert!(
+                    (approx - 1.0 / (2 * k + 1) as f64).abs() < 1e-13,
+                    "n={n} k={k}"
+                );
+            }
         }
     }
 }

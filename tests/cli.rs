@@ -1,0 +1,196 @@
+//! The `splitsum` binary end to end: outputs checked against the converged reference,
+//! errors, exit codes.
+mod common;
+
+use std::path::Path;
+use std::process::Command;
+
+/// DESIGN.md quality bar for the LUT in float32 (and 16-bit PNG) output.
+const LUT_TOLERANCE: f64 = 1e-4;
+
+fn splitsum() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_splitsum"))
+}
+
+/// Max |error| of a decoded LUT (row-major [A, B]) against the reference at check texels.
+fn max_error(width: u32, height: u32, data: &[[f32; 2]]) -> f64 {
+    common::check_texels(width, height)
+        .into_iter()
+        .map(|(i, j)| {
+            let (nv, r) = splitsum::lut::lut_texel_coords(i, j, width, height);
+            let (ra, rb) = common::reference_lut(nv as f64, r as f64);
+            let got = data[(j * width + i) as usize];
+            (got[0] as f64 - ra).abs().max((got[1] as f64 - rb).abs())
+        })
+        .fold(0.0, f64::max)
+}
+
+fn read_exr_rg(path: &Path) -> (u32, u32, Vec<[f32; 2]>) {
+    use exr::prelude::*;
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .first_valid_layer()
+        .all_attributes()
+        .from_file(path)
+        .unwrap();
+    let layer = image.layer_data;
+    let channel = |name: &str| -> Vec<f32> {
+        let c = layer
+            .channel_data
+            .list
+            .iter()
+            .find(|c| c.name.to_string() == name)
+            .unwrap();
+        match &c.sample_data {
+            FlatSamples::F32(v) => v.clone(),
+            _ => panic!("not f32"),
+        }
+    };
+    let (r, g) = (channel("R"), channel("G"));
+    let data = r.iter().zip(&g).map(|(a, b)| [*a, *b]).collect();
+    (layer.size.0 as u32, layer.size.1 as u32, data)
+}
+
+#[test]
+fn lut_128_exr_meets_the_quality_bar() {
+    let dir = common::output_dir("cli-exr");
+    let out = dir.join("x.exr");
+    let status = splitsum()
+        .args(["lut", "--size", "128", "-o"])
+        .arg(&out)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let (w, h, data) = read_exr_rg(&out);
+    assert_eq!((w, h), (128, 128));
+    let err = max_error(w, h, &data);
+    println!("128 exr: max |error| {err:.2e}");
+    assert!(err <= LUT_TOLERANCE, "{err}");
+}
+
+#[test]
+fn default_lut_png_meets_the_quality_bar() {
+    let dir = common::output_dir("cli-png");
+    // Run in `dir` so the default output path out/brdf_lut.png lands there.
+    let status = splitsum().arg("lut").current_dir(&dir).status().unwrap();
+    assert!(status.success());
+    let img = image::open(dir.join("out/brdf_lut.png"))
+        .unwrap()
+        .into_rgb16();
+    assert_eq!(img.dimensions(), (512, 512));
+    let data: Vec<[f32; 2]> = img
+        .pixels()
+        .map(|p| [p.0[0] as f32 / 65535.0, p.0[1] as f32 / 65535.0])
+        .collect();
+    let err = max_error(512, 512, &data);
+    println!("512 png: max |error| {err:.2e}");
+    assert!(err <= LUT_TOLERANCE, "{err}");
+}
+
+#[test]
+fn lut_512_exr_cpu_backend_meets_the_quality_bar() {
+    let dir = common::output_dir("cli-exr-cpu");
+    let out = dir.join("lut.exr");
+    let status = splitsum()
+        .args(["lut", "--backend", "cpu", "-o"])
+        .arg(&out)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let (w, h, data) = read_exr_rg(&out);
+    let err = max_error(w, h, &data);
+    println!("512 exr cpu: max |error| {err:.2e}");
+    assert!(err <= LUT_TOLERANCE, "{err}");
+}
+
+#[test]
+fn ktx2_f32_output_loads() {
+    let dir = common::output_dir("cli-ktx2");
+    let out = dir.join("lut.ktx2");
+    let status = splitsum()
+        .args(["lut", "--size", "64", "--f32", "-o"])
+        .arg(&out)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let bytes = std::fs::read(&out).unwrap();
+    let reader = ktx2::Reader::new(&bytes[..]).unwrap();
+    assert_eq!(reader.header().format, Some(ktx2::Format::R32G32_SFLOAT));
+    let level = reader.levels().next().unwrap();
+    let data: Vec<[f32; 2]> = level
+        .data
+        .chunks_exact(8)
+        .map(|c| {
+            [
+                f32::from_le_bytes(c[0..4].try_into().unwrap()),
+                f32::from_le_bytes(c[4..8].try_into().unwrap()),
+            ]
+        })
+        .collect();
+    assert!(max_error(64, 64, &data) <= LUT_TOLERANCE);
+}
+
+#[test]
+fn bad_extension_fails_cleanly() {
+    let dir = common::output_dir("cli-bad-ext");
+    let out = dir.join("lut.txt");
+    let o = splitsum().args(["lut", "-o"]).arg(&out).output().unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("lut.txt") && err.contains("'.txt'"), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(!out.exists());
+    assert_eq!(
+        std::fs::read_dir(&dir).unwrap().count(),
+        0,
+        "no stray files"
+    );
+}
+
+#[test]
+fn usage_errors_exit_2() {
+    for args in [
+        &["lut", "--size", "0"][..],
+        &["lut", "--bogus"],
+        &["frobnicate"],
+    ] {
+        let o = splitsum().args(args).output().unwrap();
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+    }
+}
+
+#[test]
+fn version_and_help() {
+    let o = splitsum().arg("--version").output().unwrap();
+    assert!(o.status.success());
+    assert!(String::from_utf8_lossy(&o.stdout).contains(env!("CARGO_PKG_VERSION")));
+    let o = splitsum().args(["lut", "--help"]).output().unwrap();
+    let help = String::from_utf8_lossy(&o.stdout);
+    assert!(help.contains("n·v") && help.contains("--backend"), "{help}");
+}
+
+#[test]
+fn backend_gpu_without_adapter_fails_and_auto_falls_back() {
+    let dir = common::output_dir("cli-no-gpu");
+    let out = dir.join("lut.exr");
+    let o = splitsum()
+        .args(["lut", "--size", "16", "--backend", "gpu", "-o"])
+        .arg(&out)
+        .env(splitsum::gpu::context::HIDE_GPU_ENV, "1")
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("no GPU adapter"));
+    assert!(!out.exists());
+    let o = splitsum()
+        .args(["lut", "--size", "16", "-v", "-o"])
+        .arg(&out)
+        .env(splitsum::gpu::context::HIDE_GPU_ENV, "1")
+        .output()
+        .unwrap();
+    assert!(o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("backend: cpu"));
+    assert!(out.exists());
+}
