@@ -1,6 +1,8 @@
 //! The compute backends: one trait, a CPU implementation (the reference, usable on machines
 //! without a GPU) and a GPU one (wgpu). Tests run every kernel through both.
 
+use crate::cpu::equirect_to_cube::EquirectToCubeParams;
+use crate::environment::{Cubemap, EquirectPyramid};
 use crate::gpu::GpuContext;
 use crate::lut::{validate_lut_size, BrdfLut, LutQuadrature};
 use crate::{cpu, gpu, Error, Result};
@@ -24,6 +26,15 @@ pub trait Backend {
 
     /// The split-sum BRDF LUT (see [`crate::lut`]).
     fn brdf_lut(&self, width: u32, height: u32) -> Result<BrdfLut>;
+
+    /// An equirect (as its pyramid) to a cube of `params.face_size` with `mips` levels
+    /// (level 0 by footprint averaging, the rest by the 2×2 solid-angle reduction).
+    fn equirect_to_cube(
+        &self,
+        pyramid: &EquirectPyramid,
+        params: &EquirectToCubeParams,
+        mips: u32,
+    ) -> Result<Cubemap>;
 }
 
 /// The CPU reference backend.
@@ -42,6 +53,17 @@ impl Backend for CpuBackend {
             height,
             &LutQuadrature::default(),
         ))
+    }
+
+    fn equirect_to_cube(
+        &self,
+        pyramid: &EquirectPyramid,
+        params: &EquirectToCubeParams,
+        mips: u32,
+    ) -> Result<Cubemap> {
+        let mut cube = cpu::equirect_to_cube::equirect_to_cube(pyramid, params);
+        cpu::cube_downsample::build_mips(&mut cube, mips);
+        Ok(cube)
     }
 }
 
@@ -77,6 +99,17 @@ impl Backend for GpuBackend {
         )?;
         self.ctx.take_uncaptured_error("brdf_lut")?;
         Ok(lut)
+    }
+
+    fn equirect_to_cube(
+        &self,
+        pyramid: &EquirectPyramid,
+        params: &EquirectToCubeParams,
+        mips: u32,
+    ) -> Result<Cubemap> {
+        let cube = gpu::equirect_to_cube::equirect_to_cube(&self.ctx.device, &self.ctx.queue, pyramid, params, mips)?;
+        self.ctx.take_uncaptured_error("equirect_to_cube")?;
+        Ok(cube)
     }
 }
 

@@ -39,6 +39,17 @@ pub enum Command {
     /// .ktx2 (R16G16_SFLOAT, or R32G32_SFLOAT with --f32), .dds (DXGI R16G16_FLOAT or
     /// R32G32_FLOAT with --f32).
     Lut(LutArgs),
+
+    /// Converts an HDR environment (equirect, cross, faces, KTX2/DDS cube) to a cubemap.
+    ///
+    /// Faces +X, −X, +Y, −Y, +Z, −Z in the Vulkan/D3D/OpenGL face orientation: a shader
+    /// sampling the result with a world-space direction d gets the radiance arriving from d
+    /// (right-handed, +Y up; the equirect's centre looks along +X, u = 0.75 along +Z).
+    /// Each texel is the solid-angle-weighted mean of the environment over its footprint;
+    /// mips (--mips) keep the energy of the level above. Format from the extension: .ktx2
+    /// and .dds with every mip in --pixel-format; .exr and .hdr (level 0, for inspection)
+    /// as six files <stem>_px … <stem>_nz, or one image with --layout cross|equirect.
+    Cubemap(CubemapArgs),
 }
 
 /// Options shared by every command.
@@ -72,6 +83,111 @@ pub struct LutArgs {
 
     #[command(flatten)]
     pub common: CommonArgs,
+}
+
+/// Options that read an environment.
+#[derive(Debug, Args)]
+pub struct InputArgs {
+    /// Rotate the environment about +Y by DEG degrees before anything else (right-handed:
+    /// a positive angle turns +X towards −Z).
+    #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_hyphen_values = true)]
+    pub rotate: f32,
+
+    /// Multiply the input radiance by 2^EV.
+    #[arg(long, value_name = "EV", default_value_t = 0.0, allow_hyphen_values = true)]
+    pub exposure: f32,
+}
+
+/// `splitsum cubemap`.
+#[derive(Debug, Args)]
+pub struct CubemapArgs {
+    /// Input: a 2:1 equirect, a 4:3 or 3:4 cross (.hdr, .exr, .png, .jpg), or a KTX2/DDS
+    /// cubemap.
+    #[arg(required_unless_present = "faces")]
+    pub input: Option<PathBuf>,
+
+    /// Six square face images instead of INPUT, in the order +X −X +Y −Y +Z −Z.
+    #[arg(long, num_args = 6, value_names = ["PX", "NX", "PY", "NY", "PZ", "NZ"], conflicts_with = "input")]
+    pub faces: Vec<PathBuf>,
+
+    /// Output file [default: out/<stem>_cubemap.ktx2].
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+
+    /// Face edge in texels, a power of two [default: the largest power of two ≤ input
+    /// width / 4].
+    #[arg(long)]
+    pub size: Option<u32>,
+
+    /// Write the full mip chain (down to 1×1).
+    #[arg(long)]
+    pub mips: bool,
+
+    /// Pixel format of KTX2/DDS outputs.
+    #[arg(long, value_enum, default_value_t = PixelFormatArg::Rgba16f)]
+    pub pixel_format: PixelFormatArg,
+
+    /// KTX2: Zstandard-supercompress each level (LEVEL 1–22, default 10).
+    #[arg(long, value_name = "LEVEL", num_args = 0..=1, default_missing_value = "10",
+          value_parser = clap::value_parser!(i32).range(1..=22))]
+    pub zstd: Option<i32>,
+
+    /// Layout of .exr/.hdr outputs.
+    #[arg(long, value_enum, default_value_t = LayoutArg::Faces)]
+    pub layout: LayoutArg,
+
+    #[command(flatten)]
+    pub input_opts: InputArgs,
+
+    #[command(flatten)]
+    pub common: CommonArgs,
+}
+
+/// `--pixel-format` values.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum PixelFormatArg {
+    /// 4 × 16-bit float (R16G16B16A16_SFLOAT).
+    Rgba16f,
+    /// 4 × 32-bit float (R32G32B32A32_SFLOAT).
+    Rgba32f,
+    /// Shared exponent (E5B9G9R9_UFLOAT_PACK32).
+    Rgb9e5,
+    /// Packed unsigned floats (B10G11R11_UFLOAT_PACK32).
+    Rg11b10f,
+}
+
+impl From<PixelFormatArg> for splitsum::io::PixelFormat {
+    fn from(p: PixelFormatArg) -> Self {
+        use splitsum::io::PixelFormat as P;
+        match p {
+            PixelFormatArg::Rgba16f => P::Rgba16f,
+            PixelFormatArg::Rgba32f => P::Rgba32f,
+            PixelFormatArg::Rgb9e5 => P::Rgb9e5,
+            PixelFormatArg::Rg11b10f => P::Rg11b10f,
+        }
+    }
+}
+
+/// `--layout` values.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum LayoutArg {
+    /// Six files <stem>_px … <stem>_nz.
+    Faces,
+    /// One horizontal cross.
+    Cross,
+    /// One 4N×2N equirect.
+    Equirect,
+}
+
+impl From<LayoutArg> for splitsum::io::cubemap::CubeLayout {
+    fn from(l: LayoutArg) -> Self {
+        use splitsum::io::cubemap::CubeLayout as L;
+        match l {
+            LayoutArg::Faces => L::Faces,
+            LayoutArg::Cross => L::Cross,
+            LayoutArg::Equirect => L::Equirect,
+        }
+    }
 }
 
 /// `--backend` values.

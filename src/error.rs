@@ -41,6 +41,28 @@ pub enum Error {
         message: String,
     },
 
+    /// An input file could not be decoded: truncated, corrupt, or not the format its
+    /// extension says.
+    #[error("{path}: not a valid {format} file: {message}")]
+    Decode {
+        /// The input file.
+        path: PathBuf,
+        /// The format it was read as.
+        format: &'static str,
+        /// What is wrong.
+        message: String,
+    },
+
+    /// An input file is well formed but uses something splitsum does not support, or is
+    /// not an environment (wrong aspect ratio, too small or too large, unknown layout).
+    #[error("{path}: {message}")]
+    UnsupportedInput {
+        /// The input file.
+        path: PathBuf,
+        /// What is unsupported, and what is expected instead.
+        message: String,
+    },
+
     /// A parameter is outside the range splitsum supports.
     #[error("invalid {name}: {message}")]
     InvalidParameter {

@@ -18,7 +18,9 @@
 //! The library never prints and never panics on bad input; every failure is an [`Error`].
 
 pub mod backend;
+pub mod convert;
 pub mod cpu;
+pub mod environment;
 pub mod error;
 pub mod gpu;
 pub mod io;
@@ -27,4 +29,5 @@ pub mod math;
 
 pub use backend::{create_backend, Backend, BackendChoice, CpuBackend, GpuBackend};
 pub use error::{Error, Result};
+pub use environment::{Cubemap, Environment, Equirect};
 pub use lut::BrdfLut;

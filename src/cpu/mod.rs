@@ -2,3 +2,6 @@
 //! function; they are the ground the GPU results are checked against, and the `cpu` backend.
 
 pub mod brdf_lut;
+pub mod cube_downsample;
+pub mod cube_resample;
+pub mod equirect_to_cube;

@@ -7,6 +7,8 @@
 pub mod brdf_lut;
 pub mod compute;
 pub mod context;
+pub mod equirect_to_cube;
 pub mod shaders;
+pub mod texture;
 
 pub use context::GpuContext;

@@ -15,5 +15,15 @@ macro_rules! kernel_source {
 /// `shaders/brdf_lut.wgsl` with brdf and sampling.
 pub const BRDF_LUT: &str = kernel_source!("brdf_lut.wgsl", ["brdf.wgsl", "sampling.wgsl"]);
 
+/// `shaders/equirect_to_cube.wgsl` with cubemap.
+pub const EQUIRECT_TO_CUBE: &str = kernel_source!("equirect_to_cube.wgsl", ["cubemap.wgsl"]);
+
+/// `shaders/cube_downsample.wgsl` with cubemap.
+pub const CUBE_DOWNSAMPLE: &str = kernel_source!("cube_downsample.wgsl", ["cubemap.wgsl"]);
+
 /// Every assembled kernel by name, for validation.
-pub const ALL: &[(&str, &str)] = &[("brdf_lut", BRDF_LUT)];
+pub const ALL: &[(&str, &str)] = &[
+    ("brdf_lut", BRDF_LUT),
+    ("equirect_to_cube", EQUIRECT_TO_CUBE),
+    ("cube_downsample", CUBE_DOWNSAMPLE),
+];

@@ -1,6 +1,7 @@
 //! KTX 2.0 writer (Khronos KTX File Format Specification 2.0): header, level index, a
 //! Khronos Basic Data Format Descriptor, a `KTXwriter` key/value entry, and the mip levels
-//! stored smallest first, each aligned to lcm(texel size, 4).
+//! stored smallest first, each aligned to lcm(texel size, 4), optionally Zstandard
+//! supercompressed level by level.
 
 use super::format::{EncodedTexture, PixelFormat};
 
@@ -16,37 +17,78 @@ const KHR_DF_TRANSFER_LINEAR: u32 = 1;
 const KHR_DF_VERSION: u32 = 2;
 const KHR_DF_SAMPLE_DATATYPE_FLOAT: u32 = 0x80;
 const KHR_DF_SAMPLE_DATATYPE_SIGNED: u32 = 0x40;
+const KHR_DF_SAMPLE_DATATYPE_EXPONENT: u32 = 0x20;
+const KHR_DF_CHANNEL_R: u32 = 0;
+const KHR_DF_CHANNEL_G: u32 = 1;
+const KHR_DF_CHANNEL_B: u32 = 2;
 const KHR_DF_CHANNEL_ALPHA: u32 = 15;
-// sampleLower / sampleUpper of a signed float channel: -1.0 and 1.0 as IEEE bits.
-const FLOAT_LOWER: u32 = 0xBF80_0000;
-const FLOAT_UPPER: u32 = 0x3F80_0000;
+/// sampleLower / sampleUpper of float channels: −1.0 and 1.0 as IEEE bits.
+const FLOAT_MINUS_ONE: u32 = 0xBF80_0000;
+const FLOAT_ONE: u32 = 0x3F80_0000;
+/// E5B9G9R9 (KDF 1.3 "Shared exponent" example; Khronos dfdutils): mantissa samples span
+/// 0..8448 (= 2⁹ · 16.5, the mantissa's range through the exponent bias), exponent samples
+/// carry the bias 15 and the maximum 31.
+const RGB9E5_MANTISSA_UPPER: u32 = 8448;
+const RGB9E5_EXPONENT_BIAS: u32 = 15;
+const RGB9E5_EXPONENT_MAX: u32 = 31;
+
+/// Supercompression scheme number of Zstandard (KTX 2.0, section 3.9).
+pub const SUPERCOMPRESSION_ZSTD: u32 = 2;
+
+/// One DFD sample: (bit offset, bit length, channel type with qualifiers, lower, upper).
+type Sample = (u32, u32, u32, u32, u32);
+
+fn samples(format: PixelFormat) -> Vec<Sample> {
+    let float_signed = KHR_DF_SAMPLE_DATATYPE_FLOAT | KHR_DF_SAMPLE_DATATYPE_SIGNED;
+    let float_channels = |count: u32, bits: u32| -> Vec<Sample> {
+        (0..count)
+            .map(|c| {
+                let id = [KHR_DF_CHANNEL_R, KHR_DF_CHANNEL_G, KHR_DF_CHANNEL_B, KHR_DF_CHANNEL_ALPHA][c as usize];
+                (c * bits, bits, id | float_signed, FLOAT_MINUS_ONE, FLOAT_ONE)
+            })
+            .collect()
+    };
+    match format {
+        PixelFormat::Rg16f => float_channels(2, 16),
+        PixelFormat::Rg32f => float_channels(2, 32),
+        PixelFormat::Rgba16f => float_channels(4, 16),
+        PixelFormat::Rgba32f => float_channels(4, 32),
+        PixelFormat::Rg11b10f => [(0, 11, KHR_DF_CHANNEL_R), (11, 11, KHR_DF_CHANNEL_G), (22, 10, KHR_DF_CHANNEL_B)]
+            .into_iter()
+            .map(|(off, len, id)| (off, len, id | KHR_DF_SAMPLE_DATATYPE_FLOAT, 0, FLOAT_ONE))
+            .collect(),
+        PixelFormat::Rgb9e5 => [KHR_DF_CHANNEL_R, KHR_DF_CHANNEL_G, KHR_DF_CHANNEL_B]
+            .into_iter()
+            .enumerate()
+            .flat_map(|(i, id)| {
+                [
+                    (9 * i as u32, 9, id, 0, RGB9E5_MANTISSA_UPPER),
+                    (27, 5, id | KHR_DF_SAMPLE_DATATYPE_EXPONENT, RGB9E5_EXPONENT_BIAS, RGB9E5_EXPONENT_MAX),
+                ]
+            })
+            .collect(),
+    }
+}
 
 /// The Data Format Descriptor for `format`, including its leading total-size word.
 pub fn data_format_descriptor(format: PixelFormat) -> Vec<u8> {
-    let channels = format.channels() as u32;
-    let bits = format.channel_bytes() * 8;
+    let samples = samples(format);
     let mut words: Vec<u32> = vec![
         0, // vendorId = Khronos, descriptorType = basic
-        KHR_DF_VERSION | ((24 + 16 * channels) << 16),
+        KHR_DF_VERSION | ((24 + 16 * samples.len() as u32) << 16),
         KHR_DF_MODEL_RGBSDA | (KHR_DF_PRIMARIES_BT709 << 8) | (KHR_DF_TRANSFER_LINEAR << 16),
         0,                    // texelBlockDimension 1×1×1×1 (stored minus one)
         format.texel_bytes(), // bytesPlane0
         0,
     ];
-    for c in 0..channels {
-        let channel_id = if c == 3 { KHR_DF_CHANNEL_ALPHA } else { c };
-        let channel_type =
-            channel_id | KHR_DF_SAMPLE_DATATYPE_FLOAT | KHR_DF_SAMPLE_DATATYPE_SIGNED;
-        words.push((c * bits) | ((bits - 1) << 16) | (channel_type << 24));
+    for (offset, len, channel_type, lower, upper) in samples {
+        words.push(offset | ((len - 1) << 16) | (channel_type << 24));
         words.push(0); // sample position
-        words.push(FLOAT_LOWER);
-        words.push(FLOAT_UPPER);
+        words.push(lower);
+        words.push(upper);
     }
     let total = 4 + 4 * words.len() as u32;
-    std::iter::once(total)
-        .chain(words)
-        .flat_map(u32::to_le_bytes)
-        .collect()
+    std::iter::once(total).chain(words).flat_map(u32::to_le_bytes).collect()
 }
 
 fn key_value(key: &str, value: &str) -> Vec<u8> {
@@ -74,9 +116,19 @@ fn lcm(a: usize, b: usize) -> usize {
     a / gcd(a, b) * b
 }
 
-/// Serialises `tex` as a KTX2 file (no supercompression).
-pub fn encode(tex: &EncodedTexture) -> Vec<u8> {
+/// Serialises `tex` as a KTX2 file; with `zstd_level`, each mip level is compressed
+/// separately with Zstandard (supercompression scheme 2).
+pub fn encode(tex: &EncodedTexture, zstd_level: Option<i32>) -> std::io::Result<Vec<u8>> {
     let level_count = tex.levels.len();
+    let compressed: Vec<Vec<u8>> = match zstd_level {
+        Some(level) => tex
+            .levels
+            .iter()
+            .map(|l| zstd::bulk::compress(l, level))
+            .collect::<std::io::Result<_>>()?,
+        None => Vec::new(),
+    };
+    let stored: Vec<&Vec<u8>> = if zstd_level.is_some() { compressed.iter().collect() } else { tex.levels.iter().collect() };
     let header_len = 80 + 24 * level_count;
     let dfd = data_format_descriptor(tex.format);
     let kvd = key_value("KTXwriter", concat!("splitsum ", env!("CARGO_PKG_VERSION")));
@@ -86,14 +138,14 @@ pub fn encode(tex: &EncodedTexture) -> Vec<u8> {
     out.extend_from_slice(&IDENTIFIER);
     for v in [
         tex.format.vk_format(),
-        tex.format.channel_bytes(), // typeSize
+        tex.format.type_size(), // typeSize
         tex.width,
         tex.height,
         0, // pixelDepth
         0, // layerCount
         tex.faces,
         level_count as u32,
-        0, // supercompressionScheme
+        if zstd_level.is_some() { SUPERCOMPRESSION_ZSTD } else { 0 },
         dfd_offset as u32,
         dfd.len() as u32,
         kvd_offset as u32,
@@ -103,26 +155,26 @@ pub fn encode(tex: &EncodedTexture) -> Vec<u8> {
     }
     out.extend_from_slice(&0u64.to_le_bytes()); // sgdByteOffset
     out.extend_from_slice(&0u64.to_le_bytes()); // sgdByteLength
-                                                // Level data placement: smallest level first, each aligned.
-    let align = lcm(tex.format.texel_bytes() as usize, 4);
+                                                // Level data placement: smallest level first, each aligned to lcm(texel size, 4)
+    // (to 1 when supercompressed).
+    let align = if zstd_level.is_some() { 1 } else { lcm(tex.format.texel_bytes() as usize, 4) };
     let mut offsets = vec![0usize; level_count];
     let mut cursor = kvd_offset + kvd.len();
     for m in (0..level_count).rev() {
         cursor = cursor.next_multiple_of(align);
         offsets[m] = cursor;
-        cursor += tex.levels[m].len();
+        cursor += stored[m].len();
     }
-    for (level, offset) in tex.levels.iter().zip(&offsets) {
-        let len = level.len() as u64;
-        out.extend_from_slice(&(*offset as u64).to_le_bytes());
-        out.extend_from_slice(&len.to_le_bytes());
-        out.extend_from_slice(&len.to_le_bytes()); // uncompressedByteLength
+    for m in 0..level_count {
+        out.extend_from_slice(&(offsets[m] as u64).to_le_bytes());
+        out.extend_from_slice(&(stored[m].len() as u64).to_le_bytes());
+        out.extend_from_slice(&(tex.levels[m].len() as u64).to_le_bytes()); // uncompressedByteLength
     }
     out.extend_from_slice(&dfd);
     out.extend_from_slice(&kvd);
     for m in (0..level_count).rev() {
         out.resize(offsets[m], 0);
-        out.extend_from_slice(&tex.levels[m]);
+        out.extend_from_slice(stored[m]);
     }
-    out
+    Ok(out)
 }

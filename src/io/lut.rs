@@ -48,13 +48,13 @@ pub fn encode_lut(path: &Path, lut: &BrdfLut, opts: LutWriteOptions) -> Result<V
         } else {
             PixelFormat::Rg16f
         };
-        let values: Vec<f32> = lut.data.iter().flatten().copied().collect();
+        let texels: Vec<[f32; 4]> = lut.data.iter().map(|&[a, b]| [a, b, 0.0, 1.0]).collect();
         EncodedTexture {
             format,
             width: lut.width,
             height: lut.height,
             faces: 1,
-            levels: vec![format.encode(&values)],
+            levels: vec![format.encode(&texels)],
         }
     };
     match ext.as_str() {
@@ -63,7 +63,7 @@ pub fn encode_lut(path: &Path, lut: &BrdfLut, opts: LutWriteOptions) -> Result<V
             png::encode_rgb16(lut.width, lut.height, &rgb).map_err(encode_err("PNG"))
         }
         "exr" => exr::encode_rg32(lut.width, lut.height, &lut.data).map_err(encode_err("OpenEXR")),
-        "ktx2" => Ok(ktx2::encode(&texture())),
+        "ktx2" => ktx2::encode(&texture(), None).map_err(|e| encode_err("KTX2")(e.to_string())),
         "dds" => Ok(dds::encode(&texture())),
         _ => check_lut_path(path).map(|_| Vec::new()),
     }

@@ -2,10 +2,15 @@
 //! [`atomic::write_atomic`], so an output is either complete or absent.
 
 pub mod atomic;
+pub mod cubemap;
 pub mod dds;
 pub mod exr;
 pub mod format;
+pub mod hdr;
+pub mod input;
 pub mod ktx2;
+pub mod ldr;
+pub mod limits;
 pub mod lut;
 pub mod png;
 

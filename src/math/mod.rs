@@ -3,5 +3,6 @@
 //! thing step by step.
 
 pub mod brdf;
+pub mod cubemap;
 pub mod quadrature;
 pub mod sampling;

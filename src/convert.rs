@@ -1,0 +1,72 @@
+//! HDRI → cubemap conversion: the step shared by `splitsum cubemap` and the bake.
+
+use crate::cpu::cube_downsample::build_mips;
+use crate::cpu::cube_resample::cube_resample;
+use crate::cpu::equirect_to_cube::EquirectToCubeParams;
+use crate::environment::{Cubemap, Environment, EquirectPyramid};
+use crate::{Backend, Error, Result};
+
+/// Largest cube face edge accepted.
+pub const MAX_CUBE_SIZE: u32 = 8192;
+
+/// The default face size for an environment: the largest power of two ≤ width/4 for an
+/// equirect (a cube face then has about the equirect's angular resolution at the equator),
+/// the input's own face size for a cube, capped at [`MAX_CUBE_SIZE`].
+pub fn default_cube_size(env: &Environment) -> u32 {
+    let target = match env {
+        Environment::Equirect(e) => (e.width / 4).max(1),
+        Environment::Cube(c) => c.size,
+    };
+    (1u32 << (31 - target.leading_zeros())).min(MAX_CUBE_SIZE)
+}
+
+/// Checks a requested face size: a power of two in 1..=[`MAX_CUBE_SIZE`], so that every
+/// mip halves exactly.
+pub fn validate_cube_size(size: u32) -> Result<()> {
+    if size == 0 || size > MAX_CUBE_SIZE || !size.is_power_of_two() {
+        return Err(Error::InvalidParameter {
+            name: "--size",
+            message: format!("cube size {size} must be a power of two in 1..={MAX_CUBE_SIZE}"),
+        });
+    }
+    Ok(())
+}
+
+/// Converts `env` to a `size` cube rotated by `rotate_degrees` about +Y, with the full mip
+/// chain when `mips` is set. Equirects run on `backend`; cube inputs are resampled on the
+/// CPU (see `cpu::cube_resample`), or kept as they are when size and rotation allow.
+pub fn environment_to_cube(
+    backend: &dyn Backend,
+    env: &Environment,
+    size: u32,
+    mips: bool,
+    rotate_degrees: f32,
+) -> Result<Cubemap> {
+    validate_cube_size(size)?;
+    if !rotate_degrees.is_finite() {
+        return Err(Error::InvalidParameter {
+            name: "--rotate",
+            message: format!("{rotate_degrees} is not a finite angle"),
+        });
+    }
+    let levels = if mips { Cubemap::full_mip_count(size) } else { 1 };
+    match env {
+        Environment::Equirect(e) => {
+            let pyramid = EquirectPyramid::new(e.clone());
+            let params = EquirectToCubeParams::new(size, &pyramid, rotate_degrees);
+            backend.equirect_to_cube(&pyramid, &params, levels)
+        }
+        Environment::Cube(c) => {
+            let mut cube = if c.size == size && rotate_degrees.rem_euclid(360.0) == 0.0 {
+                Cubemap {
+                    size,
+                    levels: vec![c.levels[0].clone()],
+                }
+            } else {
+                cube_resample(c, size, rotate_degrees)
+            };
+            build_mips(&mut cube, levels);
+            Ok(cube)
+        }
+    }
+}

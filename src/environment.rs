@@ -1,0 +1,166 @@
+//! In-memory environments: equirectangular images (with an energy-preserving mip pyramid)
+//! and cubemaps (with mip chains), both linear RGB radiance.
+
+use crate::math::cubemap::FACES;
+
+/// A linear-RGB equirectangular image, rows top (+Y) to bottom.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Equirect {
+    /// Width in texels.
+    pub width: u32,
+    /// Height in texels.
+    pub height: u32,
+    /// Row-major RGB radiance.
+    pub data: Vec<[f32; 3]>,
+}
+
+impl Equirect {
+    /// Texel (x, y).
+    pub fn get(&self, x: u32, y: u32) -> [f32; 3] {
+        self.data[(y * self.width + x) as usize]
+    }
+
+    /// Solid angle of one texel of row `y` (all texels of a row are equal):
+    /// (2π / W) · (cos θ_top − cos θ_bottom).
+    pub fn row_solid_angle(&self, y: u32) -> f64 {
+        let h = self.height as f64;
+        let pi = std::f64::consts::PI;
+        2.0 * pi / self.width as f64 * ((pi * y as f64 / h).cos() - (pi * (y + 1) as f64 / h).cos())
+    }
+
+    /// Half-size copy (floor, at least 1×1) by an exact area filter: every target texel is
+    /// the solid-angle-weighted mean of the source area it covers (fractional overlaps
+    /// included), so ∫ L dω is the same at every level.
+    pub fn downsample(&self) -> Equirect {
+        let (w0, h0) = (self.width as usize, self.height as usize);
+        let (w1, h1) = ((w0 / 2).max(1), (h0 / 2).max(1));
+        // Horizontal pass: plain area weights (all texels of a row have equal solid angle).
+        let xw = overlap_weights(w0, w1, |a, b| b - a);
+        let mut tmp = vec![[0.0f32; 3]; w1 * h0];
+        for y in 0..h0 {
+            let row = &self.data[y * w0..(y + 1) * w0];
+            for (x, taps) in xw.iter().enumerate() {
+                tmp[y * w1 + x] = weighted_sum(taps, |i| row[i]);
+            }
+        }
+        // Vertical pass: weights ∝ solid angle of the overlap, cos θa − cos θb.
+        let pi = std::f64::consts::PI;
+        let yw = overlap_weights(h0, h1, |a, b| {
+            (pi * a / h0 as f64).cos() - (pi * b / h0 as f64).cos()
+        });
+        let mut data = vec![[0.0f32; 3]; w1 * h1];
+        for (y, taps) in yw.iter().enumerate() {
+            for x in 0..w1 {
+                data[y * w1 + x] = weighted_sum(taps, |r| tmp[r * w1 + x]);
+            }
+        }
+        Equirect {
+            width: w1 as u32,
+            height: h1 as u32,
+            data,
+        }
+    }
+}
+
+/// For each of `n1` target cells covering `n0` source cells, the (source index, weight)
+/// pairs of the overlap, with weights from `measure(a, b)` of the overlapping interval in
+/// source units, normalised to sum 1.
+fn overlap_weights(n0: usize, n1: usize, measure: impl Fn(f64, f64) -> f64) -> Vec<Vec<(usize, f32)>> {
+    let scale = n0 as f64 / n1 as f64;
+    (0..n1)
+        .map(|t| {
+            let (a, b) = (t as f64 * scale, (t + 1) as f64 * scale);
+            let mut taps: Vec<(usize, f64)> = (a.floor() as usize..(b.ceil() as usize).min(n0))
+                .map(|i| {
+                    let lo = a.max(i as f64);
+                    let hi = b.min((i + 1) as f64);
+                    (i, measure(lo, hi).max(0.0))
+                })
+                .filter(|&(_, w)| w > 0.0)
+                .collect();
+            let total: f64 = taps.iter().map(|t| t.1).sum();
+            if total > 0.0 {
+                taps.iter_mut().for_each(|t| t.1 /= total);
+            }
+            taps.into_iter().map(|(i, w)| (i, w as f32)).collect()
+        })
+        .collect()
+}
+
+fn weighted_sum(taps: &[(usize, f32)], texel: impl Fn(usize) -> [f32; 3]) -> [f32; 3] {
+    let mut acc = [0.0f32; 3];
+    for &(i, w) in taps {
+        let v = texel(i);
+        for c in 0..3 {
+            acc[c] += w * v[c];
+        }
+    }
+    acc
+}
+
+/// An equirect image and its successive half-size levels, down to a height of 1.
+#[derive(Clone, Debug)]
+pub struct EquirectPyramid {
+    /// Level 0 is the input.
+    pub levels: Vec<Equirect>,
+}
+
+impl EquirectPyramid {
+    /// Builds every level down to 1 texel high.
+    pub fn new(base: Equirect) -> Self {
+        let mut levels = vec![base];
+        while levels.last().is_some_and(|l| l.height > 1) {
+            let next = levels.last().map(Equirect::downsample);
+            levels.extend(next);
+        }
+        EquirectPyramid { levels }
+    }
+}
+
+/// A cubemap with a mip chain: `levels[m]` holds the 6 faces (+X, −X, +Y, −Y, +Z, −Z) of
+/// size `size >> m`, face-major, rows top to bottom, RGBA (A = 1).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cubemap {
+    /// Edge of level 0 in texels.
+    pub size: u32,
+    /// Mip levels, largest first.
+    pub levels: Vec<Vec<[f32; 4]>>,
+}
+
+impl Cubemap {
+    /// Edge of mip `m`.
+    pub fn level_size(&self, m: usize) -> u32 {
+        (self.size >> m).max(1)
+    }
+
+    /// Texel (i, j) of `face` at mip `m`.
+    pub fn texel(&self, m: usize, face: u32, i: u32, j: u32) -> [f32; 4] {
+        let n = self.level_size(m);
+        self.levels[m][((face * n + j) * n + i) as usize]
+    }
+
+    /// Texels of one face at mip `m`.
+    pub fn face(&self, m: usize, face: usize) -> &[[f32; 4]] {
+        let n = self.level_size(m) as usize;
+        &self.levels[m][face * n * n..(face + 1) * n * n]
+    }
+
+    /// Number of levels in a full chain down to 1×1: log2(size) + 1.
+    pub fn full_mip_count(size: u32) -> u32 {
+        32 - size.leading_zeros()
+    }
+
+    /// Texels per level for `FACES` faces of edge `n`.
+    pub fn level_len(n: u32) -> usize {
+        FACES * (n as usize) * (n as usize)
+    }
+}
+
+/// An environment as loaded from a file.
+#[derive(Clone, Debug)]
+pub enum Environment {
+    /// An equirectangular (latitude-longitude) image.
+    Equirect(Equirect),
+    /// A cubemap (from face files, a cross, or a KTX2/DDS cubemap).
+    Cube(Cubemap),
+}

@@ -1,0 +1,338 @@
+//! Loading environments: equirect images (.hdr, .exr, .png, .jpg), cube crosses (4:3
+//! horizontal, 3:4 vertical, detected by aspect ratio), six face files, and KTX2/DDS
+//! cubemaps in the formats splitsum writes. Every input is sanitised (no NaN, infinity or
+//! negative radiance reaches a kernel) and scaled by the exposure.
+
+use std::path::{Path, PathBuf};
+
+use super::format::PixelFormat;
+use super::limits::check_dimensions;
+use super::{exr, extension_of, hdr, ldr};
+use crate::environment::{Cubemap, Environment, Equirect};
+use crate::math::cubemap::FACES;
+use crate::{Error, Result};
+
+/// Image extensions accepted as equirects, crosses or faces.
+pub const IMAGE_EXTENSIONS: &str = "hdr, exr, png, jpg, jpeg";
+
+/// Where each face sits in a horizontal cross (4×3 faces), as (column, row), in face
+/// order +X, −X, +Y, −Y, +Z, −Z:
+/// ```text
+///       +Y
+///   −X  +Z  +X  −Z
+///       −Y
+/// ```
+/// Faces keep the orientation of the face selection table, which makes the cross
+/// continuous across every shared edge.
+pub const HORIZONTAL_CROSS: [(u32, u32); FACES] = [(2, 1), (0, 1), (1, 0), (1, 2), (1, 1), (3, 1)];
+
+/// Face positions in a vertical cross (3×4 faces); −Z is stored rotated by 180° so it
+/// continues below −Y:
+/// ```text
+///       +Y
+///   −X  +Z  +X
+///       −Y
+///       −Z (rotated 180°)
+/// ```
+pub const VERTICAL_CROSS: [(u32, u32); FACES] = [(2, 1), (0, 1), (1, 0), (1, 2), (1, 1), (1, 3)];
+
+/// Options applied on input.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct InputOptions {
+    /// Exposure in EV: radiance is multiplied by 2^EV.
+    pub exposure_ev: f32,
+}
+
+/// A loaded environment with the warnings its loading produced.
+#[derive(Clone, Debug)]
+pub struct LoadedEnvironment {
+    /// The environment.
+    pub env: Environment,
+    /// Human-readable warnings (for example replaced non-finite texels).
+    pub warnings: Vec<String>,
+}
+
+fn read_file(path: &Path) -> Result<Vec<u8>> {
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    if bytes.is_empty() {
+        return Err(Error::Decode {
+            path: path.to_path_buf(),
+            format: "input",
+            message: "the file is empty".into(),
+        });
+    }
+    Ok(bytes)
+}
+
+/// Reads any supported 2D image as linear RGB, by extension.
+pub fn read_image(path: &Path) -> Result<Equirect> {
+    let ext = extension_of(path);
+    let check_ext = || -> Result<()> {
+        match ext.as_str() {
+            "hdr" | "exr" | "png" | "jpg" | "jpeg" => Ok(()),
+            _ => Err(Error::UnsupportedInput {
+                path: path.to_path_buf(),
+                message: format!("unknown image type '.{ext}' (supported: {IMAGE_EXTENSIONS})"),
+            }),
+        }
+    };
+    check_ext()?;
+    let bytes = read_file(path)?;
+    match ext.as_str() {
+        "hdr" => hdr::decode(path, &bytes),
+        "exr" => exr::decode(path, &bytes),
+        "png" => ldr::decode(path, &bytes, "PNG"),
+        _ => ldr::decode(path, &bytes, "JPEG"),
+    }
+}
+
+/// Replaces NaN and negative values with 0 and +∞ with the largest finite value of the
+/// image; returns how many of each were replaced.
+pub fn sanitize(values: &mut [[f32; 3]]) -> (usize, usize, usize) {
+    let max_finite = values
+        .iter()
+        .flatten()
+        .filter(|v| v.is_finite())
+        .fold(0.0f32, |a, &b| a.max(b));
+    let (mut nan, mut neg, mut inf) = (0, 0, 0);
+    for v in values.iter_mut().flatten() {
+        if v.is_nan() {
+            nan += 1;
+            *v = 0.0;
+        } else if *v < 0.0 {
+            neg += 1;
+            *v = 0.0;
+        } else if v.is_infinite() {
+            inf += 1;
+            *v = max_finite;
+        }
+    }
+    (nan, neg, inf)
+}
+
+fn sanitize_with_warning(path: &Path, values: &mut [[f32; 3]], warnings: &mut Vec<String>) {
+    let (nan, neg, inf) = sanitize(values);
+    let parts: Vec<String> = [
+        (nan, "NaN value(s) with 0"),
+        (neg, "negative value(s) with 0"),
+        (inf, "infinite value(s) with the largest finite one"),
+    ]
+    .iter()
+    .filter(|(n, _)| *n > 0)
+    .map(|(n, what)| format!("{n} {what}"))
+    .collect();
+    if !parts.is_empty() {
+        warnings.push(format!("{}: replaced {}", path.display(), parts.join(", ")));
+    }
+}
+
+fn apply_exposure(values: &mut [[f32; 3]], opts: &InputOptions) -> Result<()> {
+    if !opts.exposure_ev.is_finite() || opts.exposure_ev.abs() > 64.0 {
+        return Err(Error::InvalidParameter {
+            name: "--exposure",
+            message: format!("{} EV is outside -64..=64", opts.exposure_ev),
+        });
+    }
+    if opts.exposure_ev != 0.0 {
+        let k = opts.exposure_ev.exp2();
+        values.iter_mut().flatten().for_each(|v| *v = (*v * k).min(f32::MAX));
+    }
+    Ok(())
+}
+
+/// Extracts the six faces of a cross image.
+fn cross_to_cube(img: &Equirect, layout: &[(u32, u32); FACES], vertical: bool) -> Cubemap {
+    let n = if vertical { img.width / 3 } else { img.width / 4 };
+    let mut level = Vec::with_capacity(Cubemap::level_len(n));
+    for (face, &(col, row)) in layout.iter().enumerate() {
+        let rotated = vertical && face == 5;
+        for j in 0..n {
+            for i in 0..n {
+                let (fi, fj) = if rotated { (n - 1 - i, n - 1 - j) } else { (i, j) };
+                let t = img.get(col * n + fi, row * n + fj);
+                level.push([t[0], t[1], t[2], 1.0]);
+            }
+        }
+    }
+    Cubemap {
+        size: n,
+        levels: vec![level],
+    }
+}
+
+/// Loads one environment file: an equirect, a cross, or a KTX2/DDS cubemap.
+pub fn load_environment(path: &Path, opts: &InputOptions) -> Result<LoadedEnvironment> {
+    let mut warnings = Vec::new();
+    let ext = extension_of(path);
+    if ext == "ktx2" || ext == "dds" {
+        let mut cube = if ext == "ktx2" { read_ktx2_cube(path)? } else { read_dds_cube(path)? };
+        let mut rgb: Vec<[f32; 3]> = cube.levels[0].iter().map(|t| [t[0], t[1], t[2]]).collect();
+        sanitize_with_warning(path, &mut rgb, &mut warnings);
+        apply_exposure(&mut rgb, opts)?;
+        cube.levels[0] = rgb.into_iter().map(|t| [t[0], t[1], t[2], 1.0]).collect();
+        return Ok(LoadedEnvironment {
+            env: Environment::Cube(cube),
+            warnings,
+        });
+    }
+    let mut img = read_image(path)?;
+    sanitize_with_warning(path, &mut img.data, &mut warnings);
+    apply_exposure(&mut img.data, opts)?;
+    let (w, h) = (img.width, img.height);
+    let env = if w == 2 * h {
+        Environment::Equirect(img)
+    } else if w * 3 == h * 4 && w % 4 == 0 {
+        Environment::Cube(cross_to_cube(&img, &HORIZONTAL_CROSS, false))
+    } else if w * 4 == h * 3 && w % 3 == 0 {
+        Environment::Cube(cross_to_cube(&img, &VERTICAL_CROSS, true))
+    } else {
+        return Err(Error::UnsupportedInput {
+            path: path.to_path_buf(),
+            message: format!(
+                "image is {w}×{h}: expected a 2:1 equirect, a 4:3 horizontal cross or a 3:4 vertical cross (or pass six faces with --faces)"
+            ),
+        });
+    };
+    Ok(LoadedEnvironment { env, warnings })
+}
+
+/// Loads six square face images in the order +X, −X, +Y, −Y, +Z, −Z.
+pub fn load_faces(paths: &[PathBuf], opts: &InputOptions) -> Result<LoadedEnvironment> {
+    if paths.len() != FACES {
+        return Err(Error::InvalidParameter {
+            name: "--faces",
+            message: format!("expected 6 face files (+X −X +Y −Y +Z −Z), got {}", paths.len()),
+        });
+    }
+    let mut warnings = Vec::new();
+    let mut level = Vec::new();
+    let mut size = 0;
+    for (face, path) in paths.iter().enumerate() {
+        let mut img = read_image(path)?;
+        if img.width != img.height {
+            return Err(Error::UnsupportedInput {
+                path: path.clone(),
+                message: format!("cube face is {}×{}; faces must be square", img.width, img.height),
+            });
+        }
+        if face == 0 {
+            size = img.width;
+        } else if img.width != size {
+            return Err(Error::UnsupportedInput {
+                path: path.clone(),
+                message: format!("face is {0}×{0} but the first face is {size}×{size}", img.width),
+            });
+        }
+        sanitize_with_warning(path, &mut img.data, &mut warnings);
+        apply_exposure(&mut img.data, opts)?;
+        level.extend(img.data.iter().map(|t| [t[0], t[1], t[2], 1.0]));
+    }
+    Ok(LoadedEnvironment {
+        env: Environment::Cube(Cubemap {
+            size,
+            levels: vec![level],
+        }),
+        warnings,
+    })
+}
+
+fn check_cube_level0(path: &Path, format: &'static str, n: u32, bytes: usize, pf: PixelFormat) -> Result<()> {
+    check_dimensions(path, n, n)?;
+    let expected = FACES * (n as usize) * (n as usize) * pf.texel_bytes() as usize;
+    if bytes < expected {
+        return Err(Error::Decode {
+            path: path.to_path_buf(),
+            format,
+            message: format!("level 0 holds {bytes} bytes, {expected} expected (truncated?)"),
+        });
+    }
+    Ok(())
+}
+
+/// Reads level 0 of a KTX2 cubemap in one of splitsum's formats.
+pub fn read_ktx2_cube(path: &Path) -> Result<Cubemap> {
+    const F: &str = "KTX2";
+    let bytes = read_file(path)?;
+    let bad = |message: String| Error::Decode {
+        path: path.to_path_buf(),
+        format: F,
+        message,
+    };
+    let reader = ::ktx2::Reader::new(&bytes[..]).map_err(|e| bad(e.to_string()))?;
+    let h = reader.header();
+    let unsupported = |message: String| Error::UnsupportedInput {
+        path: path.to_path_buf(),
+        message,
+    };
+    if h.face_count != 6 || h.pixel_width != h.pixel_height || h.pixel_depth > 1 || h.layer_count > 1 {
+        return Err(unsupported(format!(
+            "KTX2 texture is {}×{} with {} faces; a cubemap (6 square faces) is expected",
+            h.pixel_width, h.pixel_height, h.face_count
+        )));
+    }
+    let vk = h.format.map(|f| f.value()).unwrap_or(0);
+    let pf = PixelFormat::from_vk_format(vk)
+        .filter(|f| f.texel_bytes() >= 4 && !matches!(f, PixelFormat::Rg16f | PixelFormat::Rg32f))
+        .ok_or_else(|| unsupported(format!("KTX2 format {:?} is not one splitsum reads (rgba16f, rgba32f, rgb9e5, rg11b10f)", h.format)))?;
+    let level = reader.levels().next().ok_or_else(|| bad("no mip levels".into()))?;
+    let data = match h.supercompression_scheme {
+        None => level.data.to_vec(),
+        Some(::ktx2::SupercompressionScheme::Zstandard) => {
+            let expected = level.uncompressed_byte_length as usize;
+            check_cube_level0(path, F, h.pixel_width, expected, pf)?;
+            zstd::bulk::decompress(level.data, expected).map_err(|e| bad(format!("zstd: {e}")))?
+        }
+        Some(other) => return Err(unsupported(format!("KTX2 supercompression {other:?} is not supported"))),
+    };
+    check_cube_level0(path, F, h.pixel_width, data.len(), pf)?;
+    let n = h.pixel_width;
+    let texels = pf.decode(&data[..Cubemap::level_len(n) * pf.texel_bytes() as usize]);
+    Ok(Cubemap {
+        size: n,
+        levels: vec![texels],
+    })
+}
+
+/// Reads level 0 of a DX10 DDS cubemap in one of splitsum's formats.
+pub fn read_dds_cube(path: &Path) -> Result<Cubemap> {
+    const F: &str = "DDS";
+    let bytes = read_file(path)?;
+    let bad = |message: String| Error::Decode {
+        path: path.to_path_buf(),
+        format: F,
+        message,
+    };
+    let dds = ddsfile::Dds::read(&bytes[..]).map_err(|e| bad(e.to_string()))?;
+    let unsupported = |message: String| Error::UnsupportedInput {
+        path: path.to_path_buf(),
+        message,
+    };
+    let is_cube = dds
+        .header10
+        .as_ref()
+        .is_some_and(|h| h.misc_flag.contains(ddsfile::MiscFlag::TEXTURECUBE));
+    let n = dds.get_width();
+    if !is_cube || dds.get_height() != n {
+        return Err(unsupported("DDS file is not a cubemap with a DX10 header".into()));
+    }
+    let pf = dds
+        .header10
+        .as_ref()
+        .and_then(|h| PixelFormat::from_dxgi_format(h.dxgi_format as u32))
+        .filter(|f| !matches!(f, PixelFormat::Rg16f | PixelFormat::Rg32f))
+        .ok_or_else(|| unsupported("DDS format is not one splitsum reads (rgba16f, rgba32f, rgb9e5, rg11b10f)".into()))?;
+    check_dimensions(path, n, n)?;
+    let face_bytes = (n as usize) * (n as usize) * pf.texel_bytes() as usize;
+    let mut level = Vec::with_capacity(Cubemap::level_len(n));
+    for face in 0..FACES as u32 {
+        let data = dds.get_data(face).map_err(|e| bad(format!("face {face}: {e}")))?;
+        if data.len() < face_bytes {
+            return Err(bad(format!("face {face} is truncated")));
+        }
+        level.extend(pf.decode(&data[..face_bytes]));
+    }
+    Ok(Cubemap {
+        size: n,
+        levels: vec![level],
+    })
+}

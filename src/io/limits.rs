@@ -1,0 +1,32 @@
+//! Size limits every reader checks from the header, before allocating anything.
+
+use std::path::Path;
+
+use crate::{Error, Result};
+
+/// Smallest accepted width and height.
+pub const MIN_DIMENSION: u32 = 8;
+/// Largest accepted width or height.
+pub const MAX_DIMENSION: u32 = 32768;
+/// Largest accepted texel count (16384 × 16384; a 32768 × 16384 equirect is accepted).
+pub const MAX_TEXELS: u64 = 1 << 29;
+
+/// Refuses dimensions outside [`MIN_DIMENSION`]..=[`MAX_DIMENSION`] or above
+/// [`MAX_TEXELS`], naming the file.
+pub fn check_dimensions(path: &Path, width: u32, height: u32) -> Result<()> {
+    let refuse = |message: String| {
+        Err(Error::UnsupportedInput {
+            path: path.to_path_buf(),
+            message,
+        })
+    };
+    if width < MIN_DIMENSION || height < MIN_DIMENSION {
+        return refuse(format!("image is {width}×{height}; at least {MIN_DIMENSION}×{MIN_DIMENSION} is needed"));
+    }
+    if width > MAX_DIMENSION || height > MAX_DIMENSION || width as u64 * height as u64 > MAX_TEXELS {
+        return refuse(format!(
+            "image is {width}×{height}; splitsum accepts at most {MAX_DIMENSION} texels per side and {MAX_TEXELS} texels"
+        ));
+    }
+    Ok(())
+}
