@@ -73,7 +73,7 @@ fn integrate_panel(tx: LutTexel, q_a: f32, q_b: f32, full: bool, lower_singular:
         var phi_max = PI;
         if (!full) {
             let c0 = tx.cos_v * (1.0 - 2.0 * cs2.x) / (2.0 * tx.sin_v * sin_h * cos_h);
-            phi_max = acos(clamp(c0, -1.0, 1.0));
+            phi_max = acos_precise(c0);
         }
         let weight_panel = weight_q * phi_max / PI;
         for (var j = 0u; j < params.phi_rule.y; j++) {
@@ -99,7 +99,7 @@ fn brdf_lut_texel(n_dot_v: f32, roughness: f32) -> vec2<f32> {
     let k = k_ibl(roughness);
     let tx = LutTexel(n_dot_v, sqrt(max(1.0 - n_dot_v * n_dot_v, 0.0)), alpha2, k,
                       g1_over_n_dot_v(n_dot_v, k));
-    let theta_v = acos(clamp(n_dot_v, -1.0, 1.0));
+    let theta_v = acos_precise(n_dot_v);
     // Horizon breakpoints in theta_h.
     let theta_full = 0.5 * (FRAC_PI_2 - theta_v);
     let theta_end = 0.5 * (FRAC_PI_2 + theta_v);

@@ -16,18 +16,18 @@ struct EquirectToCubeParams {
 @group(0) @binding(1) var source: texture_2d<f32>;
 @group(0) @binding(2) var output: texture_storage_2d_array<rgba32float, write>;
 
-// Fractional pyramid level whose texel solid angle at polar sine `sin_theta` is omega_sample.
-fn equirect_lod(omega_sample: f32, sin_theta: f32, width: u32, height: u32) -> f32 {
-    let h = f32(height);
-    let sin_floor = sin(0.5 * PI / h);
-    let omega0 = 2.0 * PI * PI / (f32(width) * h) * max(sin_theta, sin_floor);
-    return 0.5 * log2(omega_sample / omega0);
+// Fractional pyramid level whose (latitude-prefiltered) texels subtend omega_sample.
+fn equirect_lod(omega_sample: f32, height: u32) -> f32 {
+    let texel = PI / f32(height);
+    return 0.5 * log2(omega_sample / (texel * texel));
 }
 
 // Bilinear lookup of pyramid level `level` (absolute) at uv: columns wrap, rows clamp.
 fn sample_equirect_bilinear(level: u32, uv: vec2<f32>) -> vec3<f32> {
     let mip = level - params.base_level;
-    let dims = vec2<i32>(textureDimensions(source, mip));
+    // Level sizes halve with floor, as the pyramid's (computed here rather than queried:
+    // lavapipe answers textureDimensions wrongly when the level differs across lanes).
+    let dims = vec2<i32>(max(params.source_size >> vec2<u32>(level), vec2<u32>(1u)));
     let x = uv.x * f32(dims.x) - 0.5;
     let y = uv.y * f32(dims.y) - 0.5;
     let x0 = floor(x);
@@ -74,8 +74,7 @@ fn equirect_to_cube_texel(face: u32, i: u32, j: u32) -> vec4<f32> {
             let w = cube_face_jacobian(s, t);
             let d = rotate_y(normalize(cube_face_direction(face, s, t)),
                              params.rotation.x, -params.rotation.y);
-            let sin_theta = sqrt(max(1.0 - d.y * d.y, 0.0));
-            let lod = equirect_lod(omega_sample, sin_theta, params.source_size.x, params.source_size.y);
+            let lod = equirect_lod(omega_sample, params.source_size.y);
             sum += w * sample_equirect_lod(d, lod);
             weight += w;
         }

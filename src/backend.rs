@@ -107,7 +107,13 @@ impl Backend for GpuBackend {
         params: &EquirectToCubeParams,
         mips: u32,
     ) -> Result<Cubemap> {
-        let cube = gpu::equirect_to_cube::equirect_to_cube(&self.ctx.device, &self.ctx.queue, pyramid, params, mips)?;
+        let cube = gpu::equirect_to_cube::equirect_to_cube(
+            &self.ctx.device,
+            &self.ctx.queue,
+            pyramid,
+            params,
+            mips,
+        )?;
         self.ctx.take_uncaptured_error("equirect_to_cube")?;
         Ok(cube)
     }

@@ -90,11 +90,21 @@ pub struct LutArgs {
 pub struct InputArgs {
     /// Rotate the environment about +Y by DEG degrees before anything else (right-handed:
     /// a positive angle turns +X towards −Z).
-    #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_hyphen_values = true)]
+    #[arg(
+        long,
+        value_name = "DEG",
+        default_value_t = 0.0,
+        allow_hyphen_values = true
+    )]
     pub rotate: f32,
 
     /// Multiply the input radiance by 2^EV.
-    #[arg(long, value_name = "EV", default_value_t = 0.0, allow_hyphen_values = true)]
+    #[arg(
+        long,
+        value_name = "EV",
+        default_value_t = 0.0,
+        allow_hyphen_values = true
+    )]
     pub exposure: f32,
 }
 

@@ -49,7 +49,11 @@ pub fn environment_to_cube(
             message: format!("{rotate_degrees} is not a finite angle"),
         });
     }
-    let levels = if mips { Cubemap::full_mip_count(size) } else { 1 };
+    let levels = if mips {
+        Cubemap::full_mip_count(size)
+    } else {
+        1
+    };
     match env {
         Environment::Equirect(e) => {
             let pyramid = EquirectPyramid::new(e.clone());

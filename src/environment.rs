@@ -62,10 +62,56 @@ impl Equirect {
     }
 }
 
+/// Box-filters each row along φ over the arc that one row spans in θ, so a texel holds
+/// the mean over a patch as wide as it is tall: (π/H) in θ by (π/H) of arc in φ, i.e.
+/// 1/sin θ · W/(2H) columns (fractional ends weighted by coverage, wrapping around).
+/// Near the poles the equirect is oversampled in φ; after this filter a lookup at the
+/// level whose row height matches a footprint averages the whole footprint, in φ too.
+/// Row sums are unchanged (the box is circular), so energy is kept.
+pub fn prefilter_latitude(img: &mut Equirect) {
+    let (w, h) = (img.width as usize, img.height as usize);
+    let pi = std::f64::consts::PI;
+    let mut prefix = vec![[0.0f64; 3]; w + 1];
+    for y in 0..h {
+        let sin_theta = (pi * (y as f64 + 0.5) / h as f64).sin();
+        let width = (w as f64 / (2.0 * h as f64) / sin_theta).min(w as f64);
+        if width <= 1.0 {
+            continue;
+        }
+        let row = &mut img.data[y * w..(y + 1) * w];
+        for x in 0..w {
+            for c in 0..3 {
+                prefix[x + 1][c] = prefix[x][c] + row[x][c] as f64;
+            }
+        }
+        // ∫ of the row (piecewise constant, periodic) from 0 to a, a in texel units.
+        let integral = |a: f64, c: usize| -> f64 {
+            let turns = (a / w as f64).floor();
+            let r = a - turns * w as f64;
+            let i = (r.floor() as usize).min(w - 1);
+            turns * prefix[w][c] + prefix[i][c] + (r - i as f64) * (prefix[i + 1][c] - prefix[i][c])
+        };
+        let half = 0.5 * width;
+        let out: Vec<[f32; 3]> = (0..w)
+            .map(|x| {
+                let centre = x as f64 + 0.5 + w as f64; // shifted by one turn to stay ≥ 0
+                [0, 1, 2].map(|c| {
+                    ((integral(centre + half, c) - integral(centre - half, c)) / width) as f32
+                })
+            })
+            .collect();
+        row.copy_from_slice(&out);
+    }
+}
+
 /// For each of `n1` target cells covering `n0` source cells, the (source index, weight)
 /// pairs of the overlap, with weights from `measure(a, b)` of the overlapping interval in
 /// source units, normalised to sum 1.
-fn overlap_weights(n0: usize, n1: usize, measure: impl Fn(f64, f64) -> f64) -> Vec<Vec<(usize, f32)>> {
+fn overlap_weights(
+    n0: usize,
+    n1: usize,
+    measure: impl Fn(f64, f64) -> f64,
+) -> Vec<Vec<(usize, f32)>> {
     let scale = n0 as f64 / n1 as f64;
     (0..n1)
         .map(|t| {
@@ -98,20 +144,28 @@ fn weighted_sum(taps: &[(usize, f32)], texel: impl Fn(usize) -> [f32; 3]) -> [f3
     acc
 }
 
-/// An equirect image and its successive half-size levels, down to a height of 1.
+/// An equirect image and its successive half-size levels, down to a height of 1, each
+/// prefiltered along φ by [`prefilter_latitude`] for lookups.
 #[derive(Clone, Debug)]
 pub struct EquirectPyramid {
-    /// Level 0 is the input.
+    /// Level 0 is the (latitude-prefiltered) input.
     pub levels: Vec<Equirect>,
 }
 
 impl EquirectPyramid {
-    /// Builds every level down to 1 texel high.
+    /// Builds every level down to 1 texel high: each level is the exact area downsample of
+    /// the unfiltered level above; then each level is latitude-prefiltered in place.
     pub fn new(base: Equirect) -> Self {
         let mut levels = vec![base];
         while levels.last().is_some_and(|l| l.height > 1) {
             let next = levels.last().map(Equirect::downsample);
+            if let Some(done) = levels.last_mut() {
+                prefilter_latitude(done);
+            }
             levels.extend(next);
+        }
+        if let Some(last) = levels.last_mut() {
+            prefilter_latitude(last);
         }
         EquirectPyramid { levels }
     }

@@ -28,6 +28,6 @@ pub mod lut;
 pub mod math;
 
 pub use backend::{create_backend, Backend, BackendChoice, CpuBackend, GpuBackend};
-pub use error::{Error, Result};
 pub use environment::{Cubemap, Environment, Equirect};
+pub use error::{Error, Result};
 pub use lut::BrdfLut;

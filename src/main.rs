@@ -64,16 +64,25 @@ fn open_backend(common: &CommonArgs) -> anyhow::Result<Box<dyn splitsum::Backend
 fn run_cubemap(args: CubemapArgs) -> anyhow::Result<()> {
     use splitsum::io::cubemap::{check_cube_path, write_cubemap, CubeWriteOptions};
     use splitsum::io::input::{load_environment, load_faces, InputOptions};
-    let first_input = args.input.clone().or_else(|| args.faces.first().cloned()).unwrap_or_default();
+    let first_input = args
+        .input
+        .clone()
+        .or_else(|| args.faces.first().cloned())
+        .unwrap_or_default();
     let output = args.output.clone().unwrap_or_else(|| {
-        let stem = first_input.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+        let stem = first_input
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
         std::path::PathBuf::from("out").join(format!("{stem}_cubemap.ktx2"))
     });
     check_cube_path(&output)?;
     if let Some(size) = args.size {
         splitsum::convert::validate_cube_size(size)?;
     }
-    let opts = InputOptions { exposure_ev: args.input_opts.exposure };
+    let opts = InputOptions {
+        exposure_ev: args.input_opts.exposure,
+    };
     let start = Instant::now();
     let loaded = match &args.input {
         Some(path) => load_environment(path, &opts)?,
@@ -83,20 +92,40 @@ fn run_cubemap(args: CubemapArgs) -> anyhow::Result<()> {
         eprintln!("warning: {w}");
     }
     if args.common.verbose {
-        eprintln!("read {}: {:.3} s", first_input.display(), start.elapsed().as_secs_f64());
+        eprintln!(
+            "read {}: {:.3} s",
+            first_input.display(),
+            start.elapsed().as_secs_f64()
+        );
     }
-    let size = args.size.unwrap_or_else(|| splitsum::convert::default_cube_size(&loaded.env));
+    let size = args
+        .size
+        .unwrap_or_else(|| splitsum::convert::default_cube_size(&loaded.env));
     let backend = open_backend(&args.common)?;
     let start = Instant::now();
-    let cube = splitsum::convert::environment_to_cube(backend.as_ref(), &loaded.env, size, args.mips, args.input_opts.rotate)
-        .context("converting to a cubemap")?;
+    let cube = splitsum::convert::environment_to_cube(
+        backend.as_ref(),
+        &loaded.env,
+        size,
+        args.mips,
+        args.input_opts.rotate,
+    )
+    .context("converting to a cubemap")?;
     if args.common.verbose {
-        eprintln!("cubemap {size}, {} levels: {:.3} s", cube.levels.len(), start.elapsed().as_secs_f64());
+        eprintln!(
+            "cubemap {size}, {} levels: {:.3} s",
+            cube.levels.len(),
+            start.elapsed().as_secs_f64()
+        );
     }
     let written = write_cubemap(
         &output,
         &cube,
-        &CubeWriteOptions { format: args.pixel_format.into(), zstd: args.zstd, layout: args.layout.into() },
+        &CubeWriteOptions {
+            format: args.pixel_format.into(),
+            zstd: args.zstd,
+            layout: args.layout.into(),
+        },
     )?;
     if args.common.verbose {
         for p in written {

@@ -4,10 +4,11 @@ mod common;
 use splitsum::lut::LutQuadrature;
 
 /// GPU vs CPU tolerance for the LUT. Both sides run the same quadrature, with the same f32
-/// node tables, in f32; they differ only through the GPU's transcendental functions
-/// (cos, acos, sqrt), which Vulkan lets deviate by a few ULP (cos/sin: 2^-11 absolute in
-/// the worst case) and through fused multiply-adds. Measured: ~1e-6 on lavapipe. 5e-5 is
-/// half the LUT's accuracy budget, so a GPU within it still meets the 1e-4 quality bar.
+/// node tables and the same polynomial acos (`math::trig`), in f32; they differ through
+/// the GPU's cos, sin and sqrt (Vulkan allows cos/sin 2⁻¹¹ absolute in the worst case;
+/// real GPUs and lavapipe are within ~1e-6) and fused multiply-adds. Measured: ~1e-6 on
+/// lavapipe. 5e-5 is half the LUT's accuracy budget, so a GPU within it still meets the
+/// 1e-4 quality bar.
 const LUT_GPU_TOLERANCE: f32 = 5e-5;
 
 #[test]

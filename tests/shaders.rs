@@ -61,3 +61,22 @@ fn lut_params_layout_matches_rust() {
     assert!(size_of::<LutParams>() >= span as usize);
     assert_eq!(size_of::<LutParams>() % 16, 0);
 }
+
+/// The WGSL atan coefficients are the Rust ones (one source of truth, checked).
+#[test]
+fn atan_coefficients_match_rust() {
+    let module = parse("equirect_to_cube", splitsum::gpu::shaders::EQUIRECT_TO_CUBE);
+    for (k, expected) in splitsum::math::trig::ATAN_COEFFS.iter().enumerate() {
+        let name = format!("ATAN_C{k}");
+        let (_, c) = module
+            .constants
+            .iter()
+            .find(|(_, c)| c.name.as_deref() == Some(name.as_str()))
+            .unwrap_or_else(|| panic!("{name} missing"));
+        let value = match module.global_expressions[c.init] {
+            naga::Expression::Literal(naga::Literal::F32(v)) => v,
+            ref other => panic!("{name}: {other:?}"),
+        };
+        assert_eq!(value, *expected, "{name}");
+    }
+}

@@ -15,9 +15,10 @@ fn cube_face_direction(face: u32, s: f32, t: f32) -> vec3<f32> {
     }
 }
 
-// Equirect (u, v) of a unit direction.
+// Equirect (u, v) of a unit direction: u from atan2(z, x), v = acos(y) = atan2(|xz|, y).
 fn equirect_uv(d: vec3<f32>) -> vec2<f32> {
-    return vec2<f32>(0.5 + atan2(d.z, d.x) / (2.0 * PI), acos(clamp(d.y, -1.0, 1.0)) / PI);
+    return vec2<f32>(0.5 + atan2_precise(d.z, d.x) / (2.0 * PI),
+                     atan2_precise(sqrt(d.x * d.x + d.z * d.z), d.y) / PI);
 }
 
 // Rotation about +Y (right-handed: +X turns towards -Z for a positive angle).
@@ -27,7 +28,7 @@ fn rotate_y(d: vec3<f32>, cos_a: f32, sin_a: f32) -> vec3<f32> {
 
 // atan2(x y, sqrt(x^2 + y^2 + 1)): integral of the face's solid-angle density.
 fn area_element(x: f32, y: f32) -> f32 {
-    return atan2(x * y, sqrt(x * x + y * y + 1.0));
+    return atan2_precise(x * y, sqrt(x * x + y * y + 1.0));
 }
 
 // Exact solid angle of texel (i, j) of an n x n face.

@@ -11,6 +11,7 @@ use crate::math::brdf::{
     alpha_from_roughness, fresnel_schlick_weight, g1_over_n_dot_v, g1_schlick_ggx, k_ibl,
 };
 use crate::math::sampling::{ggx_q_from_theta, ggx_theta_from_q};
+use crate::math::trig::acos_precise;
 
 /// Per-texel constants of the integrand.
 struct LutTexel {
@@ -83,7 +84,7 @@ fn integrate_panel(
             PI
         } else {
             let c0 = tx.cos_v * (1.0 - 2.0 * cos2_h) / (2.0 * tx.sin_v * sin_h * cos_h);
-            c0.clamp(-1.0, 1.0).acos()
+            acos_precise(c0)
         };
         // dφ/π over [0, φmax] (the integrand is even in φ).
         let weight_panel = weight_q * phi_max / PI;
@@ -116,7 +117,7 @@ pub fn brdf_lut_texel(n_dot_v: f32, roughness: f32, quad: &LutQuadrature) -> [f3
         k,
         g_vis: g1_over_n_dot_v(n_dot_v, k),
     };
-    let theta_v = n_dot_v.clamp(-1.0, 1.0).acos();
+    let theta_v = acos_precise(n_dot_v);
     // Horizon breakpoints in θh (see crate::lut).
     let theta_full = 0.5 * (FRAC_PI_2 - theta_v);
     let theta_end = 0.5 * (FRAC_PI_2 + theta_v);

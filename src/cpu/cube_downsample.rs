@@ -34,13 +34,15 @@ pub fn build_mips(cube: &mut Cubemap, levels: u32) {
         let n = cube.level_size(m);
         let child = &cube.levels[m - 1];
         let mut out = vec![[0.0f32; 4]; Cubemap::level_len(n)];
-        out.par_chunks_mut(n as usize).enumerate().for_each(|(row, texels)| {
-            let face = (row / n as usize) as u32;
-            let j = (row % n as usize) as u32;
-            for (i, t) in texels.iter_mut().enumerate() {
-                *t = cube_downsample_texel(child, n, face, i as u32, j);
-            }
-        });
+        out.par_chunks_mut(n as usize)
+            .enumerate()
+            .for_each(|(row, texels)| {
+                let face = (row / n as usize) as u32;
+                let j = (row % n as usize) as u32;
+                for (i, t) in texels.iter_mut().enumerate() {
+                    *t = cube_downsample_texel(child, n, face, i as u32, j);
+                }
+            });
         cube.levels.push(out);
     }
 }

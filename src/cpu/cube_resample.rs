@@ -38,7 +38,11 @@ pub fn sample_cube(cube: &Cubemap, d: [f32; 3], omega: f32) -> [f32; 3] {
     let n0 = cube.size as f32;
     let omega0 = (2.0 / n0) * (2.0 / n0) * cube_face_jacobian(s, t);
     let last = (cube.levels.len() - 1) as f32;
-    let lod = if omega > 0.0 { (0.5 * (omega / omega0).log2()).clamp(0.0, last) } else { 0.0 };
+    let lod = if omega > 0.0 {
+        (0.5 * (omega / omega0).log2()).clamp(0.0, last)
+    } else {
+        0.0
+    };
     let l0 = lod.floor();
     let f = lod - l0;
     let a = sample_cube_face_bilinear(cube, l0 as usize, face, s, t);

@@ -45,7 +45,6 @@ impl EquirectToCubeParams {
             base_level: finest_needed_level(
                 face_size,
                 SAMPLES_PER_AXIS,
-                base.width,
                 base.height,
                 pyramid.levels.len() as u32,
             ),
@@ -54,23 +53,21 @@ impl EquirectToCubeParams {
     }
 }
 
-/// The finest pyramid level any sample of a `face_size` cube can select: the smallest
-/// sample footprint (corner texels) against the largest source texel (the equator).
+/// The finest pyramid level any sample of a `face_size` cube can select (the smallest
+/// sample footprint is at the face corners).
 /// Levels finer than this need not be uploaded to the GPU.
-pub fn finest_needed_level(face_size: u32, samples: u32, width: u32, height: u32, levels: u32) -> u32 {
+pub fn finest_needed_level(face_size: u32, samples: u32, height: u32, levels: u32) -> u32 {
     let omega_sample = cube_texel_solid_angle(0, 0, face_size) / (samples * samples) as f32;
-    let lod = equirect_lod(omega_sample, 1.0, width, height);
+    let lod = equirect_lod(omega_sample, height);
     (lod.floor().max(0.0) as u32).min(levels - 1)
 }
 
-/// Pyramid level (fractional, relative to level 0) whose texel solid angle at polar sine
-/// `sin_theta` equals `omega_sample`. Level-0 texels subtend (2π/W)(π/H) sin θ; sin θ is
-/// floored at the pole rows' mean so the poles stay finite.
-pub fn equirect_lod(omega_sample: f32, sin_theta: f32, width: u32, height: u32) -> f32 {
-    let h = height as f32;
-    let sin_floor = (0.5 * PI / h).sin();
-    let omega0 = 2.0 * PI * PI / (width as f32 * h) * sin_theta.max(sin_floor);
-    0.5 * (omega_sample / omega0).log2()
+/// Pyramid level (fractional, relative to level 0) whose texels, as prefiltered by
+/// `prefilter_latitude` (a patch (π/H) tall and as wide in arc at every latitude), have
+/// the solid angle `omega_sample`: level-0 patches subtend (π/H)², each level 4× more.
+pub fn equirect_lod(omega_sample: f32, height: u32) -> f32 {
+    let texel = PI / height as f32;
+    0.5 * (omega_sample / (texel * texel)).log2()
 }
 
 /// Bilinear lookup of one pyramid level at (u, v): columns wrap, rows clamp.
@@ -99,7 +96,12 @@ pub fn sample_equirect_bilinear(level: &Equirect, u: f32, v: f32) -> [f32; 3] {
 
 /// Trilinear lookup of the pyramid in direction `d` at fractional level `lod`
 /// (clamped to [base_level, last level]).
-pub fn sample_equirect_lod(pyramid: &EquirectPyramid, d: [f32; 3], lod: f32, base_level: u32) -> [f32; 3] {
+pub fn sample_equirect_lod(
+    pyramid: &EquirectPyramid,
+    d: [f32; 3],
+    lod: f32,
+    base_level: u32,
+) -> [f32; 3] {
     let last = (pyramid.levels.len() - 1) as f32;
     let lod = lod.clamp(base_level as f32, last);
     let l0 = lod.floor();
@@ -152,32 +154,43 @@ pub fn equirect_to_cube_texel(
     j: u32,
 ) -> [f32; 4] {
     let base = &pyramid.levels[0];
-    footprint_mean(face, i, j, p.face_size, p.samples_per_axis, |d, omega_sample| {
-        // The environment rotated by +angle shows, in direction d, what the source shows
-        // in direction R(−angle)·d.
-        let d = rotate_y(d, p.rotation[0], -p.rotation[1]);
-        let sin_theta = (1.0 - d[1] * d[1]).max(0.0).sqrt();
-        let lod = equirect_lod(omega_sample, sin_theta, base.width, base.height);
-        sample_equirect_lod(pyramid, d, lod, p.base_level)
-    })
+    footprint_mean(
+        face,
+        i,
+        j,
+        p.face_size,
+        p.samples_per_axis,
+        |d, omega_sample| {
+            // The environment rotated by +angle shows, in direction d, what the source shows
+            // in direction R(−angle)·d.
+            let d = rotate_y(d, p.rotation[0], -p.rotation[1]);
+            let lod = equirect_lod(omega_sample, base.height);
+            sample_equirect_lod(pyramid, d, lod, p.base_level)
+        },
+    )
 }
 
 /// Fills level 0 of an n×n cube with `texel(face, i, j)`, in parallel over rows.
 pub fn fill_cube_level(n: u32, texel: impl Fn(u32, u32, u32) -> [f32; 4] + Sync) -> Vec<[f32; 4]> {
     let mut level = vec![[0.0f32; 4]; Cubemap::level_len(n)];
-    level.par_chunks_mut(n as usize).enumerate().for_each(|(row, out)| {
-        let face = (row / n as usize) as u32;
-        let j = (row % n as usize) as u32;
-        for (i, t) in out.iter_mut().enumerate() {
-            *t = texel(face, i as u32, j);
-        }
-    });
+    level
+        .par_chunks_mut(n as usize)
+        .enumerate()
+        .for_each(|(row, out)| {
+            let face = (row / n as usize) as u32;
+            let j = (row % n as usize) as u32;
+            for (i, t) in out.iter_mut().enumerate() {
+                *t = texel(face, i as u32, j);
+            }
+        });
     level
 }
 
 /// Level 0 of the cube (one level; see `cube_downsample` for the chain).
 pub fn equirect_to_cube(pyramid: &EquirectPyramid, p: &EquirectToCubeParams) -> Cubemap {
-    let level = fill_cube_level(p.face_size, |face, i, j| equirect_to_cube_texel(pyramid, p, face, i, j));
+    let level = fill_cube_level(p.face_size, |face, i, j| {
+        equirect_to_cube_texel(pyramid, p, face, i, j)
+    });
     Cubemap {
         size: p.face_size,
         levels: vec![level],

@@ -5,7 +5,9 @@ use crate::cpu::equirect_to_cube::EquirectToCubeParams;
 use crate::environment::{Cubemap, EquirectPyramid};
 use crate::gpu::compute::{buffer_with_data, with_error_scope, ComputeKernel};
 use crate::gpu::shaders;
-use crate::gpu::texture::{create_cube_texture, cube_mip_view, read_cubemap, upload_equirect_pyramid};
+use crate::gpu::texture::{
+    create_cube_texture, cube_mip_view, read_cubemap, upload_equirect_pyramid,
+};
 use crate::Result;
 
 /// Workgroup of both kernels (x, y over the face, z = face).
@@ -35,7 +37,12 @@ pub fn record_cube_mips(
     encoder: &mut wgpu::CommandEncoder,
     texture: &wgpu::Texture,
 ) -> Result<()> {
-    let kernel = ComputeKernel::new(device, "cube_downsample", shaders::CUBE_DOWNSAMPLE, WORKGROUP)?;
+    let kernel = ComputeKernel::new(
+        device,
+        "cube_downsample",
+        shaders::CUBE_DOWNSAMPLE,
+        WORKGROUP,
+    )?;
     for mip in 1..texture.mip_level_count() {
         let n = (texture.width() >> mip).max(1);
         let child = cube_mip_view(texture, mip - 1);
@@ -61,38 +68,52 @@ pub fn equirect_to_cube(
     params: &EquirectToCubeParams,
     mips: u32,
 ) -> Result<Cubemap> {
-    let kernel = ComputeKernel::new(device, "equirect_to_cube", shaders::EQUIRECT_TO_CUBE, WORKGROUP)?;
+    let kernel = ComputeKernel::new(
+        device,
+        "equirect_to_cube",
+        shaders::EQUIRECT_TO_CUBE,
+        WORKGROUP,
+    )?;
     let source = upload_equirect_pyramid(device, queue, pyramid, params.base_level)?;
     let n = params.face_size;
     let mips = mips.clamp(1, Cubemap::full_mip_count(n));
-    let cube = with_error_scope(device, "equirect_to_cube dispatch", || -> Result<wgpu::Texture> {
-        let base = &pyramid.levels[0];
-        let uniform = EquirectToCubeUniform {
-            face_size: n,
-            samples_per_axis: params.samples_per_axis,
-            base_level: params.base_level,
-            level_count: pyramid.levels.len() as u32,
-            source_size: [base.width, base.height],
-            rotation: params.rotation,
-        };
-        let ubuf = buffer_with_data(device, "equirect params", bytemuck::bytes_of(&uniform), wgpu::BufferUsages::UNIFORM);
-        let cube = create_cube_texture(device, "environment cube", n, mips);
-        let source_view = source.create_view(&Default::default());
-        let out = cube_mip_view(&cube, 0);
-        let mut encoder = device.create_command_encoder(&Default::default());
-        kernel.dispatch(
-            device,
-            &mut encoder,
-            &[
-                ubuf.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&source_view),
-                wgpu::BindingResource::TextureView(&out),
-            ],
-            [n, n, 6],
-        );
-        record_cube_mips(device, &mut encoder, &cube)?;
-        queue.submit([encoder.finish()]);
-        Ok(cube)
-    })??;
+    let cube = with_error_scope(
+        device,
+        "equirect_to_cube dispatch",
+        || -> Result<wgpu::Texture> {
+            let base = &pyramid.levels[0];
+            let uniform = EquirectToCubeUniform {
+                face_size: n,
+                samples_per_axis: params.samples_per_axis,
+                base_level: params.base_level,
+                level_count: pyramid.levels.len() as u32,
+                source_size: [base.width, base.height],
+                rotation: params.rotation,
+            };
+            let ubuf = buffer_with_data(
+                device,
+                "equirect params",
+                bytemuck::bytes_of(&uniform),
+                wgpu::BufferUsages::UNIFORM,
+            );
+            let cube = create_cube_texture(device, "environment cube", n, mips);
+            let source_view = source.create_view(&Default::default());
+            let out = cube_mip_view(&cube, 0);
+            let mut encoder = device.create_command_encoder(&Default::default());
+            kernel.dispatch(
+                device,
+                &mut encoder,
+                &[
+                    ubuf.as_entire_binding(),
+                    wgpu::BindingResource::TextureView(&source_view),
+                    wgpu::BindingResource::TextureView(&out),
+                ],
+                [n, n, 6],
+            );
+            record_cube_mips(device, &mut encoder, &cube)?;
+            queue.submit([encoder.finish()]);
+            Ok(cube)
+        },
+    )??;
     read_cubemap(device, queue, &cube)
 }

@@ -6,6 +6,7 @@ macro_rules! kernel_source {
     ($kernel:literal, [$($common:literal),*]) => {
         concat!(
             include_str!("../../shaders/common/compute.wgsl"), "\n",
+            include_str!("../../shaders/common/trig.wgsl"), "\n",
             $(include_str!(concat!("../../shaders/common/", $common)), "\n",)*
             include_str!(concat!("../../shaders/", $kernel))
         )

@@ -56,7 +56,12 @@ pub fn upload_equirect_pyramid(
 
 /// An `Rgba32Float` cube texture (6 array layers) with `mips` levels, usable as a storage
 /// target, a sampled source and a copy source.
-pub fn create_cube_texture(device: &wgpu::Device, label: &str, size: u32, mips: u32) -> wgpu::Texture {
+pub fn create_cube_texture(
+    device: &wgpu::Device,
+    label: &str,
+    size: u32,
+    mips: u32,
+) -> wgpu::Texture {
     device.create_texture(&wgpu::TextureDescriptor {
         label: Some(label),
         size: wgpu::Extent3d {
@@ -90,11 +95,19 @@ pub fn cube_mip_view(texture: &wgpu::Texture, mip: u32) -> wgpu::TextureView {
 }
 
 /// Reads every mip of a cube texture back into a [`Cubemap`].
-pub fn read_cubemap(device: &wgpu::Device, queue: &wgpu::Queue, texture: &wgpu::Texture) -> Result<Cubemap> {
+pub fn read_cubemap(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+) -> Result<Cubemap> {
     let mut levels = Vec::new();
     for mip in 0..texture.mip_level_count() {
         let flat = read_texture_level(device, queue, texture, mip)?;
-        levels.push(flat.chunks_exact(4).map(|t| [t[0], t[1], t[2], t[3]]).collect());
+        levels.push(
+            flat.chunks_exact(4)
+                .map(|t| [t[0], t[1], t[2], t[3]])
+                .collect(),
+        );
     }
     Ok(Cubemap {
         size: texture.width(),

@@ -70,7 +70,10 @@ pub fn check_cube_path(path: &Path) -> Result<()> {
 pub fn output_paths(path: &Path, layout: CubeLayout) -> Vec<PathBuf> {
     let ext = extension_of(path);
     if (ext == "exr" || ext == "hdr") && layout == CubeLayout::Faces {
-        let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+        let stem = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
         FACE_SUFFIXES
             .iter()
             .map(|suffix| path.with_file_name(format!("{stem}_{suffix}.{ext}")))
@@ -129,10 +132,12 @@ pub fn to_equirect(cube: &Cubemap) -> (u32, u32, Vec<[f32; 3]>) {
 pub fn write_cubemap(path: &Path, cube: &Cubemap, opts: &CubeWriteOptions) -> Result<Vec<PathBuf>> {
     check_cube_path(path)?;
     let ext = extension_of(path);
-    let enc_err = |format: &'static str| move |message: String| Error::Encode {
-        path: path.to_path_buf(),
-        format,
-        message,
+    let enc_err = |format: &'static str| {
+        move |message: String| Error::Encode {
+            path: path.to_path_buf(),
+            format,
+            message,
+        }
     };
     let image = |w: u32, h: u32, data: &[[f32; 3]]| -> Result<Vec<u8>> {
         if ext == "exr" {
@@ -144,9 +149,13 @@ pub fn write_cubemap(path: &Path, cube: &Cubemap, opts: &CubeWriteOptions) -> Re
     let files: Vec<(PathBuf, Vec<u8>)> = match ext.as_str() {
         "ktx2" => vec![(
             path.to_path_buf(),
-            ktx2::encode(&encode_texture(cube, opts.format), opts.zstd).map_err(|e| enc_err("KTX2")(e.to_string()))?,
+            ktx2::encode(&encode_texture(cube, opts.format), opts.zstd)
+                .map_err(|e| enc_err("KTX2")(e.to_string()))?,
         )],
-        "dds" => vec![(path.to_path_buf(), dds::encode(&encode_texture(cube, opts.format)))],
+        "dds" => vec![(
+            path.to_path_buf(),
+            dds::encode(&encode_texture(cube, opts.format)),
+        )],
         _ => match opts.layout {
             CubeLayout::Faces => output_paths(path, opts.layout)
                 .into_iter()

@@ -29,7 +29,11 @@ pub fn encode_rg32(
 }
 
 /// Encodes a width×height RGB float32 image (channels R, G, B), rows top to bottom.
-pub fn encode_rgb32(width: u32, height: u32, rgb: &[[f32; 3]]) -> std::result::Result<Vec<u8>, String> {
+pub fn encode_rgb32(
+    width: u32,
+    height: u32,
+    rgb: &[[f32; 3]],
+) -> std::result::Result<Vec<u8>, String> {
     let w = width as usize;
     let channels = SpecificChannels::rgb(|pos: Vec2<usize>| {
         let t = rgb[pos.y() * w + pos.x()];
@@ -57,10 +61,18 @@ pub fn decode(path: &std::path::Path, bytes: &[u8]) -> crate::Result<crate::envi
     };
     let meta = exr::meta::MetaData::read_from_buffered(Cursor::new(bytes), false)
         .map_err(|e| bad(e.to_string()))?;
-    let header = meta.headers.first().ok_or_else(|| bad("no layers".into()))?;
+    let header = meta
+        .headers
+        .first()
+        .ok_or_else(|| bad("no layers".into()))?;
     let size = header.layer_size;
     super::limits::check_dimensions(path, size.0 as u32, size.1 as u32)?;
-    let names: Vec<String> = header.channels.list.iter().map(|c| c.name.to_string()).collect();
+    let names: Vec<String> = header
+        .channels
+        .list
+        .iter()
+        .map(|c| c.name.to_string())
+        .collect();
     for needed in ["R", "G", "B"] {
         if !names.iter().any(|n| n == needed) {
             return Err(Error::UnsupportedInput {
@@ -90,7 +102,9 @@ pub fn decode(path: &std::path::Path, bytes: &[u8]) -> crate::Result<crate::envi
         .map_err(|e| match e {
             exr::error::Error::NotSupported(what) => Error::UnsupportedInput {
                 path: path.to_path_buf(),
-                message: format!("OpenEXR {compression} compression or feature not supported: {what}"),
+                message: format!(
+                    "OpenEXR {compression} compression or feature not supported: {what}"
+                ),
             },
             other => bad(other.to_string()),
         })?;

@@ -97,7 +97,8 @@ impl PixelFormat {
     /// Values beyond a format's range are clamped to its largest finite value (half:
     /// ±65504), never turned into infinity.
     pub fn encode(self, texels: &[[f32; 4]]) -> Vec<u8> {
-        let half = |v: f32| f16::from_f32(v.clamp(f16::MIN.to_f32(), f16::MAX.to_f32())).to_le_bytes();
+        let half =
+            |v: f32| f16::from_f32(v.clamp(f16::MIN.to_f32(), f16::MAX.to_f32())).to_le_bytes();
         let mut out = Vec::with_capacity(texels.len() * self.texel_bytes() as usize);
         for t in texels {
             match self {
@@ -106,7 +107,9 @@ impl PixelFormat {
                 PixelFormat::Rgba16f => t.iter().for_each(|&v| out.extend(half(v))),
                 PixelFormat::Rgba32f => t.iter().for_each(|v| out.extend(v.to_le_bytes())),
                 PixelFormat::Rgb9e5 => out.extend(pack_rgb9e5([t[0], t[1], t[2]]).to_le_bytes()),
-                PixelFormat::Rg11b10f => out.extend(pack_rg11b10f([t[0], t[1], t[2]]).to_le_bytes()),
+                PixelFormat::Rg11b10f => {
+                    out.extend(pack_rg11b10f([t[0], t[1], t[2]]).to_le_bytes())
+                }
             }
         }
         out
@@ -269,7 +272,10 @@ mod tests {
     #[test]
     fn rgb9e5_follows_the_vulkan_rules() {
         assert_eq!(pack_rgb9e5([0.0; 3]), 0);
-        assert_eq!(unpack_rgb9e5(pack_rgb9e5([1.0, 0.5, 0.25])), [1.0, 0.5, 0.25]);
+        assert_eq!(
+            unpack_rgb9e5(pack_rgb9e5([1.0, 0.5, 0.25])),
+            [1.0, 0.5, 0.25]
+        );
         // Clamped, not wrapped: above the maximum gives the maximum.
         assert_eq!(unpack_rgb9e5(pack_rgb9e5([1e9, 0.0, 0.0]))[0], rgb9e5_max());
         assert_eq!(rgb9e5_max(), 65408.0);
@@ -293,7 +299,9 @@ mod tests {
         assert_eq!(ufloat_to_f32(f32_to_ufloat(tiny, 6), 6), tiny);
         for v in [0.001f32, 0.7, 42.0, 30000.0] {
             let back = unpack_rg11b10f(pack_rg11b10f([v, v, v]));
-            assert!((back[0] - v).abs() / v <= 1.0 / 128.0 && (back[2] - v).abs() / v <= 1.0 / 64.0);
+            assert!(
+                (back[0] - v).abs() / v <= 1.0 / 128.0 && (back[2] - v).abs() / v <= 1.0 / 64.0
+            );
         }
     }
 }

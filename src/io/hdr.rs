@@ -16,7 +16,11 @@ pub fn rgbe_to_rgb(p: [u8; 4]) -> [f32; 3] {
         return [0.0; 3];
     }
     let f = (p[3] as f32 - 136.0).exp2();
-    [(p[0] as f32 + 0.5) * f, (p[1] as f32 + 0.5) * f, (p[2] as f32 + 0.5) * f]
+    [
+        (p[0] as f32 + 0.5) * f,
+        (p[1] as f32 + 0.5) * f,
+        (p[2] as f32 + 0.5) * f,
+    ]
 }
 
 /// Encodes linear RGB as RGBE (shared exponent of the largest channel, mantissas
@@ -62,13 +66,23 @@ pub fn decode(path: &Path, bytes: &[u8]) -> Result<Equirect> {
         format: FORMAT,
         message,
     };
-    let mut cur = Cursor { data: bytes, pos: 0 };
-    let magic = cur.line().ok_or_else(|| bad("empty or missing header".into()))?;
-    if !(magic.starts_with(b"#?RADIANCE") || magic.starts_with(b"#?RGBE") || magic.starts_with(b"#?")) {
+    let mut cur = Cursor {
+        data: bytes,
+        pos: 0,
+    };
+    let magic = cur
+        .line()
+        .ok_or_else(|| bad("empty or missing header".into()))?;
+    if !(magic.starts_with(b"#?RADIANCE")
+        || magic.starts_with(b"#?RGBE")
+        || magic.starts_with(b"#?"))
+    {
         return Err(bad("missing the '#?RADIANCE' signature".into()));
     }
     loop {
-        let line = cur.line().ok_or_else(|| bad("header has no end (no blank line)".into()))?;
+        let line = cur
+            .line()
+            .ok_or_else(|| bad("header has no end (no blank line)".into()))?;
         if line.is_empty() {
             break;
         }
@@ -77,18 +91,24 @@ pub fn decode(path: &Path, bytes: &[u8]) -> Result<Equirect> {
             if fmt != "32-bit_rle_rgbe" {
                 return Err(Error::UnsupportedInput {
                     path: path.to_path_buf(),
-                    message: format!("Radiance pixel format '{fmt}' is not supported (only 32-bit_rle_rgbe)"),
+                    message: format!(
+                        "Radiance pixel format '{fmt}' is not supported (only 32-bit_rle_rgbe)"
+                    ),
                 });
             }
         }
     }
-    let res = cur.line().ok_or_else(|| bad("missing the resolution line".into()))?;
+    let res = cur
+        .line()
+        .ok_or_else(|| bad("missing the resolution line".into()))?;
     let res = String::from_utf8_lossy(res).to_string();
     let parts: Vec<&str> = res.split_whitespace().collect();
     let (height, width) = match parts.as_slice() {
         ["-Y", h, "+X", w] => (
-            h.parse::<u32>().map_err(|_| bad(format!("bad height in '{res}'")))?,
-            w.parse::<u32>().map_err(|_| bad(format!("bad width in '{res}'")))?,
+            h.parse::<u32>()
+                .map_err(|_| bad(format!("bad height in '{res}'")))?,
+            w.parse::<u32>()
+                .map_err(|_| bad(format!("bad width in '{res}'")))?,
         ),
         [_, _, _, _] => {
             return Err(Error::UnsupportedInput {
@@ -132,7 +152,9 @@ fn read_scanline(cur: &mut Cursor<'_>, scan: &mut [[u8; 4]]) -> std::result::Res
         // New-style RLE: four channel planes, each a sequence of runs and literals.
         let len = ((first[2] as usize) << 8) | first[3] as usize;
         if len != w {
-            return Err(ScanError::Corrupt(format!("run-length scanline of {len} texels, expected {w}")));
+            return Err(ScanError::Corrupt(format!(
+                "run-length scanline of {len} texels, expected {w}"
+            )));
         }
         for c in 0..4 {
             let mut x = 0;
@@ -166,7 +188,9 @@ fn read_scanline(cur: &mut Cursor<'_>, scan: &mut [[u8; 4]]) -> std::result::Res
     loop {
         if px[0] == 1 && px[1] == 1 && px[2] == 1 {
             if x == 0 {
-                return Err(ScanError::Corrupt("repeat marker at the start of a scanline".into()));
+                return Err(ScanError::Corrupt(
+                    "repeat marker at the start of a scanline".into(),
+                ));
             }
             let count = (px[3] as usize) << shift;
             if x + count > w {
@@ -258,7 +282,13 @@ mod tests {
     fn encode_decode_round_trip() {
         let (w, h) = (37u32, 9u32);
         let rgb: Vec<[f32; 3]> = (0..w * h)
-            .map(|i| if i % 5 < 3 { [1.0, 2.0, 3.0] } else { [i as f32, 0.5, 0.0] })
+            .map(|i| {
+                if i % 5 < 3 {
+                    [1.0, 2.0, 3.0]
+                } else {
+                    [i as f32, 0.5, 0.0]
+                }
+            })
             .collect();
         let bytes = encode(w, h, &rgb);
         let img = decode(Path::new("t.hdr"), &bytes).unwrap();

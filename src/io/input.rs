@@ -135,20 +135,31 @@ fn apply_exposure(values: &mut [[f32; 3]], opts: &InputOptions) -> Result<()> {
     }
     if opts.exposure_ev != 0.0 {
         let k = opts.exposure_ev.exp2();
-        values.iter_mut().flatten().for_each(|v| *v = (*v * k).min(f32::MAX));
+        values
+            .iter_mut()
+            .flatten()
+            .for_each(|v| *v = (*v * k).min(f32::MAX));
     }
     Ok(())
 }
 
 /// Extracts the six faces of a cross image.
 fn cross_to_cube(img: &Equirect, layout: &[(u32, u32); FACES], vertical: bool) -> Cubemap {
-    let n = if vertical { img.width / 3 } else { img.width / 4 };
+    let n = if vertical {
+        img.width / 3
+    } else {
+        img.width / 4
+    };
     let mut level = Vec::with_capacity(Cubemap::level_len(n));
     for (face, &(col, row)) in layout.iter().enumerate() {
         let rotated = vertical && face == 5;
         for j in 0..n {
             for i in 0..n {
-                let (fi, fj) = if rotated { (n - 1 - i, n - 1 - j) } else { (i, j) };
+                let (fi, fj) = if rotated {
+                    (n - 1 - i, n - 1 - j)
+                } else {
+                    (i, j)
+                };
                 let t = img.get(col * n + fi, row * n + fj);
                 level.push([t[0], t[1], t[2], 1.0]);
             }
@@ -165,7 +176,11 @@ pub fn load_environment(path: &Path, opts: &InputOptions) -> Result<LoadedEnviro
     let mut warnings = Vec::new();
     let ext = extension_of(path);
     if ext == "ktx2" || ext == "dds" {
-        let mut cube = if ext == "ktx2" { read_ktx2_cube(path)? } else { read_dds_cube(path)? };
+        let mut cube = if ext == "ktx2" {
+            read_ktx2_cube(path)?
+        } else {
+            read_dds_cube(path)?
+        };
         let mut rgb: Vec<[f32; 3]> = cube.levels[0].iter().map(|t| [t[0], t[1], t[2]]).collect();
         sanitize_with_warning(path, &mut rgb, &mut warnings);
         apply_exposure(&mut rgb, opts)?;
@@ -201,7 +216,10 @@ pub fn load_faces(paths: &[PathBuf], opts: &InputOptions) -> Result<LoadedEnviro
     if paths.len() != FACES {
         return Err(Error::InvalidParameter {
             name: "--faces",
-            message: format!("expected 6 face files (+X −X +Y −Y +Z −Z), got {}", paths.len()),
+            message: format!(
+                "expected 6 face files (+X −X +Y −Y +Z −Z), got {}",
+                paths.len()
+            ),
         });
     }
     let mut warnings = Vec::new();
@@ -212,7 +230,10 @@ pub fn load_faces(paths: &[PathBuf], opts: &InputOptions) -> Result<LoadedEnviro
         if img.width != img.height {
             return Err(Error::UnsupportedInput {
                 path: path.clone(),
-                message: format!("cube face is {}×{}; faces must be square", img.width, img.height),
+                message: format!(
+                    "cube face is {}×{}; faces must be square",
+                    img.width, img.height
+                ),
             });
         }
         if face == 0 {
@@ -220,7 +241,10 @@ pub fn load_faces(paths: &[PathBuf], opts: &InputOptions) -> Result<LoadedEnviro
         } else if img.width != size {
             return Err(Error::UnsupportedInput {
                 path: path.clone(),
-                message: format!("face is {0}×{0} but the first face is {size}×{size}", img.width),
+                message: format!(
+                    "face is {0}×{0} but the first face is {size}×{size}",
+                    img.width
+                ),
             });
         }
         sanitize_with_warning(path, &mut img.data, &mut warnings);
@@ -236,7 +260,13 @@ pub fn load_faces(paths: &[PathBuf], opts: &InputOptions) -> Result<LoadedEnviro
     })
 }
 
-fn check_cube_level0(path: &Path, format: &'static str, n: u32, bytes: usize, pf: PixelFormat) -> Result<()> {
+fn check_cube_level0(
+    path: &Path,
+    format: &'static str,
+    n: u32,
+    bytes: usize,
+    pf: PixelFormat,
+) -> Result<()> {
     check_dimensions(path, n, n)?;
     let expected = FACES * (n as usize) * (n as usize) * pf.texel_bytes() as usize;
     if bytes < expected {
@@ -264,7 +294,11 @@ pub fn read_ktx2_cube(path: &Path) -> Result<Cubemap> {
         path: path.to_path_buf(),
         message,
     };
-    if h.face_count != 6 || h.pixel_width != h.pixel_height || h.pixel_depth > 1 || h.layer_count > 1 {
+    if h.face_count != 6
+        || h.pixel_width != h.pixel_height
+        || h.pixel_depth > 1
+        || h.layer_count > 1
+    {
         return Err(unsupported(format!(
             "KTX2 texture is {}×{} with {} faces; a cubemap (6 square faces) is expected",
             h.pixel_width, h.pixel_height, h.face_count
@@ -273,8 +307,16 @@ pub fn read_ktx2_cube(path: &Path) -> Result<Cubemap> {
     let vk = h.format.map(|f| f.value()).unwrap_or(0);
     let pf = PixelFormat::from_vk_format(vk)
         .filter(|f| f.texel_bytes() >= 4 && !matches!(f, PixelFormat::Rg16f | PixelFormat::Rg32f))
-        .ok_or_else(|| unsupported(format!("KTX2 format {:?} is not one splitsum reads (rgba16f, rgba32f, rgb9e5, rg11b10f)", h.format)))?;
-    let level = reader.levels().next().ok_or_else(|| bad("no mip levels".into()))?;
+        .ok_or_else(|| {
+            unsupported(format!(
+                "KTX2 format {:?} is not one splitsum reads (rgba16f, rgba32f, rgb9e5, rg11b10f)",
+                h.format
+            ))
+        })?;
+    let level = reader
+        .levels()
+        .next()
+        .ok_or_else(|| bad("no mip levels".into()))?;
     let data = match h.supercompression_scheme {
         None => level.data.to_vec(),
         Some(::ktx2::SupercompressionScheme::Zstandard) => {
@@ -282,7 +324,11 @@ pub fn read_ktx2_cube(path: &Path) -> Result<Cubemap> {
             check_cube_level0(path, F, h.pixel_width, expected, pf)?;
             zstd::bulk::decompress(level.data, expected).map_err(|e| bad(format!("zstd: {e}")))?
         }
-        Some(other) => return Err(unsupported(format!("KTX2 supercompression {other:?} is not supported"))),
+        Some(other) => {
+            return Err(unsupported(format!(
+                "KTX2 supercompression {other:?} is not supported"
+            )))
+        }
     };
     check_cube_level0(path, F, h.pixel_width, data.len(), pf)?;
     let n = h.pixel_width;
@@ -313,19 +359,27 @@ pub fn read_dds_cube(path: &Path) -> Result<Cubemap> {
         .is_some_and(|h| h.misc_flag.contains(ddsfile::MiscFlag::TEXTURECUBE));
     let n = dds.get_width();
     if !is_cube || dds.get_height() != n {
-        return Err(unsupported("DDS file is not a cubemap with a DX10 header".into()));
+        return Err(unsupported(
+            "DDS file is not a cubemap with a DX10 header".into(),
+        ));
     }
     let pf = dds
         .header10
         .as_ref()
         .and_then(|h| PixelFormat::from_dxgi_format(h.dxgi_format as u32))
         .filter(|f| !matches!(f, PixelFormat::Rg16f | PixelFormat::Rg32f))
-        .ok_or_else(|| unsupported("DDS format is not one splitsum reads (rgba16f, rgba32f, rgb9e5, rg11b10f)".into()))?;
+        .ok_or_else(|| {
+            unsupported(
+                "DDS format is not one splitsum reads (rgba16f, rgba32f, rgb9e5, rg11b10f)".into(),
+            )
+        })?;
     check_dimensions(path, n, n)?;
     let face_bytes = (n as usize) * (n as usize) * pf.texel_bytes() as usize;
     let mut level = Vec::with_capacity(Cubemap::level_len(n));
     for face in 0..FACES as u32 {
-        let data = dds.get_data(face).map_err(|e| bad(format!("face {face}: {e}")))?;
+        let data = dds
+            .get_data(face)
+            .map_err(|e| bad(format!("face {face}: {e}")))?;
         if data.len() < face_bytes {
             return Err(bad(format!("face {face} is truncated")));
         }

@@ -43,8 +43,19 @@ fn samples(format: PixelFormat) -> Vec<Sample> {
     let float_channels = |count: u32, bits: u32| -> Vec<Sample> {
         (0..count)
             .map(|c| {
-                let id = [KHR_DF_CHANNEL_R, KHR_DF_CHANNEL_G, KHR_DF_CHANNEL_B, KHR_DF_CHANNEL_ALPHA][c as usize];
-                (c * bits, bits, id | float_signed, FLOAT_MINUS_ONE, FLOAT_ONE)
+                let id = [
+                    KHR_DF_CHANNEL_R,
+                    KHR_DF_CHANNEL_G,
+                    KHR_DF_CHANNEL_B,
+                    KHR_DF_CHANNEL_ALPHA,
+                ][c as usize];
+                (
+                    c * bits,
+                    bits,
+                    id | float_signed,
+                    FLOAT_MINUS_ONE,
+                    FLOAT_ONE,
+                )
             })
             .collect()
     };
@@ -53,17 +64,27 @@ fn samples(format: PixelFormat) -> Vec<Sample> {
         PixelFormat::Rg32f => float_channels(2, 32),
         PixelFormat::Rgba16f => float_channels(4, 16),
         PixelFormat::Rgba32f => float_channels(4, 32),
-        PixelFormat::Rg11b10f => [(0, 11, KHR_DF_CHANNEL_R), (11, 11, KHR_DF_CHANNEL_G), (22, 10, KHR_DF_CHANNEL_B)]
-            .into_iter()
-            .map(|(off, len, id)| (off, len, id | KHR_DF_SAMPLE_DATATYPE_FLOAT, 0, FLOAT_ONE))
-            .collect(),
+        PixelFormat::Rg11b10f => [
+            (0, 11, KHR_DF_CHANNEL_R),
+            (11, 11, KHR_DF_CHANNEL_G),
+            (22, 10, KHR_DF_CHANNEL_B),
+        ]
+        .into_iter()
+        .map(|(off, len, id)| (off, len, id | KHR_DF_SAMPLE_DATATYPE_FLOAT, 0, FLOAT_ONE))
+        .collect(),
         PixelFormat::Rgb9e5 => [KHR_DF_CHANNEL_R, KHR_DF_CHANNEL_G, KHR_DF_CHANNEL_B]
             .into_iter()
             .enumerate()
             .flat_map(|(i, id)| {
                 [
                     (9 * i as u32, 9, id, 0, RGB9E5_MANTISSA_UPPER),
-                    (27, 5, id | KHR_DF_SAMPLE_DATATYPE_EXPONENT, RGB9E5_EXPONENT_BIAS, RGB9E5_EXPONENT_MAX),
+                    (
+                        27,
+                        5,
+                        id | KHR_DF_SAMPLE_DATATYPE_EXPONENT,
+                        RGB9E5_EXPONENT_BIAS,
+                        RGB9E5_EXPONENT_MAX,
+                    ),
                 ]
             })
             .collect(),
@@ -88,7 +109,10 @@ pub fn data_format_descriptor(format: PixelFormat) -> Vec<u8> {
         words.push(upper);
     }
     let total = 4 + 4 * words.len() as u32;
-    std::iter::once(total).chain(words).flat_map(u32::to_le_bytes).collect()
+    std::iter::once(total)
+        .chain(words)
+        .flat_map(u32::to_le_bytes)
+        .collect()
 }
 
 fn key_value(key: &str, value: &str) -> Vec<u8> {
@@ -128,7 +152,11 @@ pub fn encode(tex: &EncodedTexture, zstd_level: Option<i32>) -> std::io::Result<
             .collect::<std::io::Result<_>>()?,
         None => Vec::new(),
     };
-    let stored: Vec<&Vec<u8>> = if zstd_level.is_some() { compressed.iter().collect() } else { tex.levels.iter().collect() };
+    let stored: Vec<&Vec<u8>> = if zstd_level.is_some() {
+        compressed.iter().collect()
+    } else {
+        tex.levels.iter().collect()
+    };
     let header_len = 80 + 24 * level_count;
     let dfd = data_format_descriptor(tex.format);
     let kvd = key_value("KTXwriter", concat!("splitsum ", env!("CARGO_PKG_VERSION")));
@@ -145,7 +173,11 @@ pub fn encode(tex: &EncodedTexture, zstd_level: Option<i32>) -> std::io::Result<
         0, // layerCount
         tex.faces,
         level_count as u32,
-        if zstd_level.is_some() { SUPERCOMPRESSION_ZSTD } else { 0 },
+        if zstd_level.is_some() {
+            SUPERCOMPRESSION_ZSTD
+        } else {
+            0
+        },
         dfd_offset as u32,
         dfd.len() as u32,
         kvd_offset as u32,
@@ -156,8 +188,12 @@ pub fn encode(tex: &EncodedTexture, zstd_level: Option<i32>) -> std::io::Result<
     out.extend_from_slice(&0u64.to_le_bytes()); // sgdByteOffset
     out.extend_from_slice(&0u64.to_le_bytes()); // sgdByteLength
                                                 // Level data placement: smallest level first, each aligned to lcm(texel size, 4)
-    // (to 1 when supercompressed).
-    let align = if zstd_level.is_some() { 1 } else { lcm(tex.format.texel_bytes() as usize, 4) };
+                                                // (to 1 when supercompressed).
+    let align = if zstd_level.is_some() {
+        1
+    } else {
+        lcm(tex.format.texel_bytes() as usize, 4)
+    };
     let mut offsets = vec![0usize; level_count];
     let mut cursor = kvd_offset + kvd.len();
     for m in (0..level_count).rev() {

@@ -34,10 +34,7 @@ pub fn decode(path: &Path, bytes: &[u8], format: &'static str) -> Result<Equirec
         .decode()
         .map_err(|e| bad(e.to_string()))?;
     let rgb = img.to_rgb32f();
-    let data = rgb
-        .pixels()
-        .map(|p| p.0.map(srgb_to_linear))
-        .collect();
+    let data = rgb.pixels().map(|p| p.0.map(srgb_to_linear)).collect();
     Ok(Equirect {
         width: w,
         height: h,

@@ -21,9 +21,12 @@ pub fn check_dimensions(path: &Path, width: u32, height: u32) -> Result<()> {
         })
     };
     if width < MIN_DIMENSION || height < MIN_DIMENSION {
-        return refuse(format!("image is {width}×{height}; at least {MIN_DIMENSION}×{MIN_DIMENSION} is needed"));
+        return refuse(format!(
+            "image is {width}×{height}; at least {MIN_DIMENSION}×{MIN_DIMENSION} is needed"
+        ));
     }
-    if width > MAX_DIMENSION || height > MAX_DIMENSION || width as u64 * height as u64 > MAX_TEXELS {
+    if width > MAX_DIMENSION || height > MAX_DIMENSION || width as u64 * height as u64 > MAX_TEXELS
+    {
         return refuse(format!(
             "image is {width}×{height}; splitsum accepts at most {MAX_DIMENSION} texels per side and {MAX_TEXELS} texels"
         ));

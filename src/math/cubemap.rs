@@ -8,6 +8,8 @@
 
 use std::f32::consts::PI;
 
+use super::trig::atan2_precise;
+
 /// Number of cube faces.
 pub const FACES: usize = 6;
 
@@ -54,10 +56,11 @@ pub fn normalize(v: [f32; 3]) -> [f32; 3] {
     [v[0] / l, v[1] / l, v[2] / l]
 }
 
-/// Equirect (u, v) ∈ [0, 1]² of unit direction `d`.
+/// Equirect (u, v) ∈ [0, 1]² of unit direction `d`: u from atan2(z, x), v from
+/// acos(y) = atan2(√(x² + z²), y) (both with [`atan2_precise`]).
 pub fn equirect_uv(d: [f32; 3]) -> (f32, f32) {
-    let u = 0.5 + d[2].atan2(d[0]) / (2.0 * PI);
-    let v = d[1].clamp(-1.0, 1.0).acos() / PI;
+    let u = 0.5 + atan2_precise(d[2], d[0]) / (2.0 * PI);
+    let v = atan2_precise((d[0] * d[0] + d[2] * d[2]).sqrt(), d[1]) / PI;
     (u, v)
 }
 
@@ -72,14 +75,18 @@ pub fn equirect_direction(u: f32, v: f32) -> [f32; 3] {
 /// Rotates `d` about +Y by the angle whose cosine and sine are given (right-handed:
 /// +X turns towards −Z for a positive angle).
 pub fn rotate_y(d: [f32; 3], cos_a: f32, sin_a: f32) -> [f32; 3] {
-    [cos_a * d[0] + sin_a * d[2], d[1], -sin_a * d[0] + cos_a * d[2]]
+    [
+        cos_a * d[0] + sin_a * d[2],
+        d[1],
+        -sin_a * d[0] + cos_a * d[2],
+    ]
 }
 
 /// ∫ of the cube-face solid-angle density from the face centre to (x, y):
 /// atan2(x y, √(x² + y² + 1)) (the standard closed form; e.g. Driscoll, "Cubemap texel
 /// solid angle", 2012).
 fn area_element(x: f32, y: f32) -> f32 {
-    (x * y).atan2((x * x + y * y + 1.0).sqrt())
+    atan2_precise(x * y, (x * x + y * y + 1.0).sqrt())
 }
 
 /// Solid angle of texel (i, j) of an n×n cube face (exact).
@@ -140,7 +147,10 @@ mod tests {
                     total += cube_texel_solid_angle(i, j, n) as f64;
                 }
             }
-            assert!((total * 6.0 - 4.0 * std::f64::consts::PI).abs() < 1e-4, "{n}: {total}");
+            assert!(
+                (total * 6.0 - 4.0 * std::f64::consts::PI).abs() < 1e-4,
+                "{n}: {total}"
+            );
         }
     }
 }

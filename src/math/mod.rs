@@ -6,3 +6,4 @@ pub mod brdf;
 pub mod cubemap;
 pub mod quadrature;
 pub mod sampling;
+pub mod trig;
