@@ -60,9 +60,84 @@ fn monte_carlo_texel(n_dot_v: f32, roughness: f32, samples: u32) -> [f32; 2] {
     [ab[0] / samples as f32, ab[1] / samples as f32]
 }
 
+/// A synthetic equirect with a sun and a sky gradient.
+fn synthetic_equirect(width: u32) -> splitsum::Equirect {
+    let h = width / 2;
+    let data = (0..h)
+        .flat_map(|y| (0..width).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            let d = splitsum::math::cubemap::equirect_direction(
+                (x as f32 + 0.5) / width as f32,
+                (y as f32 + 0.5) / h as f32,
+            );
+            let sun = if d[0] * 0.6 + d[1] * 0.8 > 0.9995 {
+                50_000.0
+            } else {
+                0.0
+            };
+            let sky = 0.5 + 0.5 * d[1].max(0.0);
+            [sky + sun, sky * 1.1 + sun, sky * 1.3 + sun]
+        })
+        .collect();
+    splitsum::Equirect {
+        width,
+        height: h,
+        data,
+    }
+}
+
+fn cubemap_benchmarks() {
+    use splitsum::convert::environment_to_cube;
+    use splitsum::environment::{Environment, EquirectPyramid};
+    println!("\n## HDRI → cubemap 512 with mips\n");
+    println!("| input | stage | backend | wall s | CPU s |");
+    println!("|---|---|---|---|---|");
+    let venice = splitsum::io::input::load_environment(
+        std::path::Path::new("../shared/data/env/venice_sunset_1k.hdr"),
+        &Default::default(),
+    )
+    .map(|l| l.env);
+    let inputs: Vec<(String, Environment)> = [
+        venice
+            .ok()
+            .map(|e| ("venice_sunset_1k.hdr (1024×512)".to_string(), e)),
+        Some((
+            "synthetic 8192×4096".to_string(),
+            Environment::Equirect(synthetic_equirect(8192)),
+        )),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    let gpu = splitsum::GpuBackend::new().ok();
+    for (name, env) in &inputs {
+        let Environment::Equirect(e) = env else {
+            continue;
+        };
+        let (wall, cpu) = measure(1, || {
+            EquirectPyramid::new(e.clone(), 0);
+        });
+        println!(
+            "| {name} | pyramid (part of each conversion below) | cpu | {wall:.3} | {cpu:.3} |"
+        );
+        let mut backends: Vec<(&str, &dyn splitsum::Backend)> =
+            vec![("cpu", &splitsum::CpuBackend)];
+        if let Some(g) = &gpu {
+            backends.push(("gpu", g));
+        }
+        for (label, backend) in backends {
+            let (wall, cpu) = measure(1, || {
+                environment_to_cube(backend, env, 512, true, 0.0).unwrap();
+            });
+            println!("| {name} | convert (pyramid, level 0, 9 mips, readback) | {label} | {wall:.3} | {cpu:.3} |");
+        }
+    }
+}
+
 fn main() {
+    cubemap_benchmarks();
     let quad = LutQuadrature::default();
-    println!("## BRDF LUT timings\n");
+    println!("\n## BRDF LUT timings\n");
     println!("| size | backend | wall s (median) | CPU s | notes |");
     println!("|---|---|---|---|---|");
     let ctx = splitsum::gpu::GpuContext::new();

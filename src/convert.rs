@@ -56,8 +56,8 @@ pub fn environment_to_cube(
     };
     match env {
         Environment::Equirect(e) => {
-            let pyramid = EquirectPyramid::new(e.clone());
-            let params = EquirectToCubeParams::new(size, &pyramid, rotate_degrees);
+            let params = EquirectToCubeParams::new(size, e.height, rotate_degrees);
+            let pyramid = EquirectPyramid::new(e.clone(), params.base_level);
             backend.equirect_to_cube(&pyramid, &params, levels)
         }
         Environment::Cube(c) => {

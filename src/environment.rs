@@ -1,6 +1,8 @@
 //! In-memory environments: equirectangular images (with an energy-preserving mip pyramid)
 //! and cubemaps (with mip chains), both linear RGB radiance.
 
+use rayon::prelude::*;
+
 use crate::math::cubemap::FACES;
 
 /// A linear-RGB equirectangular image, rows top (+Y) to bottom.
@@ -37,23 +39,23 @@ impl Equirect {
         // Horizontal pass: plain area weights (all texels of a row have equal solid angle).
         let xw = overlap_weights(w0, w1, |a, b| b - a);
         let mut tmp = vec![[0.0f32; 3]; w1 * h0];
-        for y in 0..h0 {
+        tmp.par_chunks_mut(w1).enumerate().for_each(|(y, out)| {
             let row = &self.data[y * w0..(y + 1) * w0];
             for (x, taps) in xw.iter().enumerate() {
-                tmp[y * w1 + x] = weighted_sum(taps, |i| row[i]);
+                out[x] = weighted_sum(taps, |i| row[i]);
             }
-        }
+        });
         // Vertical pass: weights ∝ solid angle of the overlap, cos θa − cos θb.
         let pi = std::f64::consts::PI;
         let yw = overlap_weights(h0, h1, |a, b| {
             (pi * a / h0 as f64).cos() - (pi * b / h0 as f64).cos()
         });
         let mut data = vec![[0.0f32; 3]; w1 * h1];
-        for (y, taps) in yw.iter().enumerate() {
-            for x in 0..w1 {
-                data[y * w1 + x] = weighted_sum(taps, |r| tmp[r * w1 + x]);
+        data.par_chunks_mut(w1).zip(&yw).for_each(|(out, taps)| {
+            for (x, t) in out.iter_mut().enumerate() {
+                *t = weighted_sum(taps, |r| tmp[r * w1 + x]);
             }
-        }
+        });
         Equirect {
             width: w1 as u32,
             height: h1 as u32,
@@ -71,37 +73,36 @@ impl Equirect {
 pub fn prefilter_latitude(img: &mut Equirect) {
     let (w, h) = (img.width as usize, img.height as usize);
     let pi = std::f64::consts::PI;
-    let mut prefix = vec![[0.0f64; 3]; w + 1];
-    for y in 0..h {
+    img.data.par_chunks_mut(w).enumerate().for_each(|(y, row)| {
         let sin_theta = (pi * (y as f64 + 0.5) / h as f64).sin();
         let width = (w as f64 / (2.0 * h as f64) / sin_theta).min(w as f64);
         if width <= 1.0 {
-            continue;
+            return;
         }
-        let row = &mut img.data[y * w..(y + 1) * w];
-        for x in 0..w {
+        // Prefix sums over three periods, so every window [c − W/2, c + W/2] with c shifted
+        // by one period lies inside without wrapping arithmetic (W ≤ w).
+        let mut prefix = vec![[0.0f64; 3]; 3 * w + 1];
+        for x in 0..3 * w {
+            let t = row[x % w];
             for c in 0..3 {
-                prefix[x + 1][c] = prefix[x][c] + row[x][c] as f64;
+                prefix[x + 1][c] = prefix[x][c] + t[c] as f64;
             }
         }
-        // ∫ of the row (piecewise constant, periodic) from 0 to a, a in texel units.
-        let integral = |a: f64, c: usize| -> f64 {
-            let turns = (a / w as f64).floor();
-            let r = a - turns * w as f64;
-            let i = (r.floor() as usize).min(w - 1);
-            turns * prefix[w][c] + prefix[i][c] + (r - i as f64) * (prefix[i + 1][c] - prefix[i][c])
+        let at = |a: f64| -> [f64; 3] {
+            let i = (a.floor() as usize).min(3 * w - 1);
+            let f = a - i as f64;
+            [0, 1, 2].map(|c| prefix[i][c] + f * (prefix[i + 1][c] - prefix[i][c]))
         };
         let half = 0.5 * width;
         let out: Vec<[f32; 3]> = (0..w)
             .map(|x| {
-                let centre = x as f64 + 0.5 + w as f64; // shifted by one turn to stay ≥ 0
-                [0, 1, 2].map(|c| {
-                    ((integral(centre + half, c) - integral(centre - half, c)) / width) as f32
-                })
+                let centre = x as f64 + 0.5 + w as f64;
+                let (lo, hi) = (at(centre - half), at(centre + half));
+                [0, 1, 2].map(|c| ((hi[c] - lo[c]) / width) as f32)
             })
             .collect();
         row.copy_from_slice(&out);
-    }
+    });
 }
 
 /// For each of `n1` target cells covering `n0` source cells, the (source index, weight)
@@ -144,30 +145,68 @@ fn weighted_sum(taps: &[(usize, f32)], texel: impl Fn(usize) -> [f32; 3]) -> [f3
     acc
 }
 
-/// An equirect image and its successive half-size levels, down to a height of 1, each
-/// prefiltered along φ by [`prefilter_latitude`] for lookups.
+/// Number of levels of an equirect pyramid whose level 0 is `height` texels high: levels
+/// halve (floor, at least 1) down to a height of 1.
+pub fn pyramid_level_count(height: u32) -> u32 {
+    32 - height.max(1).leading_zeros()
+}
+
+/// An equirect image's successive half-size levels, down to a height of 1, each
+/// prefiltered along φ by [`prefilter_latitude`] for lookups. Levels finer than
+/// `first_level` (which no lookup needs) are not kept, to bound memory.
 #[derive(Clone, Debug)]
 pub struct EquirectPyramid {
-    /// Level 0 is the (latitude-prefiltered) input.
-    pub levels: Vec<Equirect>,
+    /// Width of level 0 (the input).
+    pub width: u32,
+    /// Height of level 0.
+    pub height: u32,
+    /// The finest level kept.
+    pub first_level: u32,
+    stored: Vec<Equirect>,
 }
 
 impl EquirectPyramid {
-    /// Builds every level down to 1 texel high: each level is the exact area downsample of
-    /// the unfiltered level above; then each level is latitude-prefiltered in place.
-    pub fn new(base: Equirect) -> Self {
-        let mut levels = vec![base];
-        while levels.last().is_some_and(|l| l.height > 1) {
-            let next = levels.last().map(Equirect::downsample);
-            if let Some(done) = levels.last_mut() {
-                prefilter_latitude(done);
+    /// Builds levels down to 1 texel high from `base`: each level is the exact area
+    /// downsample of the unfiltered level above (rows in parallel); levels from
+    /// `first_level` on are then latitude-prefiltered and kept.
+    pub fn new(base: Equirect, first_level: u32) -> Self {
+        let (width, height) = (base.width, base.height);
+        let count = pyramid_level_count(height);
+        let first_level = first_level.min(count - 1);
+        let mut stored = Vec::new();
+        let mut current = base;
+        for level in 0..count {
+            let next = (level + 1 < count).then(|| current.downsample());
+            if level >= first_level {
+                prefilter_latitude(&mut current);
+                stored.push(current);
             }
-            levels.extend(next);
+            match next {
+                Some(n) => current = n,
+                None => break,
+            }
         }
-        if let Some(last) = levels.last_mut() {
-            prefilter_latitude(last);
+        EquirectPyramid {
+            width,
+            height,
+            first_level,
+            stored,
         }
-        EquirectPyramid { levels }
+    }
+
+    /// Total number of levels (including the ones not kept).
+    pub fn level_count(&self) -> u32 {
+        self.first_level + self.stored.len() as u32
+    }
+
+    /// Level `l` (≥ `first_level`).
+    pub fn level(&self, l: u32) -> &Equirect {
+        &self.stored[(l - self.first_level) as usize]
+    }
+
+    /// The kept levels, finest first.
+    pub fn stored(&self) -> &[Equirect] {
+        &self.stored
     }
 }
 

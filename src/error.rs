@@ -7,14 +7,14 @@ use std::path::PathBuf;
 /// never prints: it returns one of these.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
-    /// Reading or writing a file failed at the OS level.
-    #[error("{path}: {source}")]
+    /// Reading or writing a file failed at the OS level. (The I/O error is part of the
+    /// message rather than a separate `source`, so it is printed once.)
+    #[error("{path}: {error}")]
     Io {
         /// The file or folder involved.
         path: PathBuf,
         /// The underlying I/O error.
-        #[source]
-        source: std::io::Error,
+        error: std::io::Error,
     },
 
     /// The output path's extension does not name a format this output can be written as.
@@ -94,10 +94,10 @@ pub type Result<T, E = Error> = std::result::Result<T, E>;
 
 impl Error {
     /// Wraps an I/O error with the path it concerns.
-    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+    pub fn io(path: impl Into<PathBuf>, error: std::io::Error) -> Self {
         Error::Io {
             path: path.into(),
-            source,
+            error,
         }
     }
 }

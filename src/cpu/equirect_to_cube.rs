@@ -12,7 +12,7 @@ use std::f32::consts::PI;
 
 use rayon::prelude::*;
 
-use crate::environment::{Cubemap, Equirect, EquirectPyramid};
+use crate::environment::{pyramid_level_count, Cubemap, Equirect, EquirectPyramid};
 use crate::math::cubemap::{
     cube_face_direction, cube_face_jacobian, cube_texel_solid_angle, equirect_uv, normalize,
     rotate_y,
@@ -35,18 +35,18 @@ pub struct EquirectToCubeParams {
 }
 
 impl EquirectToCubeParams {
-    /// Parameters for a `face_size` cube from `pyramid`, rotated by `rotate_degrees`.
-    pub fn new(face_size: u32, pyramid: &EquirectPyramid, rotate_degrees: f32) -> Self {
+    /// Parameters for a `face_size` cube from an equirect `source_height` texels high,
+    /// rotated by `rotate_degrees`. Build the pyramid with `first_level = base_level`.
+    pub fn new(face_size: u32, source_height: u32, rotate_degrees: f32) -> Self {
         let r = rotate_degrees.to_radians();
-        let base = &pyramid.levels[0];
         EquirectToCubeParams {
             face_size,
             samples_per_axis: SAMPLES_PER_AXIS,
             base_level: finest_needed_level(
                 face_size,
                 SAMPLES_PER_AXIS,
-                base.height,
-                pyramid.levels.len() as u32,
+                source_height,
+                pyramid_level_count(source_height),
             ),
             rotation: [r.cos(), r.sin()],
         }
@@ -95,23 +95,15 @@ pub fn sample_equirect_bilinear(level: &Equirect, u: f32, v: f32) -> [f32; 3] {
 }
 
 /// Trilinear lookup of the pyramid in direction `d` at fractional level `lod`
-/// (clamped to [base_level, last level]).
-pub fn sample_equirect_lod(
-    pyramid: &EquirectPyramid,
-    d: [f32; 3],
-    lod: f32,
-    base_level: u32,
-) -> [f32; 3] {
-    let last = (pyramid.levels.len() - 1) as f32;
-    let lod = lod.clamp(base_level as f32, last);
+/// (clamped to [first kept level, last level]).
+pub fn sample_equirect_lod(pyramid: &EquirectPyramid, d: [f32; 3], lod: f32) -> [f32; 3] {
+    let last = pyramid.level_count() - 1;
+    let lod = lod.clamp(pyramid.first_level as f32, last as f32);
     let l0 = lod.floor();
     let f = lod - l0;
     let (u, v) = equirect_uv(d);
-    let a = sample_equirect_bilinear(&pyramid.levels[l0 as usize], u, v);
-    if f <= 0.0 {
-        return a;
-    }
-    let b = sample_equirect_bilinear(&pyramid.levels[(l0 as usize + 1).min(last as usize)], u, v);
+    let a = sample_equirect_bilinear(pyramid.level(l0 as u32), u, v);
+    let b = sample_equirect_bilinear(pyramid.level((l0 as u32 + 1).min(last)), u, v);
     [0, 1, 2].map(|c| a[c] + f * (b[c] - a[c]))
 }
 
@@ -153,7 +145,6 @@ pub fn equirect_to_cube_texel(
     i: u32,
     j: u32,
 ) -> [f32; 4] {
-    let base = &pyramid.levels[0];
     footprint_mean(
         face,
         i,
@@ -164,8 +155,8 @@ pub fn equirect_to_cube_texel(
             // The environment rotated by +angle shows, in direction d, what the source shows
             // in direction R(−angle)·d.
             let d = rotate_y(d, p.rotation[0], -p.rotation[1]);
-            let lod = equirect_lod(omega_sample, base.height);
-            sample_equirect_lod(pyramid, d, lod, p.base_level)
+            let lod = equirect_lod(omega_sample, pyramid.height);
+            sample_equirect_lod(pyramid, d, lod)
         },
     )
 }

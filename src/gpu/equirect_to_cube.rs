@@ -74,20 +74,19 @@ pub fn equirect_to_cube(
         shaders::EQUIRECT_TO_CUBE,
         WORKGROUP,
     )?;
-    let source = upload_equirect_pyramid(device, queue, pyramid, params.base_level)?;
+    let source = upload_equirect_pyramid(device, queue, pyramid)?;
     let n = params.face_size;
     let mips = mips.clamp(1, Cubemap::full_mip_count(n));
     let cube = with_error_scope(
         device,
         "equirect_to_cube dispatch",
         || -> Result<wgpu::Texture> {
-            let base = &pyramid.levels[0];
             let uniform = EquirectToCubeUniform {
                 face_size: n,
                 samples_per_axis: params.samples_per_axis,
-                base_level: params.base_level,
-                level_count: pyramid.levels.len() as u32,
-                source_size: [base.width, base.height],
+                base_level: pyramid.first_level,
+                level_count: pyramid.level_count(),
+                source_size: [pyramid.width, pyramid.height],
                 rotation: params.rotation,
             };
             let ubuf = buffer_with_data(

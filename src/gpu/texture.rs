@@ -5,14 +5,14 @@ use crate::environment::{Cubemap, EquirectPyramid};
 use crate::gpu::compute::{read_texture_level, with_error_scope};
 use crate::Result;
 
-/// Uploads pyramid levels `base_level..` as the mips of one `Rgba32Float` 2D texture.
+/// Uploads the pyramid's kept levels as the mips of one `Rgba32Float` 2D texture (mip 0 =
+/// level `first_level`).
 pub fn upload_equirect_pyramid(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     pyramid: &EquirectPyramid,
-    base_level: u32,
 ) -> Result<wgpu::Texture> {
-    let levels = &pyramid.levels[base_level as usize..];
+    let levels = pyramid.stored();
     with_error_scope(device, "uploading the environment", || {
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("equirect pyramid"),
