@@ -111,8 +111,8 @@ pub struct InputArgs {
 /// `splitsum cubemap`.
 #[derive(Debug, Args)]
 pub struct CubemapArgs {
-    /// Input: a 2:1 equirect, a 4:3 or 3:4 cross (.hdr, .exr, .png, .jpg), or a KTX2/DDS
-    /// cubemap.
+    /// Input: a 2:1 equirect, a 4:3 or 3:4 cross (.hdr, .exr, .png, .jpg), a KTX2/DDS
+    /// cubemap, or a face-file pattern such as 'sky_{face}.hdr' ({face} = px nx py ny pz nz).
     #[arg(required_unless_present = "faces")]
     pub input: Option<PathBuf>,
 

@@ -71,8 +71,16 @@ fn run_cubemap(args: CubemapArgs) -> anyhow::Result<()> {
         .unwrap_or_default();
     let output = args.output.clone().unwrap_or_else(|| {
         let stem = first_input
+            .to_string_lossy()
+            .replace(splitsum::io::input::FACE_PLACEHOLDER, "")
+            .parse::<std::path::PathBuf>()
+            .unwrap_or_default()
             .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
+            .map(|s| {
+                s.to_string_lossy()
+                    .trim_end_matches(['_', '-', '.'])
+                    .to_owned()
+            })
             .unwrap_or_default();
         std::path::PathBuf::from("out").join(format!("{stem}_cubemap.ktx2"))
     });
@@ -85,7 +93,10 @@ fn run_cubemap(args: CubemapArgs) -> anyhow::Result<()> {
     };
     let start = Instant::now();
     let loaded = match &args.input {
-        Some(path) => load_environment(path, &opts)?,
+        Some(path) => match splitsum::io::input::expand_face_pattern(path) {
+            Some(faces) => load_faces(&faces, &opts)?,
+            None => load_environment(path, &opts)?,
+        },
         None => load_faces(&args.faces, &opts)?,
     };
     for w in &loaded.warnings {

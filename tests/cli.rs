@@ -194,3 +194,44 @@ fn backend_gpu_without_adapter_fails_and_auto_falls_back() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("backend: cpu"));
     assert!(out.exists());
 }
+
+#[test]
+fn cubemap_from_a_face_pattern_and_back_to_faces() {
+    use splitsum::io::cubemap::{write_cubemap, CubeLayout, CubeWriteOptions};
+    let dir = common::output_dir("cli-faces");
+    let mut cube = splitsum::Cubemap {
+        size: 8,
+        levels: vec![(0..6 * 64)
+            .map(|k| [1.0 + (k / 64) as f32, 0.5, 0.25, 1.0])
+            .collect()],
+    };
+    splitsum::cpu::cube_downsample::build_mips(&mut cube, 1);
+    let opts = CubeWriteOptions {
+        layout: CubeLayout::Faces,
+        ..Default::default()
+    };
+    write_cubemap(&dir.join("sky.hdr"), &cube, &opts).unwrap();
+    // Default output name from the pattern's stem, in out/ under the working folder.
+    let status = splitsum()
+        .args([
+            "cubemap",
+            "sky_{face}.hdr",
+            "--mips",
+            "--pixel-format",
+            "rgb9e5",
+        ])
+        .current_dir(&dir)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let bytes = std::fs::read(dir.join("out/sky_cubemap.ktx2")).unwrap();
+    let reader = ktx2::Reader::new(&bytes[..]).unwrap();
+    assert_eq!(reader.header().face_count, 6);
+    assert_eq!(reader.header().level_count, 4);
+    // Each face keeps its own radiance (1 + face index in R).
+    let level0 = splitsum::io::PixelFormat::Rgb9e5.decode(reader.levels().next().unwrap().data);
+    for face in 0..6 {
+        let r = level0[face * 64][0];
+        assert!((r - (1.0 + face as f32)).abs() < 0.05, "face {face}: {r}");
+    }
+}

@@ -211,6 +211,21 @@ pub fn load_environment(path: &Path, opts: &InputOptions) -> Result<LoadedEnviro
     Ok(LoadedEnvironment { env, warnings })
 }
 
+/// Face-name placeholder of a face-file pattern such as `sky_{face}.hdr`.
+pub const FACE_PLACEHOLDER: &str = "{face}";
+
+/// The six face paths of a pattern containing `{face}` (replaced by px, nx, py, ny, pz,
+/// nz), or None when `path` is not a pattern.
+pub fn expand_face_pattern(path: &Path) -> Option<Vec<PathBuf>> {
+    let text = path.to_str()?;
+    text.contains(FACE_PLACEHOLDER).then(|| {
+        super::cubemap::FACE_SUFFIXES
+            .iter()
+            .map(|s| PathBuf::from(text.replace(FACE_PLACEHOLDER, s)))
+            .collect()
+    })
+}
+
 /// Loads six square face images in the order +X, −X, +Y, −Y, +Z, −Z.
 pub fn load_faces(paths: &[PathBuf], opts: &InputOptions) -> Result<LoadedEnvironment> {
     if paths.len() != FACES {
