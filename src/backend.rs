@@ -35,6 +35,13 @@ pub trait Backend {
         params: &EquirectToCubeParams,
         mips: u32,
     ) -> Result<Cubemap>;
+
+    /// The prefiltered specular chain of `env` (which has every mip): level m at
+    /// roughness m/(M − 1), see [`crate::cpu::prefilter_specular`].
+    fn prefilter_specular(&self, env: &Cubemap, samples: u32) -> Result<Cubemap>;
+
+    /// The irradiance cube (E/π) of edge `size`, see [`crate::cpu::irradiance`].
+    fn irradiance(&self, env: &Cubemap, size: u32) -> Result<Cubemap>;
 }
 
 /// The CPU reference backend.
@@ -64,6 +71,14 @@ impl Backend for CpuBackend {
         let mut cube = cpu::equirect_to_cube::equirect_to_cube(pyramid, params);
         cpu::cube_downsample::build_mips(&mut cube, mips);
         Ok(cube)
+    }
+
+    fn prefilter_specular(&self, env: &Cubemap, samples: u32) -> Result<Cubemap> {
+        Ok(cpu::prefilter_specular::prefilter_specular(env, samples))
+    }
+
+    fn irradiance(&self, env: &Cubemap, size: u32) -> Result<Cubemap> {
+        Ok(cpu::irradiance::irradiance(env, size))
     }
 }
 
@@ -116,6 +131,19 @@ impl Backend for GpuBackend {
         )?;
         self.ctx.take_uncaptured_error("equirect_to_cube")?;
         Ok(cube)
+    }
+
+    fn prefilter_specular(&self, env: &Cubemap, samples: u32) -> Result<Cubemap> {
+        let out =
+            gpu::prefilter::prefilter_specular(&self.ctx.device, &self.ctx.queue, env, samples)?;
+        self.ctx.take_uncaptured_error("prefilter_specular")?;
+        Ok(out)
+    }
+
+    fn irradiance(&self, env: &Cubemap, size: u32) -> Result<Cubemap> {
+        let out = gpu::prefilter::irradiance(&self.ctx.device, &self.ctx.queue, env, size)?;
+        self.ctx.take_uncaptured_error("irradiance")?;
+        Ok(out)
     }
 }
 

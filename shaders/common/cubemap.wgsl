@@ -15,6 +15,25 @@ fn cube_face_direction(face: u32, s: f32, t: f32) -> vec3<f32> {
     }
 }
 
+// Face and (s, t) in [-1, 1]^2 that direction d lands on (inverse of cube_face_direction).
+fn cube_face_coords(d: vec3<f32>) -> vec3<f32> {
+    let a = abs(d);
+    if (a.x >= a.y && a.x >= a.z) {
+        if (d.x >= 0.0) {
+            return vec3<f32>(0.0, -d.z / a.x, -d.y / a.x);
+        }
+        return vec3<f32>(1.0, d.z / a.x, -d.y / a.x);
+    } else if (a.y >= a.z) {
+        if (d.y >= 0.0) {
+            return vec3<f32>(2.0, d.x / a.y, d.z / a.y);
+        }
+        return vec3<f32>(3.0, d.x / a.y, -d.z / a.y);
+    } else if (d.z >= 0.0) {
+        return vec3<f32>(4.0, d.x / a.z, -d.y / a.z);
+    }
+    return vec3<f32>(5.0, -d.x / a.z, -d.y / a.z);
+}
+
 // Equirect (u, v) of a unit direction: u from atan2(z, x), v = acos(y) = atan2(|xz|, y).
 fn equirect_uv(d: vec3<f32>) -> vec2<f32> {
     return vec2<f32>(0.5 + atan2_precise(d.z, d.x) / (2.0 * PI),

@@ -4,4 +4,8 @@
 pub mod brdf_lut;
 pub mod cube_downsample;
 pub mod cube_resample;
+pub mod cube_sample;
 pub mod equirect_to_cube;
+pub mod irradiance;
+pub mod prefilter_specular;
+pub mod sh_project;

@@ -8,6 +8,7 @@ pub mod brdf_lut;
 pub mod compute;
 pub mod context;
 pub mod equirect_to_cube;
+pub mod prefilter;
 pub mod shaders;
 pub mod texture;
 

@@ -22,8 +22,25 @@ pub const EQUIRECT_TO_CUBE: &str = kernel_source!("equirect_to_cube.wgsl", ["cub
 /// `shaders/cube_downsample.wgsl` with cubemap.
 pub const CUBE_DOWNSAMPLE: &str = kernel_source!("cube_downsample.wgsl", ["cubemap.wgsl"]);
 
+/// `shaders/prefilter_sampled.wgsl` with brdf, sampling, cubemap, cube_sample.
+pub const PREFILTER_SAMPLED: &str = kernel_source!(
+    "prefilter_sampled.wgsl",
+    [
+        "brdf.wgsl",
+        "sampling.wgsl",
+        "cubemap.wgsl",
+        "cube_sample.wgsl"
+    ]
+);
+
+/// `shaders/convolve_exact.wgsl` with brdf and cubemap.
+pub const CONVOLVE_EXACT: &str =
+    kernel_source!("convolve_exact.wgsl", ["brdf.wgsl", "cubemap.wgsl"]);
+
 /// Every assembled kernel by name, for validation.
 pub const ALL: &[(&str, &str)] = &[
+    ("prefilter_sampled", PREFILTER_SAMPLED),
+    ("convolve_exact", CONVOLVE_EXACT),
     ("brdf_lut", BRDF_LUT),
     ("equirect_to_cube", EQUIRECT_TO_CUBE),
     ("cube_downsample", CUBE_DOWNSAMPLE),

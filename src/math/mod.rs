@@ -6,4 +6,5 @@ pub mod brdf;
 pub mod cubemap;
 pub mod quadrature;
 pub mod sampling;
+pub mod sh;
 pub mod trig;

@@ -1,0 +1,92 @@
+// Exact convolutions over every texel of a small source mip (no noise):
+//   mode 0, prefiltered specular:  sum L D(n.h) (n.l) W / sum D(n.h) (n.l) W,
+//   mode 1, irradiance / pi:       (1/pi) sum max(0, n . M_c) per channel c,
+// with W the source texel's exact solid angle, l its radiance centroid direction and M_c
+// its first radiance moments. CPU mirrors: prefilter_exact_texel in
+// src/cpu/prefilter_specular.rs and irradiance_texel in src/cpu/irradiance.rs.
+
+struct ConvolveParams {
+    out_size: u32,
+    count: u32,       // source texels
+    mode: u32,        // 0 specular, 1 irradiance
+    roughness: f32,
+}
+
+// Mode 0: two vec4 per texel (dir_omega, radiance); mode 1: five (moments of R, G, B,
+// centroid + sin^2 sigma, radiance * omega).
+@group(0) @binding(0) var<uniform> params: ConvolveParams;
+@group(0) @binding(1) var<storage, read> source: array<vec4<f32>>;
+@group(0) @binding(2) var output: texture_storage_2d_array<rgba32float, write>;
+
+fn prefilter_exact_texel(n: vec3<f32>, roughness: f32) -> vec4<f32> {
+    let alpha = alpha_from_roughness(roughness);
+    var sum = vec3<f32>(0.0);
+    var weight = 0.0;
+    for (var k = 0u; k < params.count; k++) {
+        let l = source[2u * k];
+        let n_dot_l = dot(n, l.xyz);
+        if (n_dot_l > 0.0) {
+            // n.h = (1 + n.l) / |n + l| = sqrt((1 + n.l) / 2).
+            let n_dot_h = sqrt(0.5 * (1.0 + n_dot_l));
+            let w = d_ggx(n_dot_h, alpha) * n_dot_l * l.w;
+            sum += w * source[2u * k + 1u].rgb;
+            weight += w;
+        }
+    }
+    return vec4<f32>(sum / weight, 1.0);
+}
+
+// Mean clamped cosine over a cap of half-angle sigma at cos theta from n (Snyder 1996;
+// Lagarde & de Rousiers 2014).
+fn clipped_cap_cosine(cos_theta: f32, sin2_sigma: f32) -> f32 {
+    if (sin2_sigma < 1e-12) {
+        return max(cos_theta, 0.0);
+    }
+    let cap = 2.0 * PI * (1.0 - sqrt(max(1.0 - sin2_sigma, 0.0)));
+    var e = 0.0;
+    if (cos_theta * cos_theta > sin2_sigma) {
+        e = PI * sin2_sigma * max(cos_theta, 0.0);
+    } else {
+        let sin_theta = sqrt(max(1.0 - cos_theta * cos_theta, 0.0));
+        let x = sqrt(max(1.0 / sin2_sigma - 1.0, 0.0));
+        let y = clamp(-x * cos_theta / max(sin_theta, 1e-9), -1.0, 1.0);
+        let st_y = sin_theta * sqrt(max(1.0 - y * y, 0.0));
+        e = (cos_theta * acos_precise(y) - x * st_y) * sin2_sigma + atan_precise(st_y / max(x, 1e-9));
+    }
+    return max(e, 0.0) / cap;
+}
+
+fn irradiance_texel(n: vec3<f32>) -> vec4<f32> {
+    var e = vec3<f32>(0.0);
+    for (var k = 0u; k < params.count; k++) {
+        let d = source[5u * k + 3u];
+        let cos_theta = dot(n, d.xyz);
+        if (cos_theta * cos_theta > d.w) {
+            if (cos_theta > 0.0) {
+                e += max(vec3<f32>(dot(n, source[5u * k].xyz), dot(n, source[5u * k + 1u].xyz),
+                                   dot(n, source[5u * k + 2u].xyz)), vec3<f32>(0.0));
+            }
+        } else {
+            e += clipped_cap_cosine(cos_theta, d.w) * source[5u * k + 4u].rgb;
+        }
+    }
+    return vec4<f32>(e / PI, 1.0);
+}
+
+@compute @workgroup_size(WORKGROUP_X, WORKGROUP_Y, WORKGROUP_Z)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let n = params.out_size;
+    if (id.x >= n || id.y >= n || id.z >= 6u) {
+        return;
+    }
+    let s = (f32(id.x) + 0.5) * 2.0 / f32(n) - 1.0;
+    let t = (f32(id.y) + 0.5) * 2.0 / f32(n) - 1.0;
+    let dir = normalize(cube_face_direction(id.z, s, t));
+    var out: vec4<f32>;
+    if (params.mode == 0u) {
+        out = prefilter_exact_texel(dir, params.roughness);
+    } else {
+        out = irradiance_texel(dir);
+    }
+    textureStore(output, vec2<i32>(id.xy), i32(id.z), out);
+}

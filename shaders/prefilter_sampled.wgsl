@@ -1,0 +1,64 @@
+// Prefiltered specular, one mip, by filtered importance sampling (Colbert & Krivanek 2007):
+// GGX-distributed half vectors (Hammersley), l = reflect(-n, h), weight n.l, each sample
+// reading the environment's mip chain at lod = 0.5 log2(omega_s / omega_p) + bias.
+// CPU mirror: prefilter_texel in src/cpu/prefilter_specular.rs.
+
+struct PrefilterParams {
+    env_size: u32,
+    env_levels: u32,
+    out_size: u32,
+    samples: u32,
+    roughness: f32,
+    lod_bias: f32,
+    omega_p: f32,   // solid angle of a level-0 environment texel (mean)
+    _pad: f32,
+}
+
+@group(0) @binding(0) var<uniform> params: PrefilterParams;
+@group(0) @binding(1) var env: texture_2d_array<f32>;
+@group(0) @binding(2) var output: texture_storage_2d_array<rgba32float, write>;
+
+// Orthonormal tangent frame around unit n (columns t, b).
+fn tangent_frame(n: vec3<f32>) -> mat2x3<f32> {
+    var up = vec3<f32>(1.0, 0.0, 0.0);
+    if (abs(n.z) < 0.999) {
+        up = vec3<f32>(0.0, 0.0, 1.0);
+    }
+    let t = normalize(cross(up, n));
+    return mat2x3<f32>(t, cross(n, t));
+}
+
+fn prefilter_texel(n: vec3<f32>) -> vec4<f32> {
+    let alpha = alpha_from_roughness(params.roughness);
+    let tb = tangent_frame(n);
+    var sum = vec3<f32>(0.0);
+    var weight = 0.0;
+    for (var i = 0u; i < params.samples; i++) {
+        let h_t = importance_sample_ggx(hammersley(i, params.samples), alpha);
+        let h = tb[0] * h_t.x + tb[1] * h_t.y + n * h_t.z;
+        let n_dot_h = h_t.z;
+        let l = 2.0 * n_dot_h * h - n;
+        let n_dot_l = dot(n, l);
+        if (n_dot_l > 0.0) {
+            // pdf(l) = D / 4 for v = n.
+            let pdf = d_ggx(n_dot_h, alpha) * 0.25;
+            let omega_s = 1.0 / (f32(params.samples) * pdf);
+            let lod = 0.5 * log2(omega_s / params.omega_p) + params.lod_bias;
+            sum += sample_cube_lod(env, params.env_size, params.env_levels, l, lod) * n_dot_l;
+            weight += n_dot_l;
+        }
+    }
+    return vec4<f32>(sum / weight, 1.0);
+}
+
+@compute @workgroup_size(WORKGROUP_X, WORKGROUP_Y, WORKGROUP_Z)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let n = params.out_size;
+    if (id.x >= n || id.y >= n || id.z >= 6u) {
+        return;
+    }
+    let s = (f32(id.x) + 0.5) * 2.0 / f32(n) - 1.0;
+    let t = (f32(id.y) + 0.5) * 2.0 / f32(n) - 1.0;
+    let dir = normalize(cube_face_direction(id.z, s, t));
+    textureStore(output, vec2<i32>(id.xy), i32(id.z), prefilter_texel(dir));
+}

@@ -1,0 +1,69 @@
+//! Seamless bilinear and trilinear lookups of a cube mip chain. Mirror of
+//! `shaders/common/cube_sample.wgsl` (same function names).
+//!
+//! A bilinear tap that falls off a face is fetched from the neighbouring face: the missing
+//! texel's centre is extended on the face plane, turned into a direction and re-projected,
+//! so filtering is continuous across edges (no seams at small mips).
+
+use crate::environment::Cubemap;
+use crate::math::cubemap::{cube_face_coords, cube_face_direction, cube_face_jacobian};
+
+/// Texel (x, y) of `face` at mip `m`, where x or y may be −1 or n (one texel off the face):
+/// those are fetched from the face the extended texel centre points into.
+pub fn fetch_cube_texel(cube: &Cubemap, m: usize, face: u32, x: i32, y: i32) -> [f32; 3] {
+    let n = cube.level_size(m) as i32;
+    let (mut f, mut xi, mut yi) = (face, x, y);
+    if x < 0 || y < 0 || x >= n || y >= n {
+        let s = (x as f32 + 0.5) * 2.0 / n as f32 - 1.0;
+        let t = (y as f32 + 0.5) * 2.0 / n as f32 - 1.0;
+        let (f2, s2, t2) = cube_face_coords(cube_face_direction(face, s, t));
+        f = f2;
+        xi = (((s2 + 1.0) * 0.5 * n as f32).floor() as i32).clamp(0, n - 1);
+        yi = (((t2 + 1.0) * 0.5 * n as f32).floor() as i32).clamp(0, n - 1);
+    }
+    let t = cube.texel(m, f, xi as u32, yi as u32);
+    [t[0], t[1], t[2]]
+}
+
+/// Seamless bilinear lookup of mip `m` in direction `d`.
+pub fn sample_cube_bilinear(cube: &Cubemap, m: usize, d: [f32; 3]) -> [f32; 3] {
+    let (face, s, t) = cube_face_coords(d);
+    let n = cube.level_size(m) as f32;
+    let x = (s + 1.0) * 0.5 * n - 0.5;
+    let y = (t + 1.0) * 0.5 * n - 0.5;
+    let (x0, y0) = (x.floor(), y.floor());
+    let (fx, fy) = (x - x0, y - y0);
+    let (xi, yi) = (x0 as i32, y0 as i32);
+    let mut out = [0.0f32; 3];
+    for (dx, dy, w) in [
+        (0, 0, (1.0 - fx) * (1.0 - fy)),
+        (1, 0, fx * (1.0 - fy)),
+        (0, 1, (1.0 - fx) * fy),
+        (1, 1, fx * fy),
+    ] {
+        let v = fetch_cube_texel(cube, m, face, xi + dx, yi + dy);
+        for c in 0..3 {
+            out[c] += w * v[c];
+        }
+    }
+    out
+}
+
+/// Trilinear lookup at fractional mip `lod` (clamped to the chain).
+pub fn sample_cube_lod(cube: &Cubemap, d: [f32; 3], lod: f32) -> [f32; 3] {
+    let last = (cube.levels.len() - 1) as f32;
+    let lod = lod.clamp(0.0, last);
+    let l0 = lod.floor();
+    let f = lod - l0;
+    let a = sample_cube_bilinear(cube, l0 as usize, d);
+    let b = sample_cube_bilinear(cube, (l0 + 1.0).min(last) as usize, d);
+    [0, 1, 2].map(|c| a[c] + f * (b[c] - a[c]))
+}
+
+/// Solid angle of a level-0 texel of `cube` at direction `d` ((2/n)² times the face's
+/// solid-angle density there).
+pub fn cube_texel_solid_angle_at(cube: &Cubemap, d: [f32; 3]) -> f32 {
+    let (_, s, t) = cube_face_coords(d);
+    let n = cube.size as f32;
+    (2.0 / n) * (2.0 / n) * cube_face_jacobian(s, t)
+}

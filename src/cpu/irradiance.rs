@@ -1,0 +1,231 @@
+//! CPU reference for the irradiance mode of `shaders/convolve_exact.wgsl`: the irradiance
+//! cube E(n)/π without noise, as a sum over every texel of a ≤ 64² mip of the environment
+//! of max(0, n · Mₖ), Mₖ = ∫ L l dω over the texel (from the level-0 texels it covers).
+//! The clamped cosine is linear in l above the horizon, so this equals the full-resolution
+//! integral except for texels straddling n's horizon; a sun keeps its exact direction.
+
+use std::f32::consts::PI;
+
+use crate::cpu::equirect_to_cube::fill_cube_level;
+use crate::environment::Cubemap;
+use crate::math::cubemap::{cube_face_direction, cube_texel_solid_angle, normalize, FACES};
+use crate::math::trig::{acos_precise, atan_precise};
+
+/// Largest source mip edge the irradiance sum reads.
+pub const IRRADIANCE_SOURCE_SIZE: u32 = 64;
+
+/// One texel of a source mip for the exact kernels, summarising the level-0 texels it
+/// covers. Shared by CPU and GPU (uploaded as an array of vec4).
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(C)]
+pub struct SourceTexel {
+    /// Luminance-weighted centroid direction of the texel's radiance (its centre when it
+    /// is black), and its exact solid angle Ω.
+    pub dir_omega: [f32; 4],
+    /// Mean radiance (rgb; a unused).
+    pub radiance: [f32; 4],
+}
+
+/// One source texel for the irradiance sum. Its first moments ∫ L_c l dω (one vec4 per
+/// channel, xyz): the cosine kernel is linear in l, so ∫_texel L (n·l) dω = n · moment
+/// exactly whenever the texel lies wholly above n's horizon, and a sun inside a coarse
+/// texel keeps its true direction. For texels that straddle the horizon, the texel's
+/// radiance is modelled as a uniform cap around its centroid whose spread matches the
+/// moment's length, and the clipped cosine integral is evaluated in closed form
+/// ([`clipped_cap_cosine`]).
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(C)]
+pub struct MomentTexel {
+    /// Moments of R, G and B (xyz; w unused).
+    pub moments: [[f32; 4]; 3],
+    /// Unit radiance centroid (xyz) and sin²σ of the effective cap (w).
+    pub dir_sin2: [f32; 4],
+    /// Total radiance × solid angle (rgb; a unused).
+    pub radiance_omega: [f32; 4],
+}
+
+/// ∫ max(0, n·l) dω over a spherical cap of half-angle σ whose centre makes cos θ with n
+/// (the horizon-clipped sphere-light illuminance of Snyder 1996, in the form of Lagarde &
+/// de Rousiers, "Moving Frostbite to PBR", 2014), divided by the cap's solid angle
+/// 2π(1 − cos σ): the mean clamped cosine over the cap.
+pub fn clipped_cap_cosine(cos_theta: f32, sin2_sigma: f32) -> f32 {
+    if sin2_sigma < 1e-12 {
+        return cos_theta.max(0.0);
+    }
+    let cap = 2.0 * PI * (1.0 - (1.0 - sin2_sigma).max(0.0).sqrt());
+    let e = if cos_theta * cos_theta > sin2_sigma {
+        PI * sin2_sigma * cos_theta.max(0.0)
+    } else {
+        let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
+        let x = (1.0 / sin2_sigma - 1.0).max(0.0).sqrt();
+        let y = (-x * cos_theta / sin_theta.max(1e-9)).clamp(-1.0, 1.0);
+        let st_y = sin_theta * (1.0 - y * y).max(0.0).sqrt();
+        (cos_theta * acos_precise(y) - x * st_y) * sin2_sigma + atan_precise(st_y / x.max(1e-9))
+    };
+    e.max(0.0) / cap
+}
+
+fn luminance(c: [f32; 4]) -> f32 {
+    0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
+}
+
+/// Visits every texel of mip `m` of `env` with the level-0 texels it covers:
+/// (face, i, j, [(direction, Ω, radiance)]).
+fn for_each_source_texel(
+    env: &Cubemap,
+    m: usize,
+    mut visit: impl FnMut(u32, u32, u32, &[([f32; 3], f32, [f32; 4])]),
+) {
+    let n = env.level_size(m);
+    let n0 = env.size;
+    let k = n0 / n;
+    let mut children = Vec::with_capacity((k * k) as usize);
+    for face in 0..FACES as u32 {
+        for j in 0..n {
+            for i in 0..n {
+                children.clear();
+                for cj in j * k..(j + 1) * k {
+                    for ci in i * k..(i + 1) * k {
+                        let s = (ci as f32 + 0.5) * 2.0 / n0 as f32 - 1.0;
+                        let t = (cj as f32 + 0.5) * 2.0 / n0 as f32 - 1.0;
+                        let d = normalize(cube_face_direction(face, s, t));
+                        children.push((
+                            d,
+                            cube_texel_solid_angle(ci, cj, n0),
+                            env.texel(0, face, ci, cj),
+                        ));
+                    }
+                }
+                visit(face, i, j, &children);
+            }
+        }
+    }
+}
+
+/// Every texel of mip `m` of `env`, summarised for the exact specular sum.
+pub fn source_texels(env: &Cubemap, m: usize) -> Vec<SourceTexel> {
+    let n = env.level_size(m);
+    let mut out = Vec::with_capacity(FACES * (n * n) as usize);
+    for_each_source_texel(env, m, |face, i, j, children| {
+        let omega = cube_texel_solid_angle(i, j, n);
+        let mut moment = [0.0f64; 3];
+        let mut lw = [0.0f64; 3];
+        for (d, w, l) in children {
+            let y = (luminance(*l) * w) as f64;
+            for c in 0..3 {
+                moment[c] += y * d[c] as f64;
+                lw[c] += (l[c] * w) as f64;
+            }
+        }
+        let len = (moment[0] * moment[0] + moment[1] * moment[1] + moment[2] * moment[2]).sqrt();
+        let dir = if len > 0.0 {
+            moment.map(|v| (v / len) as f32)
+        } else {
+            let s = (i as f32 + 0.5) * 2.0 / n as f32 - 1.0;
+            let t = (j as f32 + 0.5) * 2.0 / n as f32 - 1.0;
+            normalize(cube_face_direction(face, s, t))
+        };
+        let total: f64 = children.iter().map(|c| c.1 as f64).sum();
+        out.push(SourceTexel {
+            dir_omega: [dir[0], dir[1], dir[2], omega],
+            radiance: [
+                (lw[0] / total) as f32,
+                (lw[1] / total) as f32,
+                (lw[2] / total) as f32,
+                1.0,
+            ],
+        });
+    });
+    out
+}
+
+/// Every texel of mip `m` of `env` as radiance moments, for the irradiance sum.
+pub fn moment_texels(env: &Cubemap, m: usize) -> Vec<MomentTexel> {
+    let n = env.level_size(m);
+    let centroids = source_texels(env, m);
+    let mut out = Vec::with_capacity(FACES * (n * n) as usize);
+    let mut k = 0;
+    for_each_source_texel(env, m, |_, _, _, children| {
+        let mut moments = [[0.0f64; 3]; 3];
+        let mut lw = [0.0f64; 3];
+        for (d, w, l) in children {
+            for c in 0..3 {
+                lw[c] += (l[c] * w) as f64;
+                for a in 0..3 {
+                    moments[c][a] += (l[c] * w * d[a]) as f64;
+                }
+            }
+        }
+        let src = centroids[k];
+        k += 1;
+        // Effective cap: a uniform cap of half-angle σ has a mean direction of length
+        // (1 + cos σ)/2, so the luminance moment's length sets σ: a texel holding a sun
+        // acts as a point, a uniform texel as a cap of its own solid angle.
+        let lum = |v: [f64; 3]| 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2];
+        let m_lum = [0, 1, 2].map(|a| lum([moments[0][a], moments[1][a], moments[2][a]]));
+        let l_lum = lum(lw);
+        let cos_sigma = if l_lum > 0.0 {
+            let ratio =
+                (m_lum[0] * m_lum[0] + m_lum[1] * m_lum[1] + m_lum[2] * m_lum[2]).sqrt() / l_lum;
+            (2.0 * ratio - 1.0).clamp(-1.0, 1.0) as f32
+        } else {
+            1.0 - src.dir_omega[3] / (2.0 * PI)
+        };
+        out.push(MomentTexel {
+            moments: moments.map(|m| [m[0] as f32, m[1] as f32, m[2] as f32, 0.0]),
+            dir_sin2: [
+                src.dir_omega[0],
+                src.dir_omega[1],
+                src.dir_omega[2],
+                1.0 - cos_sigma * cos_sigma,
+            ],
+            radiance_omega: [lw[0] as f32, lw[1] as f32, lw[2] as f32, 0.0],
+        });
+    });
+    out
+}
+
+/// The mip of `env` the irradiance sum reads: the largest no bigger than
+/// [`IRRADIANCE_SOURCE_SIZE`].
+pub fn irradiance_source_level(env: &Cubemap) -> usize {
+    (0..env.levels.len())
+        .find(|&m| env.level_size(m) <= IRRADIANCE_SOURCE_SIZE)
+        .unwrap_or(env.levels.len() - 1)
+}
+
+/// E(n)/π for unit `n`: (1/π) Σ n · moment for texels above the horizon, the clipped-cap
+/// estimate for texels straddling it.
+pub fn irradiance_texel(source: &[MomentTexel], n: [f32; 3]) -> [f32; 4] {
+    let mut e = [0.0f32; 3];
+    for t in source {
+        let d = t.dir_sin2;
+        let cos_theta = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
+        if cos_theta * cos_theta > d[3] {
+            if cos_theta > 0.0 {
+                for (c, m) in t.moments.iter().enumerate() {
+                    e[c] += (n[0] * m[0] + n[1] * m[1] + n[2] * m[2]).max(0.0);
+                }
+            }
+        } else {
+            let k = clipped_cap_cosine(cos_theta, d[3]);
+            for (ec, lc) in e.iter_mut().zip(&t.radiance_omega) {
+                *ec += k * lc;
+            }
+        }
+    }
+    [e[0] / PI, e[1] / PI, e[2] / PI, 1.0]
+}
+
+/// The irradiance cube of edge `size` (one level).
+pub fn irradiance(env: &Cubemap, size: u32) -> Cubemap {
+    let source = moment_texels(env, irradiance_source_level(env));
+    let level = fill_cube_level(size, |face, i, j| {
+        let s = (i as f32 + 0.5) * 2.0 / size as f32 - 1.0;
+        let t = (j as f32 + 0.5) * 2.0 / size as f32 - 1.0;
+        irradiance_texel(&source, normalize(cube_face_direction(face, s, t)))
+    });
+    Cubemap {
+        size,
+        levels: vec![level],
+    }
+}

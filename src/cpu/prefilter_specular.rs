@@ -1,0 +1,203 @@
+//! CPU reference for `shaders/prefilter_specular.wgsl`: the split-sum prefiltered radiance
+//! (Karis 2013), with n = v = r, for mip m of M at roughness r = m/(M − 1).
+//!
+//! Estimator: P(n) = Σ L(lᵢ) (n·lᵢ) / Σ (n·lᵢ), lᵢ = reflect(−n, hᵢ) with hᵢ GGX-distributed
+//! (Hammersley points), which converges to ∫ L D (n·l) dl / ∫ D (n·l) dl. Filtered
+//! importance sampling (Colbert & Křivánek 2007): each sample reads the environment's
+//! solid-angle-correct mip chain at lod = ½ log₂(Ωs/Ωp) + 1, Ωs = 1/(N pdf) the sample's
+//! solid angle, pdf(l) = D(n·h)/4 for n = v, Ωp the solid angle of a level-0 texel. A
+//! tiny bright sun is thus read from a mip where it is spread over the lobe: smooth lobes,
+//! no fireflies.
+
+use std::f32::consts::PI;
+
+use crate::cpu::cube_sample::sample_cube_lod;
+use crate::cpu::equirect_to_cube::fill_cube_level;
+use crate::cpu::irradiance::{source_texels, SourceTexel};
+use crate::environment::Cubemap;
+use crate::math::brdf::{alpha_from_roughness, d_ggx};
+use crate::math::cubemap::{cube_face_direction, normalize};
+use crate::math::sampling::{hammersley, importance_sample_ggx};
+
+/// Colbert & Křivánek's lod bias: reading one level blurrier than the pdf alone suggests
+/// hides the remaining sample structure.
+pub const LOD_BIAS: f32 = 1.0;
+
+/// Default GGX samples per texel and level.
+pub const DEFAULT_SAMPLES: u32 = 128;
+
+/// Roughness of mip `m` of a chain of `levels` (DESIGN.md: r = m / (M − 1)).
+pub fn mip_roughness(m: u32, levels: u32) -> f32 {
+    if levels <= 1 {
+        0.0
+    } else {
+        m as f32 / (levels - 1) as f32
+    }
+}
+
+/// An orthonormal tangent frame (t, b) around unit `n`.
+pub fn tangent_frame(n: [f32; 3]) -> ([f32; 3], [f32; 3]) {
+    let up = if n[2].abs() < 0.999 {
+        [0.0, 0.0, 1.0]
+    } else {
+        [1.0, 0.0, 0.0]
+    };
+    let t = normalize(cross(up, n));
+    (t, cross(n, t))
+}
+
+fn cross(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// Prefiltered radiance around unit direction `n` at `roughness` from `env` (with mips).
+pub fn prefilter_texel(env: &Cubemap, n: [f32; 3], roughness: f32, samples: u32) -> [f32; 4] {
+    let alpha = alpha_from_roughness(roughness);
+    let (t, b) = tangent_frame(n);
+    // Solid angle of a level-0 texel (the mean over the sphere).
+    let omega_p = 4.0 * PI / (6.0 * (env.size * env.size) as f32);
+    let mut sum = [0.0f32; 3];
+    let mut weight = 0.0f32;
+    for i in 0..samples {
+        let h_t = importance_sample_ggx(hammersley(i, samples), alpha);
+        let h = [0, 1, 2].map(|k| t[k] * h_t[0] + b[k] * h_t[1] + n[k] * h_t[2]);
+        let n_dot_h = h_t[2];
+        let l = [0, 1, 2].map(|k| 2.0 * n_dot_h * h[k] - n[k]);
+        let n_dot_l = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
+        if n_dot_l > 0.0 {
+            // pdf(l) = D(n·h) (n·h) / (4 v·h) = D / 4 for v = n.
+            let pdf = d_ggx(n_dot_h, alpha) * 0.25;
+            let omega_s = 1.0 / (samples as f32 * pdf);
+            let lod = 0.5 * (omega_s / omega_p).log2() + LOD_BIAS;
+            let v = sample_cube_lod(env, l, lod);
+            for c in 0..3 {
+                sum[c] += v[c] * n_dot_l;
+            }
+            weight += n_dot_l;
+        }
+    }
+    [sum[0] / weight, sum[1] / weight, sum[2] / weight, 1.0]
+}
+
+/// Exact prefiltered radiance around unit `n`: Σ L D(n·h) (n·l) Ω / Σ D(n·h) (n·l) Ω over
+/// every texel of a source mip, h = normalize(n + l). No noise and no leak of a bright sun
+/// beyond its true lobe; used where the lobe is wide enough that a small mip resolves it.
+pub fn prefilter_exact_texel(source: &[SourceTexel], n: [f32; 3], roughness: f32) -> [f32; 4] {
+    let alpha = alpha_from_roughness(roughness);
+    let mut sum = [0.0f32; 3];
+    let mut weight = 0.0f32;
+    for t in source {
+        let l = t.dir_omega;
+        let n_dot_l = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
+        if n_dot_l > 0.0 {
+            // |n + l|² = 2 + 2 n·l, so n·h = (1 + n·l) / |n + l| = √((1 + n·l) / 2).
+            let n_dot_h = (0.5 * (1.0 + n_dot_l)).sqrt();
+            let w = d_ggx(n_dot_h, alpha) * n_dot_l * l[3];
+            for (sc, lc) in sum.iter_mut().zip(&t.radiance) {
+                *sc += w * lc;
+            }
+            weight += w;
+        }
+    }
+    [sum[0] / weight, sum[1] / weight, sum[2] / weight, 1.0]
+}
+
+/// How one prefiltered level is computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LevelMethod {
+    /// Exact sum over every texel of source mip `source_mip`.
+    Exact {
+        /// The source mip read.
+        source_mip: u32,
+    },
+    /// Filtered importance sampling with this many samples per texel.
+    Sampled {
+        /// GGX samples per texel.
+        samples: u32,
+    },
+}
+
+/// Largest exact-sum cost (output texels × source texels) per level before importance
+/// sampling is used instead (~2e8 weighted sums: ~0.6 CPU-s on this machine).
+pub const EXACT_BUDGET: u64 = 200_000_000;
+
+/// Source texels per GGX α in the exact sum: the source mip's texel angle (π/2)/n is at
+/// most α / `EXACT_TEXELS_PER_ALPHA`, so D varies little across a texel.
+pub const EXACT_TEXELS_PER_ALPHA: f32 = 16.0;
+
+/// Largest source mip edge of an exact sum. 6·64² texels × 32 bytes = 768 KiB of storage
+/// buffer: Mesa's lavapipe (22.3) silently reads zeros past the first 2 MiB of a storage
+/// binding (found by `tests/specular.rs`), whatever limit it reports.
+pub const EXACT_MAX_SOURCE: u32 = 64;
+
+/// Picks the method for output mip `m` of an `env_size` chain: the exact sum over the
+/// smallest source mip fine enough for the lobe (texel angle ≤ α/16) when it fits
+/// [`EXACT_BUDGET`], else filtered importance sampling.
+pub fn level_method(env_size: u32, m: u32, levels: u32, samples: u32) -> LevelMethod {
+    let r = mip_roughness(m, levels);
+    let alpha = alpha_from_roughness(r);
+    let out = (env_size >> m).max(1) as u64;
+    // Smallest power of two n with (π/2)/n ≤ α/K, at most the environment's size.
+    // (Clamped before the integer conversion: α = 0 asks for an infinitely fine mip.)
+    let needed = (EXACT_TEXELS_PER_ALPHA * PI / (2.0 * alpha))
+        .clamp(1.0, env_size as f32)
+        .ceil() as u32;
+    let n = needed
+        .next_power_of_two()
+        .min(env_size)
+        .min(EXACT_MAX_SOURCE) as u64;
+    let cost = 6 * out * out * 6 * n * n;
+    if cost <= EXACT_BUDGET {
+        LevelMethod::Exact {
+            source_mip: (env_size as u64 / n).trailing_zeros(),
+        }
+    } else {
+        LevelMethod::Sampled { samples }
+    }
+}
+
+/// One prefiltered level of edge `size` at `roughness` by `method`.
+pub fn prefilter_level(
+    env: &Cubemap,
+    size: u32,
+    roughness: f32,
+    method: LevelMethod,
+) -> Vec<[f32; 4]> {
+    let dir = |face: u32, i: u32, j: u32| {
+        let s = (i as f32 + 0.5) * 2.0 / size as f32 - 1.0;
+        let t = (j as f32 + 0.5) * 2.0 / size as f32 - 1.0;
+        normalize(cube_face_direction(face, s, t))
+    };
+    match method {
+        LevelMethod::Exact { source_mip } => {
+            let source = source_texels(env, source_mip as usize);
+            fill_cube_level(size, |face, i, j| {
+                prefilter_exact_texel(&source, dir(face, i, j), roughness)
+            })
+        }
+        LevelMethod::Sampled { samples } => fill_cube_level(size, |face, i, j| {
+            prefilter_texel(env, dir(face, i, j), roughness, samples)
+        }),
+    }
+}
+
+/// The full prefiltered chain of `env` (which must have every mip): level 0 is the
+/// environment itself (r = 0), level m is prefiltered at r = m/(M − 1).
+pub fn prefilter_specular(env: &Cubemap, samples: u32) -> Cubemap {
+    let levels = Cubemap::full_mip_count(env.size);
+    let mut out = Cubemap {
+        size: env.size,
+        levels: vec![env.levels[0].clone()],
+    };
+    for m in 1..levels {
+        let r = mip_roughness(m, levels);
+        let method = level_method(env.size, m, levels, samples);
+        out.levels
+            .push(prefilter_level(env, env.level_size(m as usize), r, method));
+    }
+    out
+}

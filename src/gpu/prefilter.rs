@@ -1,0 +1,235 @@
+//! GPU prefiltered specular and irradiance: binds `shaders/prefilter_sampled.wgsl` and
+//! `shaders/convolve_exact.wgsl` (CPU mirrors in `cpu/prefilter_specular.rs` and
+//! `cpu/irradiance.rs`); the method per level is chosen by the same Rust function.
+
+use std::f32::consts::PI;
+
+use crate::cpu::irradiance::{
+    irradiance_source_level, moment_texels, source_texels, MomentTexel, SourceTexel,
+};
+use crate::cpu::prefilter_specular::{level_method, mip_roughness, LevelMethod, LOD_BIAS};
+use crate::environment::Cubemap;
+use crate::gpu::compute::{buffer_with_data, with_error_scope, ComputeKernel};
+use crate::gpu::shaders;
+use crate::gpu::texture::{create_cube_texture, cube_mip_view, read_cubemap};
+use crate::Result;
+
+/// Workgroup of both kernels (x, y over the face, z = face).
+pub const WORKGROUP: [u32; 3] = [8, 8, 1];
+
+/// Uniform block of `prefilter_sampled.wgsl` (layout checked in tests/shaders.rs).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct PrefilterUniform {
+    /// Environment level-0 edge.
+    pub env_size: u32,
+    /// Environment mip count.
+    pub env_levels: u32,
+    /// Output level edge.
+    pub out_size: u32,
+    /// GGX samples per texel.
+    pub samples: u32,
+    /// Roughness of the level.
+    pub roughness: f32,
+    /// Filtered-importance-sampling lod bias.
+    pub lod_bias: f32,
+    /// Mean solid angle of a level-0 environment texel.
+    pub omega_p: f32,
+    /// Padding to 16 bytes.
+    pub _pad: f32,
+}
+
+/// Uniform block of `convolve_exact.wgsl` (layout checked in tests/shaders.rs).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct ConvolveUniform {
+    /// Output level edge.
+    pub out_size: u32,
+    /// Number of source texels.
+    pub count: u32,
+    /// 0: prefiltered specular, 1: irradiance / π.
+    pub mode: u32,
+    /// Roughness (mode 0).
+    pub roughness: f32,
+}
+
+/// Uploads every level of `cube` into a new cube texture with `cube.levels.len()` mips.
+pub fn upload_cube(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    cube: &Cubemap,
+    mips: u32,
+) -> wgpu::Texture {
+    let texture = create_cube_texture(device, "cube", cube.size, mips);
+    for (m, level) in cube.levels.iter().enumerate().take(mips as usize) {
+        let n = cube.level_size(m);
+        queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &texture,
+                mip_level: m as u32,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            bytemuck::cast_slice(level),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(n * 16),
+                rows_per_image: Some(n),
+            },
+            wgpu::Extent3d {
+                width: n,
+                height: n,
+                depth_or_array_layers: 6,
+            },
+        );
+    }
+    texture
+}
+
+/// What an exact convolution sums.
+enum ExactSource {
+    /// Mode 0: prefiltered specular at a roughness.
+    Specular(Vec<SourceTexel>, f32),
+    /// Mode 1: irradiance.
+    Irradiance(Vec<MomentTexel>),
+}
+
+/// Records one exact convolution into `target` (a mip view).
+fn record_exact(
+    device: &wgpu::Device,
+    encoder: &mut wgpu::CommandEncoder,
+    kernel: &ComputeKernel,
+    source: &ExactSource,
+    out_size: u32,
+    target: &wgpu::TextureView,
+) {
+    let (count, mode, roughness, bytes): (usize, u32, f32, &[u8]) = match source {
+        ExactSource::Specular(s, r) => (s.len(), 0, *r, bytemuck::cast_slice(s)),
+        ExactSource::Irradiance(m) => (m.len(), 1, 0.0, bytemuck::cast_slice(m)),
+    };
+    let uniform = ConvolveUniform {
+        out_size,
+        count: count as u32,
+        mode,
+        roughness,
+    };
+    let ubuf = buffer_with_data(
+        device,
+        "convolve params",
+        bytemuck::bytes_of(&uniform),
+        wgpu::BufferUsages::UNIFORM,
+    );
+    let sbuf = buffer_with_data(
+        device,
+        "convolve source",
+        bytes,
+        wgpu::BufferUsages::STORAGE,
+    );
+    kernel.dispatch(
+        device,
+        encoder,
+        &[
+            ubuf.as_entire_binding(),
+            sbuf.as_entire_binding(),
+            wgpu::BindingResource::TextureView(target),
+        ],
+        [out_size, out_size, 6],
+    );
+}
+
+/// The prefiltered chain of `env` (every mip present), as `cpu::prefilter_specular`.
+pub fn prefilter_specular(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    env: &Cubemap,
+    samples: u32,
+) -> Result<Cubemap> {
+    let sampled = ComputeKernel::new(
+        device,
+        "prefilter_sampled",
+        shaders::PREFILTER_SAMPLED,
+        WORKGROUP,
+    )?;
+    let exact = ComputeKernel::new(device, "convolve_exact", shaders::CONVOLVE_EXACT, WORKGROUP)?;
+    let levels = Cubemap::full_mip_count(env.size);
+    let out = with_error_scope(device, "prefilter_specular dispatch", || {
+        let source = upload_cube(device, queue, env, env.levels.len() as u32);
+        let source_view = source.create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(wgpu::TextureViewDimension::D2Array),
+            ..Default::default()
+        });
+        // Level 0 is the environment itself.
+        let out = upload_cube(
+            device,
+            queue,
+            &Cubemap {
+                size: env.size,
+                levels: vec![env.levels[0].clone()],
+            },
+            levels,
+        );
+        let mut encoder = device.create_command_encoder(&Default::default());
+        for m in 1..levels {
+            let r = mip_roughness(m, levels);
+            let n = (env.size >> m).max(1);
+            let target = cube_mip_view(&out, m);
+            match level_method(env.size, m, levels, samples) {
+                LevelMethod::Exact { source_mip } => {
+                    let source = ExactSource::Specular(source_texels(env, source_mip as usize), r);
+                    record_exact(device, &mut encoder, &exact, &source, n, &target)
+                }
+                LevelMethod::Sampled { samples } => {
+                    let uniform = PrefilterUniform {
+                        env_size: env.size,
+                        env_levels: env.levels.len() as u32,
+                        out_size: n,
+                        samples,
+                        roughness: r,
+                        lod_bias: LOD_BIAS,
+                        omega_p: 4.0 * PI / (6.0 * (env.size * env.size) as f32),
+                        _pad: 0.0,
+                    };
+                    let ubuf = buffer_with_data(
+                        device,
+                        "prefilter params",
+                        bytemuck::bytes_of(&uniform),
+                        wgpu::BufferUsages::UNIFORM,
+                    );
+                    sampled.dispatch(
+                        device,
+                        &mut encoder,
+                        &[
+                            ubuf.as_entire_binding(),
+                            wgpu::BindingResource::TextureView(&source_view),
+                            wgpu::BindingResource::TextureView(&target),
+                        ],
+                        [n, n, 6],
+                    );
+                }
+            }
+        }
+        queue.submit([encoder.finish()]);
+        out
+    })?;
+    read_cubemap(device, queue, &out)
+}
+
+/// The irradiance cube (E/π) of edge `size`, as `cpu::irradiance`.
+pub fn irradiance(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    env: &Cubemap,
+    size: u32,
+) -> Result<Cubemap> {
+    let exact = ComputeKernel::new(device, "convolve_exact", shaders::CONVOLVE_EXACT, WORKGROUP)?;
+    let out = with_error_scope(device, "irradiance dispatch", || {
+        let out = create_cube_texture(device, "irradiance", size, 1);
+        let target = cube_mip_view(&out, 0);
+        let mut encoder = device.create_command_encoder(&Default::default());
+        let source = ExactSource::Irradiance(moment_texels(env, irradiance_source_level(env)));
+        record_exact(device, &mut encoder, &exact, &source, size, &target);
+        queue.submit([encoder.finish()]);
+        out
+    })?;
+    read_cubemap(device, queue, &out)
+}
