@@ -134,7 +134,63 @@ fn cubemap_benchmarks() {
     }
 }
 
+/// A full default bake of venice_sunset_1k.hdr (cubemap 256 with mips, specular 256 × 9
+/// levels, irradiance 32, SH, LUT 512) per stage, on each backend.
+fn bake_benchmarks() {
+    use splitsum::bake::{bake, BakeOptions, Stage};
+    println!("\n## Full default bake of venice_sunset_1k.hdr, per stage\n");
+    println!("| backend | stage | wall s | CPU s |");
+    println!("|---|---|---|---|");
+    let input = std::path::Path::new("../shared/data/env/venice_sunset_1k.hdr");
+    let out = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench-bake");
+    let mut backends: Vec<(&str, Box<dyn splitsum::Backend>)> =
+        vec![("cpu", Box::new(splitsum::CpuBackend))];
+    if let Ok(g) = splitsum::GpuBackend::new() {
+        backends.push(("gpu", Box::new(g)));
+    }
+    for (label, backend) in &backends {
+        let (lut_wall, lut_cpu) = measure(1, || {
+            backend.brdf_lut(512, 512).unwrap();
+        });
+        println!("| {label} | brdf_lut 512 | {lut_wall:.3} | {lut_cpu:.3} |");
+        let lut = backend.brdf_lut(512, 512).unwrap();
+        let mut marks: Vec<(Stage, Instant, f64)> = Vec::new();
+        let t0 = Instant::now();
+        let c0 = cpu_seconds().unwrap_or(0.0);
+        bake(
+            backend.as_ref(),
+            input,
+            &out,
+            &BakeOptions::default(),
+            Some(&lut),
+            &mut |stage| {
+                marks.push((stage, Instant::now(), cpu_seconds().unwrap_or(0.0)));
+            },
+        )
+        .unwrap();
+        let (t_end, c_end) = (Instant::now(), cpu_seconds().unwrap_or(0.0));
+        for (k, (stage, t, c)) in marks.iter().enumerate() {
+            let (tn, cn) = marks
+                .get(k + 1)
+                .map(|m| (m.1, m.2))
+                .unwrap_or((t_end, c_end));
+            println!(
+                "| {label} | {} | {:.3} | {:.2} |",
+                stage.name(),
+                (tn - *t).as_secs_f64(),
+                cn - c
+            );
+        }
+        println!(
+            "| {label} | **total incl. LUT** | {:.3} | {:.2} |",
+            (t_end - t0).as_secs_f64() + lut_wall,
+            c_end - c0 + lut_cpu
+        );
+    }
+}
+
 fn main() {
+    bake_benchmarks();
     cubemap_benchmarks();
     let quad = LutQuadrature::default();
     println!("\n## BRDF LUT timings\n");

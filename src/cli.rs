@@ -50,6 +50,98 @@ pub enum Command {
     /// and .dds with every mip in --pixel-format; .exr and .hdr (level 0, for inspection)
     /// as six files <stem>_px … <stem>_nz, or one image with --layout cross|equirect.
     Cubemap(CubemapArgs),
+
+    /// Bakes everything a PBR renderer needs for image-based lighting from each input.
+    ///
+    /// Writes <out>/<stem>/specular.<ext> (prefiltered GGX, mip m at roughness
+    /// m/(levels−1), size down to 1×1), irradiance.<ext> (E/π: multiply by the diffuse
+    /// albedo), sh.json (9 SH coefficients, radiance and E/π), brdf_lut.png (unless
+    /// --no-lut) and manifest.json (version, parameters, every output with its SHA-256).
+    /// Every input is baked even when another fails; the exit code is 1 if any failed.
+    Bake(BakeArgs),
+
+    /// Runs every kernel on the GPU and on the CPU reference on a reduced problem and
+    /// prints their differences; exits 1 when one is out of tolerance.
+    Verify(VerifyArgs),
+}
+
+/// `splitsum bake`.
+#[derive(Debug, Args)]
+pub struct BakeArgs {
+    /// Input environments (equirects, crosses, KTX2/DDS cubemaps, face patterns).
+    #[arg(required = true)]
+    pub inputs: Vec<PathBuf>,
+
+    /// Output folder; each input gets a folder named after its stem.
+    #[arg(short, long, default_value = "out")]
+    pub output: PathBuf,
+
+    /// Specular cube edge (power of two).
+    #[arg(long, default_value_t = 256)]
+    pub specular_size: u32,
+
+    /// Irradiance cube edge (power of two).
+    #[arg(long, default_value_t = 32)]
+    pub irradiance_size: u32,
+
+    /// Container of the specular and irradiance cubes.
+    #[arg(long, value_enum, default_value_t = ContainerArg::Ktx2)]
+    pub container: ContainerArg,
+
+    /// Pixel format of KTX2/DDS outputs.
+    #[arg(long, value_enum, default_value_t = PixelFormatArg::Rgba16f)]
+    pub pixel_format: PixelFormatArg,
+
+    /// KTX2: Zstandard-supercompress each level (LEVEL 1–22, default 10).
+    #[arg(long, value_name = "LEVEL", num_args = 0..=1, default_missing_value = "10",
+          value_parser = clap::value_parser!(i32).range(1..=22))]
+    pub zstd: Option<i32>,
+
+    /// Do not write brdf_lut.png.
+    #[arg(long)]
+    pub no_lut: bool,
+
+    /// GGX samples per texel for the importance-sampled (low-roughness) specular levels.
+    #[arg(long, default_value_t = 128)]
+    pub samples: u32,
+
+    /// No progress bars.
+    #[arg(short, long)]
+    pub quiet: bool,
+
+    #[command(flatten)]
+    pub input_opts: InputArgs,
+
+    #[command(flatten)]
+    pub common: CommonArgs,
+}
+
+/// `splitsum verify`.
+#[derive(Debug, Args)]
+pub struct VerifyArgs {
+    /// An environment to run the kernels on.
+    pub input: PathBuf,
+}
+
+/// `--container` values.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum ContainerArg {
+    /// KTX 2.0.
+    Ktx2,
+    /// DDS with the DX10 header.
+    Dds,
+    /// OpenEXR crosses, one per mip.
+    Exr,
+}
+
+impl From<ContainerArg> for splitsum::bake::Container {
+    fn from(c: ContainerArg) -> Self {
+        match c {
+            ContainerArg::Ktx2 => splitsum::bake::Container::Ktx2,
+            ContainerArg::Dds => splitsum::bake::Container::Dds,
+            ContainerArg::Exr => splitsum::bake::Container::Exr,
+        }
+    }
 }
 
 /// Options shared by every command.

@@ -9,7 +9,7 @@ use std::time::Instant;
 use anyhow::Context;
 use clap::Parser;
 
-use cli::{Cli, Command, CommonArgs, CubemapArgs, LutArgs};
+use cli::{BakeArgs, Cli, Command, CommonArgs, CubemapArgs, LutArgs, VerifyArgs};
 use splitsum::io::lut::{check_lut_path, write_lut, LutWriteOptions};
 
 fn main() -> ExitCode {
@@ -18,6 +18,8 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Lut(args) => run_lut(args),
         Command::Cubemap(args) => run_cubemap(args),
+        Command::Bake(args) => run_bake(args),
+        Command::Verify(args) => run_verify(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -142,6 +144,115 @@ fn run_cubemap(args: CubemapArgs) -> anyhow::Result<()> {
         for p in written {
             eprintln!("wrote {}", p.display());
         }
+    }
+    Ok(())
+}
+
+fn run_bake(args: BakeArgs) -> anyhow::Result<()> {
+    use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+    use splitsum::bake::{bake, BakeOptions, Stage};
+    use std::io::IsTerminal;
+    let opts = BakeOptions {
+        specular_size: args.specular_size,
+        irradiance_size: args.irradiance_size,
+        container: args.container.into(),
+        pixel_format: args.pixel_format.into(),
+        zstd: args.zstd,
+        samples: args.samples,
+        rotate_degrees: args.input_opts.rotate,
+        exposure_ev: args.input_opts.exposure,
+    };
+    splitsum::convert::validate_cube_size(opts.specular_size)?;
+    let backend = open_backend(&args.common)?;
+    let lut = if args.no_lut {
+        None
+    } else {
+        Some(
+            backend
+                .brdf_lut(512, 512)
+                .context("computing the BRDF LUT")?,
+        )
+    };
+    let show = !args.quiet && std::io::stderr().is_terminal();
+    let mut failed = 0;
+    for input in &args.inputs {
+        let bar = ProgressBar::new(Stage::ALL.len() as u64);
+        bar.set_draw_target(if show {
+            ProgressDrawTarget::stderr()
+        } else {
+            ProgressDrawTarget::hidden()
+        });
+        if let Ok(style) = ProgressStyle::with_template("{prefix} [{bar:24}] {msg}") {
+            bar.set_style(style.progress_chars("=> "));
+        }
+        bar.set_prefix(input.display().to_string());
+        let mut progress = |stage: Stage| {
+            bar.set_message(stage.name());
+            bar.set_position(Stage::ALL.iter().position(|s| *s == stage).unwrap_or(0) as u64);
+        };
+        let result = match splitsum::io::input::expand_face_pattern(input) {
+            Some(_) => Err(splitsum::Error::InvalidParameter {
+                name: "INPUT",
+                message: "face patterns are not supported by bake yet; convert them with `splitsum cubemap` to a .ktx2 first".into(),
+            }),
+            None => bake(backend.as_ref(), input, &args.output, &opts, lut.as_ref(), &mut progress),
+        };
+        bar.finish_and_clear();
+        match result {
+            Ok(report) => {
+                for w in &report.warnings {
+                    eprintln!("warning: {w}");
+                }
+                if args.common.verbose {
+                    let stages: Vec<String> = report
+                        .timings
+                        .iter()
+                        .map(|(s, t)| format!("{} {t:.2}s", s.name()))
+                        .collect();
+                    eprintln!(
+                        "baked {} -> {} ({})",
+                        input.display(),
+                        report.out_dir.display(),
+                        stages.join(", ")
+                    );
+                }
+            }
+            Err(e) => {
+                failed += 1;
+                eprintln!("error: {e}");
+            }
+        }
+    }
+    if failed > 0 {
+        anyhow::bail!("{failed} of {} inputs failed", args.inputs.len());
+    }
+    Ok(())
+}
+
+fn run_verify(args: VerifyArgs) -> anyhow::Result<()> {
+    use splitsum::io::input::{load_environment, InputOptions};
+    let loaded = load_environment(&args.input, &InputOptions::default())?;
+    let gpu = splitsum::GpuBackend::new()?;
+    eprintln!("GPU: {}", gpu.ctx.adapter_description());
+    let rows = splitsum::verify::verify(&gpu, &loaded.env)?;
+    println!(
+        "{:<22} {:>12} {:>12} {:>12}  result",
+        "kernel", "max abs", "max rel", "tolerance"
+    );
+    let mut ok = true;
+    for r in &rows {
+        println!(
+            "{:<22} {:>12.3e} {:>12.3e} {:>12.1e}  {}",
+            r.kernel,
+            r.max_abs,
+            r.max_rel,
+            r.tolerance,
+            if r.pass { "pass" } else { "FAIL" }
+        );
+        ok &= r.pass;
+    }
+    if !ok {
+        anyhow::bail!("GPU results differ from the CPU reference beyond tolerance");
     }
     Ok(())
 }

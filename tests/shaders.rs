@@ -80,3 +80,58 @@ fn atan_coefficients_match_rust() {
         assert_eq!(value, *expected, "{name}");
     }
 }
+
+/// Checks a WGSL struct's member names and offsets against a Rust `#[repr(C)]` struct.
+macro_rules! assert_layout {
+    ($source:expr, $wgsl:literal, $rust:ty, [$($field:ident),*]) => {{
+        let module = parse($wgsl, $source);
+        let (members, span) = struct_layout(&module, $wgsl);
+        let rust: Vec<(&str, usize)> = vec![$((stringify!($field), std::mem::offset_of!($rust, $field))),*];
+        assert_eq!(members.len(), rust.len(), "{}", $wgsl);
+        for ((wname, woff), (rname, roff)) in members.iter().zip(&rust) {
+            assert_eq!((wname.as_str(), *woff as usize), (*rname, *roff), "{}", $wgsl);
+        }
+        assert!(std::mem::size_of::<$rust>() >= span as usize);
+        assert_eq!(std::mem::size_of::<$rust>() % 16, 0);
+    }};
+}
+
+#[test]
+fn kernel_uniforms_match_rust() {
+    use splitsum::gpu::equirect_to_cube::EquirectToCubeUniform;
+    use splitsum::gpu::prefilter::{ConvolveUniform, PrefilterUniform};
+    use splitsum::gpu::shaders::{CONVOLVE_EXACT, EQUIRECT_TO_CUBE, PREFILTER_SAMPLED};
+    assert_layout!(
+        EQUIRECT_TO_CUBE,
+        "EquirectToCubeParams",
+        EquirectToCubeUniform,
+        [
+            face_size,
+            samples_per_axis,
+            base_level,
+            level_count,
+            source_size,
+            rotation
+        ]
+    );
+    assert_layout!(
+        PREFILTER_SAMPLED,
+        "PrefilterParams",
+        PrefilterUniform,
+        [env_size, env_levels, out_size, samples, roughness, lod_bias, omega_p, _pad]
+    );
+    assert_layout!(
+        CONVOLVE_EXACT,
+        "ConvolveParams",
+        ConvolveUniform,
+        [out_size, count, mode, roughness]
+    );
+}
+
+/// The exact kernels read the source arrays as vec4s; the Rust structs are whole vec4s.
+#[test]
+fn source_texel_structs_are_whole_vec4s() {
+    use splitsum::cpu::irradiance::{MomentTexel, SourceTexel};
+    assert_eq!(std::mem::size_of::<SourceTexel>(), 2 * 16);
+    assert_eq!(std::mem::size_of::<MomentTexel>(), 5 * 16);
+}

@@ -1,0 +1,184 @@
+//! `splitsum bake` end to end: outputs, manifest, determinism, batches with failures.
+mod common;
+
+use std::path::Path;
+use std::process::Command;
+
+fn splitsum() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_splitsum"))
+}
+
+fn sha256_hex(bytes: &[u8]) -> String {
+    use sha2::Digest;
+    sha2::Sha256::digest(bytes)
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
+}
+
+fn bake(inputs: &[&Path], out: &Path, extra: &[&str]) -> (Option<i32>, String) {
+    let o = splitsum()
+        .arg("bake")
+        .args(inputs)
+        .arg("-o")
+        .arg(out)
+        .args([
+            "--specular-size",
+            "32",
+            "--irradiance-size",
+            "8",
+            "--no-lut",
+        ])
+        .args(extra)
+        .output()
+        .unwrap();
+    (
+        o.status.code(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn bake_writes_every_output_with_a_manifest() {
+    let dir = common::output_dir("bake-outputs");
+    let input = Path::new("tests/data/venice_sunset_1k.hdr");
+    let o = splitsum()
+        .args([
+            "bake",
+            "--specular-size",
+            "64",
+            "--irradiance-size",
+            "16",
+            "--zstd",
+            "-o",
+        ])
+        .arg(&dir)
+        .arg(input)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let out = dir.join("venice_sunset_1k");
+    let manifest = std::fs::read_to_string(out.join("manifest.json")).unwrap();
+    for file in [
+        "specular.ktx2",
+        "irradiance.ktx2",
+        "sh.json",
+        "brdf_lut.png",
+    ] {
+        let bytes = std::fs::read(out.join(file)).unwrap();
+        assert!(
+            manifest.contains(&format!("\"file\": \"{file}\"")),
+            "{file} missing from the manifest"
+        );
+        assert!(
+            manifest.contains(&sha256_hex(&bytes)),
+            "{file}: hash not in the manifest"
+        );
+        assert!(manifest.contains(&format!("\"bytes\": {}", bytes.len())));
+    }
+    let spec = std::fs::read(out.join("specular.ktx2")).unwrap();
+    let r = ktx2::Reader::new(&spec[..]).unwrap();
+    assert_eq!(
+        (
+            r.header().face_count,
+            r.header().level_count,
+            r.header().pixel_width
+        ),
+        (6, 7, 64)
+    );
+    assert_eq!(
+        r.header().supercompression_scheme,
+        Some(ktx2::SupercompressionScheme::Zstandard)
+    );
+    let sh = std::fs::read_to_string(out.join("sh.json")).unwrap();
+    assert!(sh.contains("\"order\": \"l0m0,l1m-1,l1m0,l1m1,l2m-2,l2m-1,l2m0,l2m1,l2m2\""));
+    assert_eq!(
+        sh.matches('[').count(),
+        2 + 18,
+        "two lists of nine RGB triples: {sh}"
+    );
+    // Nothing else (no temporaries) in the folder.
+    let mut names: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "brdf_lut.png",
+            "irradiance.ktx2",
+            "manifest.json",
+            "sh.json",
+            "specular.ktx2"
+        ]
+    );
+}
+
+#[test]
+fn two_bakes_are_byte_identical() {
+    let input = Path::new("tests/data/venice_sunset_1k.hdr");
+    for backend in ["cpu", "auto"] {
+        let (a, b) = (
+            common::output_dir(&format!("bake-det-a-{backend}")),
+            common::output_dir(&format!("bake-det-b-{backend}")),
+        );
+        assert_eq!(bake(&[input], &a, &["--backend", backend]).0, Some(0));
+        assert_eq!(bake(&[input], &b, &["--backend", backend]).0, Some(0));
+        for file in [
+            "specular.ktx2",
+            "irradiance.ktx2",
+            "sh.json",
+            "manifest.json",
+        ] {
+            let x = std::fs::read(a.join("venice_sunset_1k").join(file)).unwrap();
+            let y = std::fs::read(b.join("venice_sunset_1k").join(file)).unwrap();
+            assert!(x == y, "{backend}: {file} differs between two bakes");
+        }
+    }
+}
+
+#[test]
+fn a_batch_bakes_the_good_inputs_and_exits_1() {
+    let dir = common::output_dir("bake-batch");
+    let bad = dir.join("broken.hdr");
+    std::fs::write(&bad, b"#?RADIANCE\n\n-Y 512 +X 1024\n").unwrap();
+    let good = Path::new("tests/data/venice_sunset_1k.hdr");
+    let (code, err) = bake(&[&bad, good], &dir.join("out"), &[]);
+    assert_eq!(code, Some(1), "{err}");
+    assert!(
+        err.contains("broken.hdr") && err.contains("truncated"),
+        "{err}"
+    );
+    assert!(
+        dir.join("out/venice_sunset_1k/manifest.json").exists(),
+        "the good input is baked"
+    );
+    assert!(
+        !dir.join("out/broken").exists(),
+        "nothing written for the bad input"
+    );
+}
+
+#[test]
+fn a_failed_bake_keeps_earlier_outputs() {
+    let dir = common::output_dir("bake-keep");
+    let input = dir.join("env.hdr");
+    std::fs::copy("tests/data/venice_sunset_1k.hdr", &input).unwrap();
+    assert_eq!(bake(&[&input], &dir.join("out"), &[]).0, Some(0));
+    let before = std::fs::read(dir.join("out/env/specular.ktx2")).unwrap();
+    // The same input name, now truncated: the bake fails and the old outputs stay.
+    let bytes = std::fs::read(&input).unwrap();
+    std::fs::write(&input, &bytes[..bytes.len() / 3]).unwrap();
+    let (code, _) = bake(&[&input], &dir.join("out"), &[]);
+    assert_eq!(code, Some(1));
+    assert_eq!(
+        std::fs::read(dir.join("out/env/specular.ktx2")).unwrap(),
+        before
+    );
+    let names: Vec<String> = std::fs::read_dir(dir.join("out/env"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(names.iter().all(|n| !n.ends_with(".tmp")), "{names:?}");
+}
