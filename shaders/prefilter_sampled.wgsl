@@ -57,8 +57,6 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if (id.x >= n || id.y >= n || id.z >= 6u) {
         return;
     }
-    let s = (f32(id.x) + 0.5) * 2.0 / f32(n) - 1.0;
-    let t = (f32(id.y) + 0.5) * 2.0 / f32(n) - 1.0;
-    let dir = normalize(cube_face_direction(id.z, s, t));
+    let dir = cube_texel_direction(id.z, i32(id.x), i32(id.y), n);
     textureStore(output, vec2<i32>(id.xy), i32(id.z), prefilter_texel(dir));
 }

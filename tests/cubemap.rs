@@ -12,15 +12,6 @@ use splitsum::math::cubemap::{
 };
 use splitsum::{Backend, CpuBackend, GpuBackend};
 
-/// Both backends when a GPU is available (see `common::gpu`), else the CPU alone.
-fn backends() -> Vec<Box<dyn Backend>> {
-    let mut v: Vec<Box<dyn Backend>> = vec![Box::new(CpuBackend)];
-    if let Some(ctx) = common::gpu() {
-        v.push(Box::new(GpuBackend { ctx }));
-    }
-    v
-}
-
 /// An equirect whose radiance is its own direction + 1 (all channels positive).
 fn direction_env(width: u32) -> Equirect {
     let h = width / 2;
@@ -57,7 +48,7 @@ fn every_texel_looks_the_right_way() {
     .unwrap();
     let loaded = load_environment(&path, &InputOptions::default()).unwrap();
     assert!(matches!(loaded.env, Environment::Equirect(_)));
-    for backend in backends() {
+    for backend in common::backends() {
         let cube = environment_to_cube(backend.as_ref(), &loaded.env, 32, false, 0.0).unwrap();
         let mut worst = 0.0f32;
         for face in 0..6u32 {
@@ -278,7 +269,7 @@ fn downsizing_does_not_alias() {
         height: h,
         data,
     });
-    for backend in backends() {
+    for backend in common::backends() {
         let cube = environment_to_cube(backend.as_ref(), &env, 16, false, 0.0).unwrap();
         for t in &cube.levels[0] {
             assert!(

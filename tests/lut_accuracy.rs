@@ -2,7 +2,7 @@
 mod common;
 
 use splitsum::cpu::brdf_lut::brdf_lut_texel;
-use splitsum::lut::{lut_texel_coords, LutQuadrature};
+use splitsum::lut::LutQuadrature;
 
 /// Quality bar from DESIGN.md: max |error| ≤ 1e-4 over the grid, grazing column included.
 const LUT_TOLERANCE: f64 = 1e-4;
@@ -11,20 +11,12 @@ const LUT_TOLERANCE: f64 = 1e-4;
 fn cpu_lut_matches_converged_integral() {
     let quad = LutQuadrature::default();
     for (w, h) in [(128u32, 128u32), (512, 512)] {
-        let mut worst = (0.0f64, 0, 0);
-        for (i, j) in common::check_texels(w, h) {
-            let (nv, r) = lut_texel_coords(i, j, w, h);
-            let got = brdf_lut_texel(nv, r, &quad);
-            let (ra, rb) = common::reference_lut(nv as f64, r as f64);
-            let err = (got[0] as f64 - ra).abs().max((got[1] as f64 - rb).abs());
-            if err > worst.0 {
-                worst = (err, i, j);
-            }
-        }
+        let worst = common::worst_lut_error(w, h, &common::check_texels(w, h), |nv, r| {
+            brdf_lut_texel(nv, r, &quad)
+        });
         println!(
             "{w}x{h}: worst |error| {:.2e} at texel {:?}",
-            worst.0,
-            (worst.1, worst.2)
+            worst.0, worst.1
         );
         assert!(worst.0 <= LUT_TOLERANCE, "{w}x{h}: {:?}", worst);
     }
@@ -44,20 +36,10 @@ fn dense_scan_512() {
     for t in 0..w {
         texels.extend([(0, t), (w - 1, t), (t, 0), (t, h - 1)]);
     }
-    let mut worst = (0.0f64, 0, 0);
-    for (i, j) in texels {
-        let (nv, r) = lut_texel_coords(i, j, w, h);
-        let got = brdf_lut_texel(nv, r, &quad);
-        let (ra, rb) = common::reference_lut(nv as f64, r as f64);
-        let err = (got[0] as f64 - ra).abs().max((got[1] as f64 - rb).abs());
-        if err > worst.0 {
-            worst = (err, i, j);
-        }
-    }
+    let worst = common::worst_lut_error(w, h, &texels, |nv, r| brdf_lut_texel(nv, r, &quad));
     println!(
         "dense 512: worst |error| {:.2e} at texel {:?}",
-        worst.0,
-        (worst.1, worst.2)
+        worst.0, worst.1
     );
     assert!(worst.0 <= LUT_TOLERANCE);
 }

@@ -8,18 +8,9 @@ use splitsum::cpu::sh_project::sh_project;
 use splitsum::environment::Cubemap;
 use splitsum::io::input::{load_environment, InputOptions};
 use splitsum::math::brdf::{alpha_from_roughness, d_ggx};
-use splitsum::math::cubemap::{cube_face_direction, cube_texel_solid_angle, normalize};
+use splitsum::math::cubemap::{cube_texel_solid_angle, normalize};
 use splitsum::math::sh::sh_eval;
 use splitsum::{Backend, CpuBackend, GpuBackend};
-
-/// Both backends when a GPU is available (see `common::gpu`), else the CPU alone.
-fn backends() -> Vec<Box<dyn Backend>> {
-    let mut v: Vec<Box<dyn Backend>> = vec![Box::new(CpuBackend)];
-    if let Some(ctx) = common::gpu() {
-        v.push(Box::new(GpuBackend { ctx }));
-    }
-    v
-}
 
 /// A cube with every mip whose level-0 texels hold `f(texel centre direction)`.
 fn analytic_cube(size: u32, f: impl Fn([f32; 3]) -> [f32; 3]) -> Cubemap {
@@ -56,7 +47,7 @@ fn quarry_cube(size: u32) -> Cubemap {
 fn white_furnace() {
     let c = [1.7f32, 0.4, 2.5];
     let env = analytic_cube(128, |_| c);
-    for backend in backends() {
+    for backend in common::backends() {
         let spec = backend.prefilter_specular(&env, 64).unwrap();
         assert_eq!(spec.levels.len(), 8);
         let irr = backend.irradiance(&env, 16).unwrap();
@@ -97,7 +88,7 @@ fn analytic_irradiance() {
     });
     let exact = |d: [f32; 3]| 1.0 + d[1] / 3.0 + 0.15 * d[0] * d[2];
     let sh = sh_project(&env);
-    for backend in backends() {
+    for backend in common::backends() {
         let irr = backend.irradiance(&env, 32).unwrap();
         let mut worst = 0.0f32;
         for face in 0..6 {
@@ -121,7 +112,7 @@ fn analytic_irradiance() {
 fn specular_matches_brute_force_on_quarry() {
     let env = quarry_cube(64);
     let levels = env.levels.len() as u32;
-    for backend in backends() {
+    for backend in common::backends() {
         let spec = backend.prefilter_specular(&env, 128).unwrap();
         for m in 1..levels {
             let r = mip_roughness(m, levels);
@@ -243,13 +234,32 @@ fn gpu_prefilter_and_irradiance_match_cpu() {
 }
 
 fn texel_dir(face: u32, i: u32, j: u32, n: u32) -> [f32; 3] {
-    let s = (i as f32 + 0.5) * 2.0 / n as f32 - 1.0;
-    let t = (j as f32 + 0.5) * 2.0 / n as f32 - 1.0;
-    normalize(cube_face_direction(face, s, t))
+    splitsum::math::cubemap::cube_texel_direction(face, i as i32, j as i32, n)
 }
 
 fn lum(c: [f64; 3]) -> f64 {
     0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
+}
+
+/// Energy-weighted relative error and worst texel relative error of mip `m` of `spec`
+/// against [`brute_force_ggx`] of `env`.
+fn brute_force_errors(env: &Cubemap, spec: &Cubemap, m: usize, roughness: f32) -> (f64, f64) {
+    let n = spec.level_size(m);
+    let (mut err, mut tot, mut worst) = (0.0f64, 0.0f64, 0.0f64);
+    for face in 0..6 {
+        for j in 0..n {
+            for i in 0..n {
+                let b = lum(brute_force_ggx(env, texel_dir(face, i, j, n), roughness));
+                let t = spec.texel(m, face, i, j);
+                let p = lum([t[0] as f64, t[1] as f64, t[2] as f64]);
+                let w = cube_texel_solid_angle(i, j, n) as f64;
+                err += (p - b).abs() * w;
+                tot += b * w;
+                worst = worst.max((p - b).abs() / b);
+            }
+        }
+    }
+    (err / tot, worst)
 }
 
 /// Exact split-sum prefiltered radiance at `n`: Σ L D(n·h) (n·l) Ω / Σ D(n·h) (n·l) Ω over
@@ -292,26 +302,11 @@ fn prefilter_accuracy_scan() {
     let spec = splitsum::cpu::prefilter_specular::prefilter_specular(&env, 128);
     for m in 1..levels {
         let r = mip_roughness(m, levels);
-        let n = env.level_size(m as usize);
-        let (mut err, mut tot, mut worst) = (0.0f64, 0.0f64, 0.0f64);
-        for face in 0..6 {
-            for j in 0..n {
-                for i in 0..n {
-                    let d = texel_dir(face, i, j, n);
-                    let b = lum(brute_force_ggx(&env, d, r));
-                    let t = spec.texel(m as usize, face, i, j);
-                    let p = lum([t[0] as f64, t[1] as f64, t[2] as f64]);
-                    let w = cube_texel_solid_angle(i, j, n) as f64;
-                    err += (p - b).abs() * w;
-                    tot += b * w;
-                    worst = worst.max((p - b).abs() / b);
-                }
-            }
-        }
+        let (err, worst) = brute_force_errors(&env, &spec, m as usize, r);
         let method = splitsum::cpu::prefilter_specular::level_method(128, m, levels, 128);
         println!(
             "mip {m} r {r:.2} {method:?}: energy-weighted {:.2} %, worst texel {:.1} %",
-            100.0 * err / tot,
+            100.0 * err,
             100.0 * worst
         );
     }

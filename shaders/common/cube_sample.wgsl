@@ -10,9 +10,7 @@ fn fetch_cube_texel(src: texture_2d_array<f32>, size0: u32, m: u32, face: u32, x
     var xi = x;
     var yi = y;
     if (x < 0 || y < 0 || x >= n || y >= n) {
-        let s = (f32(x) + 0.5) * 2.0 / f32(n) - 1.0;
-        let t = (f32(y) + 0.5) * 2.0 / f32(n) - 1.0;
-        let c = cube_face_coords(cube_face_direction(face, s, t));
+        let c = cube_face_coords(cube_texel_direction(face, x, y, u32(n)));
         f = u32(c.x);
         xi = clamp(i32(floor((c.y + 1.0) * 0.5 * f32(n))), 0, n - 1);
         yi = clamp(i32(floor((c.z + 1.0) * 0.5 * f32(n))), 0, n - 1);

@@ -15,6 +15,14 @@ fn cube_face_direction(face: u32, s: f32, t: f32) -> vec3<f32> {
     }
 }
 
+// Unit direction through the centre of texel (i, j) of an n x n face (one texel off the
+// face allowed: extended on the face's plane).
+fn cube_texel_direction(face: u32, i: i32, j: i32, n: u32) -> vec3<f32> {
+    let s = (f32(i) + 0.5) * 2.0 / f32(n) - 1.0;
+    let t = (f32(j) + 0.5) * 2.0 / f32(n) - 1.0;
+    return normalize(cube_face_direction(face, s, t));
+}
+
 // Face and (s, t) in [-1, 1]^2 that direction d lands on (inverse of cube_face_direction).
 fn cube_face_coords(d: vec3<f32>) -> vec3<f32> {
     let a = abs(d);

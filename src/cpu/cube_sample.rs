@@ -6,7 +6,7 @@
 //! so filtering is continuous across edges (no seams at small mips).
 
 use crate::environment::Cubemap;
-use crate::math::cubemap::{cube_face_coords, cube_face_direction, cube_face_jacobian};
+use crate::math::cubemap::{cube_face_coords, cube_face_jacobian, cube_texel_direction};
 
 /// Texel (x, y) of `face` at mip `m`, where x or y may be −1 or n (one texel off the face):
 /// those are fetched from the face the extended texel centre points into.
@@ -14,9 +14,7 @@ pub fn fetch_cube_texel(cube: &Cubemap, m: usize, face: u32, x: i32, y: i32) -> 
     let n = cube.level_size(m) as i32;
     let (mut f, mut xi, mut yi) = (face, x, y);
     if x < 0 || y < 0 || x >= n || y >= n {
-        let s = (x as f32 + 0.5) * 2.0 / n as f32 - 1.0;
-        let t = (y as f32 + 0.5) * 2.0 / n as f32 - 1.0;
-        let (f2, s2, t2) = cube_face_coords(cube_face_direction(face, s, t));
+        let (f2, s2, t2) = cube_face_coords(cube_texel_direction(face, x, y, n as u32));
         f = f2;
         xi = (((s2 + 1.0) * 0.5 * n as f32).floor() as i32).clamp(0, n - 1);
         yi = (((t2 + 1.0) * 0.5 * n as f32).floor() as i32).clamp(0, n - 1);

@@ -8,7 +8,7 @@ use std::f32::consts::PI;
 
 use crate::cpu::equirect_to_cube::fill_cube_level;
 use crate::environment::Cubemap;
-use crate::math::cubemap::{cube_face_direction, cube_texel_solid_angle, normalize, FACES};
+use crate::math::cubemap::{cube_texel_direction, cube_texel_solid_angle, FACES};
 use crate::math::trig::{acos_precise, atan_precise};
 
 /// Largest source mip edge the irradiance sum reads.
@@ -86,9 +86,7 @@ fn for_each_source_texel(
                 children.clear();
                 for cj in j * k..(j + 1) * k {
                     for ci in i * k..(i + 1) * k {
-                        let s = (ci as f32 + 0.5) * 2.0 / n0 as f32 - 1.0;
-                        let t = (cj as f32 + 0.5) * 2.0 / n0 as f32 - 1.0;
-                        let d = normalize(cube_face_direction(face, s, t));
+                        let d = cube_texel_direction(face, ci as i32, cj as i32, n0);
                         children.push((
                             d,
                             cube_texel_solid_angle(ci, cj, n0),
@@ -121,9 +119,7 @@ pub fn source_texels(env: &Cubemap, m: usize) -> Vec<SourceTexel> {
         let dir = if len > 0.0 {
             moment.map(|v| (v / len) as f32)
         } else {
-            let s = (i as f32 + 0.5) * 2.0 / n as f32 - 1.0;
-            let t = (j as f32 + 0.5) * 2.0 / n as f32 - 1.0;
-            normalize(cube_face_direction(face, s, t))
+            cube_texel_direction(face, i as i32, j as i32, n)
         };
         let total: f64 = children.iter().map(|c| c.1 as f64).sum();
         out.push(SourceTexel {
@@ -220,9 +216,10 @@ pub fn irradiance_texel(source: &[MomentTexel], n: [f32; 3]) -> [f32; 4] {
 pub fn irradiance(env: &Cubemap, size: u32) -> Cubemap {
     let source = moment_texels(env, irradiance_source_level(env));
     let level = fill_cube_level(size, |face, i, j| {
-        let s = (i as f32 + 0.5) * 2.0 / size as f32 - 1.0;
-        let t = (j as f32 + 0.5) * 2.0 / size as f32 - 1.0;
-        irradiance_texel(&source, normalize(cube_face_direction(face, s, t)))
+        irradiance_texel(
+            &source,
+            cube_texel_direction(face, i as i32, j as i32, size),
+        )
     });
     Cubemap {
         size,

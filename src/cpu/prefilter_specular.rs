@@ -16,7 +16,7 @@ use crate::cpu::equirect_to_cube::fill_cube_level;
 use crate::cpu::irradiance::{source_texels, SourceTexel};
 use crate::environment::Cubemap;
 use crate::math::brdf::{alpha_from_roughness, d_ggx};
-use crate::math::cubemap::{cube_face_direction, normalize};
+use crate::math::cubemap::{cube_texel_direction, normalize};
 use crate::math::sampling::{hammersley, importance_sample_ggx};
 
 /// Colbert & Křivánek's lod bias: reading one level blurrier than the pdf alone suggests
@@ -167,11 +167,7 @@ pub fn prefilter_level(
     roughness: f32,
     method: LevelMethod,
 ) -> Vec<[f32; 4]> {
-    let dir = |face: u32, i: u32, j: u32| {
-        let s = (i as f32 + 0.5) * 2.0 / size as f32 - 1.0;
-        let t = (j as f32 + 0.5) * 2.0 / size as f32 - 1.0;
-        normalize(cube_face_direction(face, s, t))
-    };
+    let dir = |face: u32, i: u32, j: u32| cube_texel_direction(face, i as i32, j as i32, size);
     match method {
         LevelMethod::Exact { source_mip } => {
             let source = source_texels(env, source_mip as usize);

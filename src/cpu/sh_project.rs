@@ -4,7 +4,7 @@
 //! coefficients Â_l/π · cₖ that evaluate to E/π directly.
 
 use crate::environment::Cubemap;
-use crate::math::cubemap::{cube_face_direction, cube_texel_solid_angle, normalize, FACES};
+use crate::math::cubemap::{cube_texel_direction, cube_texel_solid_angle, FACES};
 use crate::math::sh::{irradiance_band_factor, sh_band, sh_basis};
 
 /// Largest mip edge projected.
@@ -29,9 +29,7 @@ pub fn sh_project(env: &Cubemap) -> ShCoefficients {
     for face in 0..FACES as u32 {
         for j in 0..n {
             for i in 0..n {
-                let s = (i as f32 + 0.5) * 2.0 / n as f32 - 1.0;
-                let t = (j as f32 + 0.5) * 2.0 / n as f32 - 1.0;
-                let y = sh_basis(normalize(cube_face_direction(face, s, t)));
+                let y = sh_basis(cube_texel_direction(face, i as i32, j as i32, n));
                 let w = cube_texel_solid_angle(i, j, n) as f64;
                 let l = env.texel(m, face, i, j);
                 for k in 0..9 {

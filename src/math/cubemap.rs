@@ -26,6 +26,15 @@ pub fn cube_face_direction(face: u32, s: f32, t: f32) -> [f32; 3] {
     }
 }
 
+/// Unit direction through the centre of texel (i, j) of `face` of an n×n face (texel
+/// coordinates may lie one texel off the face: the direction then points into a
+/// neighbouring face's area, extended on this face's plane).
+pub fn cube_texel_direction(face: u32, i: i32, j: i32, n: u32) -> [f32; 3] {
+    let s = (i as f32 + 0.5) * 2.0 / n as f32 - 1.0;
+    let t = (j as f32 + 0.5) * 2.0 / n as f32 - 1.0;
+    normalize(cube_face_direction(face, s, t))
+}
+
 /// Face and face coordinates (s, t) ∈ [−1, 1]² that direction `d` lands on (inverse of
 /// [`cube_face_direction`]); ties go to X, then Y, then Z.
 pub fn cube_face_coords(d: [f32; 3]) -> (u32, f32, f32) {

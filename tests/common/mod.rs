@@ -200,3 +200,33 @@ pub fn gpu() -> Option<splitsum::gpu::GpuContext> {
         }
     }
 }
+
+/// Both backends when a GPU is available (see [`gpu`]), else the CPU alone.
+pub fn backends() -> Vec<Box<dyn splitsum::Backend>> {
+    let mut v: Vec<Box<dyn splitsum::Backend>> = vec![Box::new(splitsum::CpuBackend)];
+    if let Some(ctx) = gpu() {
+        v.push(Box::new(splitsum::GpuBackend { ctx }));
+    }
+    v
+}
+
+/// Worst |error| of `lut_texel(n·v, r)` against [`reference_lut`] over `texels` of a W×H
+/// table, with the worst texel.
+pub fn worst_lut_error(
+    width: u32,
+    height: u32,
+    texels: &[(u32, u32)],
+    lut_texel: impl Fn(f32, f32) -> [f32; 2],
+) -> (f64, (u32, u32)) {
+    let mut worst = (0.0f64, (0, 0));
+    for &(i, j) in texels {
+        let (nv, r) = splitsum::lut::lut_texel_coords(i, j, width, height);
+        let got = lut_texel(nv, r);
+        let (ra, rb) = reference_lut(nv as f64, r as f64);
+        let err = (got[0] as f64 - ra).abs().max((got[1] as f64 - rb).abs());
+        if err > worst.0 {
+            worst = (err, (i, j));
+        }
+    }
+    worst
+}
