@@ -1,6 +1,7 @@
 // Prefiltered specular, one mip, by filtered importance sampling (Colbert & Krivanek 2007):
 // GGX-distributed half vectors (Hammersley), l = reflect(-n, h), weight n.l, each sample
-// reading the environment's mip chain at lod = 0.5 log2(omega_s / omega_p) + bias.
+// reading the environment's mip chain (with its hot texels blacked out) at
+// lod = 0.5 log2(omega_s / omega_p) + bias; the hot texels are summed exactly.
 // CPU mirror: prefilter_texel in src/cpu/prefilter_specular.rs.
 
 struct PrefilterParams {
@@ -11,12 +12,28 @@ struct PrefilterParams {
     roughness: f32,
     lod_bias: f32,
     omega_p: f32,   // solid angle of a level-0 environment texel (mean)
-    _pad: f32,
+    hot_count: u32, // hot texels summed exactly
 }
 
 @group(0) @binding(0) var<uniform> params: PrefilterParams;
 @group(0) @binding(1) var env: texture_2d_array<f32>;
 @group(0) @binding(2) var output: texture_storage_2d_array<rgba32float, write>;
+// Hot texels, two vec4 each: (centroid direction, solid angle), (radiance, unused).
+@group(0) @binding(3) var<storage, read> hot: array<vec4<f32>>;
+
+// Exact part: sum of L W (n.l) pdf(l) over the hot texels, pdf(l) = D(n.h) / 4.
+fn hot_texels_sum(n: vec3<f32>, alpha: f32) -> vec3<f32> {
+    var sum = vec3<f32>(0.0);
+    for (var k = 0u; k < params.hot_count; k++) {
+        let l = hot[2u * k];
+        let n_dot_l = dot(n, l.xyz);
+        if (n_dot_l > 0.0) {
+            let n_dot_h = sqrt(0.5 * (1.0 + n_dot_l));
+            sum += l.w * n_dot_l * d_ggx(n_dot_h, alpha) * 0.25 * hot[2u * k + 1u].rgb;
+        }
+    }
+    return sum;
+}
 
 // Orthonormal tangent frame around unit n (columns t, b).
 fn tangent_frame(n: vec3<f32>) -> mat2x3<f32> {
@@ -48,7 +65,8 @@ fn prefilter_texel(n: vec3<f32>) -> vec4<f32> {
             weight += n_dot_l;
         }
     }
-    return vec4<f32>(sum / weight, 1.0);
+    let hot_sum = hot_texels_sum(n, alpha);
+    return vec4<f32>((sum + f32(params.samples) * hot_sum) / weight, 1.0);
 }
 
 @compute @workgroup_size(WORKGROUP_X, WORKGROUP_Y, WORKGROUP_Z)

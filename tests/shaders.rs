@@ -118,7 +118,7 @@ fn kernel_uniforms_match_rust() {
         PREFILTER_SAMPLED,
         "PrefilterParams",
         PrefilterUniform,
-        [env_size, env_levels, out_size, samples, roughness, lod_bias, omega_p, _pad]
+        [env_size, env_levels, out_size, samples, roughness, lod_bias, omega_p, hot_count]
     );
     assert_layout!(
         CONVOLVE_EXACT,

@@ -56,8 +56,95 @@ fn cross(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
     ]
 }
 
-/// Prefiltered radiance around unit direction `n` at `roughness` from `env` (with mips).
-pub fn prefilter_texel(env: &Cubemap, n: [f32; 3], roughness: f32, samples: u32) -> [f32; 4] {
+/// A texel is "hot" when its radiance exceeds this multiple of the environment's mean.
+pub const HOT_FACTOR: f32 = 16.0;
+/// At most this many hot texels (the most energetic) are split off.
+pub const MAX_HOT_TEXELS: usize = 512;
+
+/// The environment for the importance-sampled levels, split in two: `rest`, the
+/// environment with its hot texels (a sun, bright lamps) blacked out and its mips
+/// rebuilt, which filtered importance sampling handles well because its dynamic range is
+/// low; and `hot`, those texels (of the ≤ 64² mip, with their radiance centroids), which
+/// are summed exactly. Sampling a tiny sun through filtered lookups either misses it or
+/// smears it over a coarse mip; summing it exactly does neither.
+#[derive(Clone, Debug)]
+pub struct SampledSource {
+    /// The environment without its hot texels, with every mip.
+    pub rest: Cubemap,
+    /// The hot texels.
+    pub hot: Vec<SourceTexel>,
+}
+
+/// Splits `env` (with every mip) into [`SampledSource`].
+pub fn split_hot_texels(env: &Cubemap) -> SampledSource {
+    let m = (0..env.levels.len())
+        .find(|&m| env.level_size(m) <= EXACT_MAX_SOURCE)
+        .unwrap_or(env.levels.len() - 1);
+    let n = env.level_size(m);
+    let texels = source_texels(env, m);
+    let lum =
+        |t: &SourceTexel| 0.2126 * t.radiance[0] + 0.7152 * t.radiance[1] + 0.0722 * t.radiance[2];
+    let mean = texels
+        .iter()
+        .map(|t| (lum(t) * t.dir_omega[3]) as f64)
+        .sum::<f64>()
+        / (4.0 * std::f64::consts::PI);
+    let mut hot: Vec<usize> = (0..texels.len())
+        .filter(|&k| lum(&texels[k]) as f64 > HOT_FACTOR as f64 * mean)
+        .collect();
+    hot.sort_by(|&a, &b| {
+        let e = |k: usize| lum(&texels[k]) * texels[k].dir_omega[3];
+        e(b).total_cmp(&e(a)).then(a.cmp(&b))
+    });
+    hot.truncate(MAX_HOT_TEXELS);
+    let mut level0 = env.levels[0].clone();
+    let (n0, k) = (env.size, env.size / n);
+    for &idx in &hot {
+        let (face, j, i) = (
+            (idx as u32) / (n * n),
+            (idx as u32 % (n * n)) / n,
+            idx as u32 % n,
+        );
+        for cj in j * k..(j + 1) * k {
+            for ci in i * k..(i + 1) * k {
+                level0[((face * n0 + cj) * n0 + ci) as usize] = [0.0, 0.0, 0.0, 1.0];
+            }
+        }
+    }
+    let mut rest = Cubemap {
+        size: env.size,
+        levels: vec![level0],
+    };
+    crate::cpu::cube_downsample::build_mips(&mut rest, env.levels.len() as u32);
+    SampledSource {
+        rest,
+        hot: hot.into_iter().map(|k| texels[k]).collect(),
+    }
+}
+
+/// The exact part of a sampled texel: Σ L Ω (n·l) pdf(l) over the hot texels, with
+/// pdf(l) = D(n·h)/4 (the density the samples are drawn from, for v = n).
+pub fn hot_texels_sum(hot: &[SourceTexel], n: [f32; 3], alpha: f32) -> [f32; 3] {
+    let mut sum = [0.0f32; 3];
+    for t in hot {
+        let l = t.dir_omega;
+        let n_dot_l = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
+        if n_dot_l > 0.0 {
+            let n_dot_h = (0.5 * (1.0 + n_dot_l)).sqrt();
+            let w = l[3] * n_dot_l * d_ggx(n_dot_h, alpha) * 0.25;
+            for (s, r) in sum.iter_mut().zip(&t.radiance) {
+                *s += w * r;
+            }
+        }
+    }
+    sum
+}
+
+/// Prefiltered radiance around unit direction `n` at `roughness`: filtered importance
+/// sampling of `src.rest` plus the exact sum of `src.hot`, both over the sampled
+/// normaliser: (Σᵢ L(lᵢ)(n·lᵢ) + N·Σ_hot) / Σᵢ (n·lᵢ).
+pub fn prefilter_texel(src: &SampledSource, n: [f32; 3], roughness: f32, samples: u32) -> [f32; 4] {
+    let env = &src.rest;
     let alpha = alpha_from_roughness(roughness);
     let (t, b) = tangent_frame(n);
     // Solid angle of a level-0 texel (the mean over the sphere).
@@ -82,7 +169,14 @@ pub fn prefilter_texel(env: &Cubemap, n: [f32; 3], roughness: f32, samples: u32)
             weight += n_dot_l;
         }
     }
-    [sum[0] / weight, sum[1] / weight, sum[2] / weight, 1.0]
+    let hot = hot_texels_sum(&src.hot, n, alpha);
+    let k = samples as f32;
+    [
+        (sum[0] + k * hot[0]) / weight,
+        (sum[1] + k * hot[1]) / weight,
+        (sum[2] + k * hot[2]) / weight,
+        1.0,
+    ]
 }
 
 /// Exact prefiltered radiance around unit `n`: Σ L D(n·h) (n·l) Ω / Σ D(n·h) (n·l) Ω over
@@ -162,9 +256,11 @@ pub fn level_method(env_size: u32, m: u32, levels: u32, samples: u32) -> LevelMe
     }
 }
 
-/// One prefiltered level of edge `size` at `roughness` by `method`.
+/// One prefiltered level of edge `size` at `roughness` by `method` (`sampled` is the
+/// split of `env` the sampled method reads).
 pub fn prefilter_level(
     env: &Cubemap,
+    sampled: &SampledSource,
     size: u32,
     roughness: f32,
     method: LevelMethod,
@@ -178,7 +274,7 @@ pub fn prefilter_level(
             })
         }
         LevelMethod::Sampled { samples } => fill_cube_level(size, |face, i, j| {
-            prefilter_texel(env, dir(face, i, j), roughness, samples)
+            prefilter_texel(sampled, dir(face, i, j), roughness, samples)
         }),
     }
 }
@@ -191,11 +287,17 @@ pub fn prefilter_specular(env: &Cubemap, samples: u32) -> Cubemap {
         size: env.size,
         levels: vec![env.levels[0].clone()],
     };
+    let sampled = split_hot_texels(env);
     for m in 1..levels {
         let r = mip_roughness(m, levels);
         let method = level_method(env.size, m, levels, samples);
-        out.levels
-            .push(prefilter_level(env, env.level_size(m as usize), r, method));
+        out.levels.push(prefilter_level(
+            env,
+            &sampled,
+            env.level_size(m as usize),
+            r,
+            method,
+        ));
     }
     out
 }

@@ -7,7 +7,9 @@ use std::f32::consts::PI;
 use crate::cpu::irradiance::{
     irradiance_source_level, moment_texels, source_texels, MomentTexel, SourceTexel,
 };
-use crate::cpu::prefilter_specular::{level_method, mip_roughness, LevelMethod, LOD_BIAS};
+use crate::cpu::prefilter_specular::{
+    level_method, mip_roughness, split_hot_texels, LevelMethod, LOD_BIAS,
+};
 use crate::environment::Cubemap;
 use crate::gpu::compute::{buffer_with_data, with_error_scope, ComputeKernel};
 use crate::gpu::shaders;
@@ -35,8 +37,8 @@ pub struct PrefilterUniform {
     pub lod_bias: f32,
     /// Mean solid angle of a level-0 environment texel.
     pub omega_p: f32,
-    /// Padding to 16 bytes.
-    pub _pad: f32,
+    /// Number of hot texels summed exactly.
+    pub hot_count: u32,
 }
 
 /// Uniform block of `convolve_exact.wgsl` (layout checked in tests/shaders.rs).
@@ -152,8 +154,24 @@ pub fn prefilter_specular(
     )?;
     let exact = ComputeKernel::new(device, "convolve_exact", shaders::CONVOLVE_EXACT, WORKGROUP)?;
     let levels = Cubemap::full_mip_count(env.size);
+    let split = split_hot_texels(env);
     let out = with_error_scope(device, "prefilter_specular dispatch", || {
-        let source = upload_cube(device, queue, env, env.levels.len() as u32);
+        let source = upload_cube(device, queue, &split.rest, env.levels.len() as u32);
+        // A storage binding cannot be empty: one black texel stands in when none is hot.
+        let hot_data = if split.hot.is_empty() {
+            vec![SourceTexel {
+                dir_omega: [0.0; 4],
+                radiance: [0.0; 4],
+            }]
+        } else {
+            split.hot.clone()
+        };
+        let hot_buf = buffer_with_data(
+            device,
+            "hot texels",
+            bytemuck::cast_slice(&hot_data),
+            wgpu::BufferUsages::STORAGE,
+        );
         let source_view = source.create_view(&wgpu::TextureViewDescriptor {
             dimension: Some(wgpu::TextureViewDimension::D2Array),
             ..Default::default()
@@ -187,7 +205,7 @@ pub fn prefilter_specular(
                         roughness: r,
                         lod_bias: LOD_BIAS,
                         omega_p: 4.0 * PI / (6.0 * (env.size * env.size) as f32),
-                        _pad: 0.0,
+                        hot_count: split.hot.len() as u32,
                     };
                     let ubuf = buffer_with_data(
                         device,
@@ -202,6 +220,7 @@ pub fn prefilter_specular(
                             ubuf.as_entire_binding(),
                             wgpu::BindingResource::TextureView(&source_view),
                             wgpu::BindingResource::TextureView(&target),
+                            hot_buf.as_entire_binding(),
                         ],
                         [n, n, 6],
                     );
