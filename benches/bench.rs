@@ -148,6 +148,9 @@ fn bake_benchmarks() {
     if let Ok(g) = splitsum::GpuBackend::new() {
         backends.push(("gpu", Box::new(g)));
     }
+    if let Ok((auto, _)) = splitsum::create_backend(splitsum::BackendChoice::Auto) {
+        backends.push(("auto", auto));
+    }
     for (label, backend) in &backends {
         let (lut_wall, lut_cpu) = measure(1, || {
             backend.brdf_lut(512, 512).unwrap();

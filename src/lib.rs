@@ -43,7 +43,9 @@ pub mod lut;
 pub mod math;
 pub mod verify;
 
-pub use backend::{create_backend, Backend, BackendChoice, CpuBackend, GpuBackend};
+pub use backend::{
+    create_backend, Backend, BackendChoice, CpuBackend, GpuBackend, SoftwareAdapterBackend,
+};
 pub use environment::{Cubemap, Environment, Equirect};
 pub use error::{Error, Result};
 pub use lut::BrdfLut;
