@@ -115,7 +115,7 @@ fn cubemap_benchmarks() {
             continue;
         };
         let (wall, cpu) = measure(1, || {
-            EquirectPyramid::new(e.clone(), 0);
+            EquirectPyramid::new(e, 0);
         });
         println!(
             "| {name} | pyramid (part of each conversion below) | cpu | {wall:.3} | {cpu:.3} |"

@@ -57,7 +57,7 @@ pub fn environment_to_cube(
     match env {
         Environment::Equirect(e) => {
             let params = EquirectToCubeParams::new(size, e.height, rotate_degrees);
-            let pyramid = EquirectPyramid::new(e.clone(), params.base_level);
+            let pyramid = EquirectPyramid::new(e, params.base_level);
             backend.equirect_to_cube(&pyramid, &params, levels)
         }
         Environment::Cube(c) => {

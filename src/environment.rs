@@ -168,14 +168,19 @@ pub struct EquirectPyramid {
 impl EquirectPyramid {
     /// Builds levels down to 1 texel high from `base`: each level is the exact area
     /// downsample of the unfiltered level above (rows in parallel); levels from
-    /// `first_level` on are then latitude-prefiltered and kept.
-    pub fn new(base: Equirect, first_level: u32) -> Self {
+    /// `first_level` on are then latitude-prefiltered and kept. `base` is only copied when
+    /// level 0 itself is kept.
+    pub fn new(base: &Equirect, first_level: u32) -> Self {
         let (width, height) = (base.width, base.height);
         let count = pyramid_level_count(height);
         let first_level = first_level.min(count - 1);
         let mut stored = Vec::new();
-        let mut current = base;
-        for level in 0..count {
+        let (mut current, start) = if first_level == 0 || count == 1 {
+            (base.clone(), 0)
+        } else {
+            (base.downsample(), 1)
+        };
+        for level in start..count {
             let next = (level + 1 < count).then(|| current.downsample());
             if level >= first_level {
                 prefilter_latitude(&mut current);
