@@ -163,15 +163,27 @@ fn run_bake(args: BakeArgs) -> anyhow::Result<()> {
         exposure_ev: args.input_opts.exposure,
     };
     splitsum::convert::validate_cube_size(opts.specular_size)?;
-    let backend = open_backend(&args.common)?;
+    let mut backend = open_backend(&args.common)?;
+    // With --backend auto a GPU failure (device lost, out of memory, a driver error)
+    // switches this and every later job to the CPU backend, with a warning.
+    let auto = matches!(args.common.backend, cli::BackendArg::Auto);
+    let fall_back = |e: &splitsum::Error, backend: &mut Box<dyn splitsum::Backend>| -> bool {
+        if auto && matches!(e, splitsum::Error::Gpu { .. }) {
+            eprintln!("warning: {e}; continuing on the CPU backend");
+            *backend = Box::new(splitsum::CpuBackend);
+            true
+        } else {
+            false
+        }
+    };
     let lut = if args.no_lut {
         None
     } else {
-        Some(
-            backend
-                .brdf_lut(512, 512)
-                .context("computing the BRDF LUT")?,
-        )
+        let lut = match backend.brdf_lut(512, 512) {
+            Err(e) if fall_back(&e, &mut backend) => backend.brdf_lut(512, 512),
+            r => r,
+        };
+        Some(lut.context("computing the BRDF LUT")?)
     };
     let show = !args.quiet && std::io::stderr().is_terminal();
     let mut failed = 0;
@@ -195,7 +207,12 @@ fn run_bake(args: BakeArgs) -> anyhow::Result<()> {
                 name: "INPUT",
                 message: "face patterns are not supported by bake yet; convert them with `splitsum cubemap` to a .ktx2 first".into(),
             }),
-            None => bake(backend.as_ref(), input, &args.output, &opts, lut.as_ref(), &mut progress),
+            None => match bake(backend.as_ref(), input, &args.output, &opts, lut.as_ref(), &mut progress) {
+                Err(e) if fall_back(&e, &mut backend) => {
+                    bake(backend.as_ref(), input, &args.output, &opts, lut.as_ref(), &mut progress)
+                }
+                r => r,
+            },
         };
         bar.finish_and_clear();
         match result {

@@ -182,3 +182,43 @@ fn a_failed_bake_keeps_earlier_outputs() {
         .collect();
     assert!(names.iter().all(|n| !n.ends_with(".tmp")), "{names:?}");
 }
+
+/// Without an adapter (forced by SPLITSUM_NO_GPU), `auto` bakes on the CPU and says so;
+/// `--backend gpu` fails cleanly before writing anything.
+#[test]
+fn gpu_less_fallback() {
+    let dir = common::output_dir("bake-no-gpu");
+    let input = Path::new("tests/data/venice_sunset_1k.hdr");
+    let run = |backend: &str| {
+        splitsum()
+            .args([
+                "bake",
+                "-v",
+                "--specular-size",
+                "16",
+                "--irradiance-size",
+                "8",
+                "--no-lut",
+                "--backend",
+                backend,
+                "-o",
+            ])
+            .arg(dir.join(backend))
+            .arg(input)
+            .env(splitsum::gpu::context::HIDE_GPU_ENV, "1")
+            .output()
+            .unwrap()
+    };
+    let o = run("auto");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("using the CPU backend") && err.contains("backend: cpu"),
+        "{err}"
+    );
+    assert!(dir.join("auto/venice_sunset_1k/manifest.json").exists());
+    let o = run("gpu");
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("no GPU adapter"));
+    assert!(!dir.join("gpu").exists());
+}
