@@ -235,3 +235,29 @@ fn cubemap_from_a_face_pattern_and_back_to_faces() {
         assert!((r - (1.0 + face as f32)).abs() < 0.05, "face {face}: {r}");
     }
 }
+
+#[test]
+fn output_path_problems_are_clean_errors() {
+    let dir = common::output_dir("cli-output-paths");
+    // The output names an existing folder.
+    std::fs::create_dir_all(dir.join("taken.png")).unwrap();
+    let o = splitsum()
+        .args(["lut", "--size", "8", "-o"])
+        .arg(dir.join("taken.png"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("taken.png") && err.contains("folder"), "{err}");
+    // A parent of the output is a file.
+    std::fs::write(dir.join("file"), b"x").unwrap();
+    let o = splitsum()
+        .args(["lut", "--size", "8", "-o"])
+        .arg(dir.join("file/lut.png"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("file") && !err.contains("panicked"), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+}

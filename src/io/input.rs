@@ -193,8 +193,15 @@ pub fn load_environment(path: &Path, opts: &InputOptions) -> Result<LoadedEnviro
     let mut img = read_image(path)?;
     sanitize_with_warning(path, &mut img.data, &mut warnings);
     apply_exposure(&mut img.data, opts)?;
+    let env = environment_from_image(path, img)?;
+    Ok(LoadedEnvironment { env, warnings })
+}
+
+/// Recognises the layout of a decoded image by its aspect ratio: 2:1 equirect, 4:3
+/// horizontal cross, 3:4 vertical cross.
+pub fn environment_from_image(path: &Path, img: Equirect) -> Result<Environment> {
     let (w, h) = (img.width, img.height);
-    let env = if w == 2 * h {
+    Ok(if w == 2 * h {
         Environment::Equirect(img)
     } else if w * 3 == h * 4 && w % 4 == 0 {
         Environment::Cube(cross_to_cube(&img, &HORIZONTAL_CROSS, false))
@@ -207,8 +214,7 @@ pub fn load_environment(path: &Path, opts: &InputOptions) -> Result<LoadedEnviro
                 "image is {w}×{h}: expected a 2:1 equirect, a 4:3 horizontal cross or a 3:4 vertical cross (or pass six faces with --faces)"
             ),
         });
-    };
-    Ok(LoadedEnvironment { env, warnings })
+    })
 }
 
 /// Face-name placeholder of a face-file pattern such as `sky_{face}.hdr`.
@@ -296,8 +302,12 @@ fn check_cube_level0(
 
 /// Reads level 0 of a KTX2 cubemap in one of splitsum's formats.
 pub fn read_ktx2_cube(path: &Path) -> Result<Cubemap> {
+    decode_ktx2_cube(path, &read_file(path)?)
+}
+
+/// Decodes level 0 of a KTX2 cubemap from `bytes` (`path` names it in errors).
+pub fn decode_ktx2_cube(path: &Path, bytes: &[u8]) -> Result<Cubemap> {
     const F: &str = "KTX2";
-    let bytes = read_file(path)?;
     let bad = |message: String| Error::Decode {
         path: path.to_path_buf(),
         format: F,
@@ -356,8 +366,12 @@ pub fn read_ktx2_cube(path: &Path) -> Result<Cubemap> {
 
 /// Reads level 0 of a DX10 DDS cubemap in one of splitsum's formats.
 pub fn read_dds_cube(path: &Path) -> Result<Cubemap> {
+    decode_dds_cube(path, &read_file(path)?)
+}
+
+/// Decodes level 0 of a DX10 DDS cubemap from `bytes` (`path` names it in errors).
+pub fn decode_dds_cube(path: &Path, bytes: &[u8]) -> Result<Cubemap> {
     const F: &str = "DDS";
-    let bytes = read_file(path)?;
     let bad = |message: String| Error::Decode {
         path: path.to_path_buf(),
         format: F,

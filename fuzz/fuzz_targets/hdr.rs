@@ -1,0 +1,5 @@
+//! The Radiance HDR reader must return Ok or a clean error for any bytes, never panic.
+#![no_main]
+libfuzzer_sys::fuzz_target!(|data: &[u8]| {
+    let _ = splitsum::io::hdr::decode(std::path::Path::new("fuzz.hdr"), data);
+});
