@@ -313,7 +313,7 @@ pub fn decode_ktx2_cube(path: &Path, bytes: &[u8]) -> Result<Cubemap> {
         format: F,
         message,
     };
-    let reader = ::ktx2::Reader::new(&bytes[..]).map_err(|e| bad(e.to_string()))?;
+    let reader = ::ktx2::Reader::new(bytes).map_err(|e| bad(e.to_string()))?;
     let h = reader.header();
     let unsupported = |message: String| Error::UnsupportedInput {
         path: path.to_path_buf(),
@@ -377,7 +377,7 @@ pub fn decode_dds_cube(path: &Path, bytes: &[u8]) -> Result<Cubemap> {
         format: F,
         message,
     };
-    let dds = ddsfile::Dds::read(&bytes[..]).map_err(|e| bad(e.to_string()))?;
+    let dds = ddsfile::Dds::read(bytes).map_err(|e| bad(e.to_string()))?;
     let unsupported = |message: String| Error::UnsupportedInput {
         path: path.to_path_buf(),
         message,
