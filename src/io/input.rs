@@ -300,6 +300,38 @@ fn check_cube_level0(
     Ok(())
 }
 
+/// Refuses DFDs the `ktx2` crate (0.5) would panic on instead of erroring: a basic block
+/// whose texelBlockDimension byte is 255 (found by fuzzing, tests/fuzz_regressions.rs).
+fn precheck_ktx2_dfd(bytes: &[u8]) -> std::result::Result<(), String> {
+    let word = |at: usize| -> Option<u32> {
+        Some(u32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?))
+    };
+    let (Some(offset), Some(length)) = (word(48), word(52)) else {
+        return Err("too short for a KTX2 header".into());
+    };
+    let (start, end) = (offset as usize, offset as usize + length as usize);
+    if end > bytes.len() || length < 4 {
+        return Err("the data format descriptor lies outside the file".into());
+    }
+    let mut block = start + 4;
+    while block + 16 <= end {
+        let (Some(kind), Some(version)) = (word(block), word(block + 4)) else {
+            break;
+        };
+        let size = (version >> 16) as usize;
+        if kind == 0 && bytes[block + 12..block + 16].contains(&255) {
+            return Err(
+                "the data format descriptor's texel block dimensions are out of range".into(),
+            );
+        }
+        if size == 0 {
+            break;
+        }
+        block += size;
+    }
+    Ok(())
+}
+
 /// Reads level 0 of a KTX2 cubemap in one of splitsum's formats.
 pub fn read_ktx2_cube(path: &Path) -> Result<Cubemap> {
     decode_ktx2_cube(path, &read_file(path)?)
@@ -313,6 +345,7 @@ pub fn decode_ktx2_cube(path: &Path, bytes: &[u8]) -> Result<Cubemap> {
         format: F,
         message,
     };
+    precheck_ktx2_dfd(bytes).map_err(bad)?;
     let reader = ::ktx2::Reader::new(bytes).map_err(|e| bad(e.to_string()))?;
     let h = reader.header();
     let unsupported = |message: String| Error::UnsupportedInput {
@@ -403,16 +436,31 @@ pub fn decode_dds_cube(path: &Path, bytes: &[u8]) -> Result<Cubemap> {
             )
         })?;
     check_dimensions(path, n, n)?;
-    let face_bytes = (n as usize) * (n as usize) * pf.texel_bytes() as usize;
+    // Faces are stored one after the other, each with all its mips. The mip count comes
+    // from the header, so it is bounded before the face stride is computed from it.
+    let mips = dds.get_num_mipmap_levels().max(1);
+    let full = Cubemap::full_mip_count(n);
+    if mips > full {
+        return Err(bad(format!(
+            "header claims {mips} mip levels; a {n}×{n} face has at most {full}"
+        )));
+    }
+    let texel = pf.texel_bytes() as usize;
+    let face_bytes = (n as usize) * (n as usize) * texel;
+    let stride: usize = (0..mips)
+        .map(|m| ((n >> m).max(1) as usize).pow(2) * texel)
+        .sum();
+    let data = &dds.data;
+    if data.len() < stride * (FACES - 1) + face_bytes {
+        return Err(bad(format!(
+            "holds {} bytes of texels, {} expected (truncated?)",
+            data.len(),
+            stride * FACES
+        )));
+    }
     let mut level = Vec::with_capacity(Cubemap::level_len(n));
-    for face in 0..FACES as u32 {
-        let data = dds
-            .get_data(face)
-            .map_err(|e| bad(format!("face {face}: {e}")))?;
-        if data.len() < face_bytes {
-            return Err(bad(format!("face {face} is truncated")));
-        }
-        level.extend(pf.decode(&data[..face_bytes]));
+    for face in 0..FACES {
+        level.extend(pf.decode(&data[face * stride..face * stride + face_bytes]));
     }
     Ok(Cubemap {
         size: n,
