@@ -281,3 +281,42 @@ fn downsizing_does_not_alias() {
         }
     }
 }
+
+/// An input wider than the device's max_texture_dimension_2d is read from its first level
+/// that fits instead of failing wgpu validation.
+#[test]
+fn inputs_beyond_the_texture_limit_are_reduced() {
+    if common::gpu().is_none() {
+        return;
+    }
+    let instance =
+        wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let adapter = pollster::block_on(instance.request_adapter(&Default::default())).unwrap();
+    let limits = wgpu::Limits {
+        max_texture_dimension_2d: 1024,
+        ..adapter.limits()
+    };
+    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+        required_limits: limits,
+        ..Default::default()
+    }))
+    .unwrap();
+    let env = direction_env(2048);
+    let params = splitsum::cpu::equirect_to_cube::EquirectToCubeParams::new(512, env.height, 0.0);
+    assert_eq!(
+        params.base_level, 0,
+        "a 512 cube reads level 0 of a 2048-wide input"
+    );
+    let pyramid = splitsum::environment::EquirectPyramid::new(&env, params.base_level);
+    let cube =
+        splitsum::gpu::equirect_to_cube::equirect_to_cube(&device, &queue, &pyramid, &params, 1)
+            .unwrap();
+    // Still the right picture: texel (i, j) of +X looks along its own direction.
+    for (i, j) in [(0u32, 0u32), (256, 100), (511, 511)] {
+        let d = splitsum::math::cubemap::cube_texel_direction(0, i as i32, j as i32, 512);
+        let t = cube.texel(0, 0, i, j);
+        for c in 0..3 {
+            assert!((t[c] - (d[c] + 1.0)).abs() < 0.03, "{t:?} vs {d:?}");
+        }
+    }
+}

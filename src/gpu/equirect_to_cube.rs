@@ -74,7 +74,7 @@ pub fn equirect_to_cube(
         shaders::EQUIRECT_TO_CUBE,
         WORKGROUP,
     )?;
-    let source = upload_equirect_pyramid(device, queue, pyramid)?;
+    let (source, base_level) = upload_equirect_pyramid(device, queue, pyramid)?;
     let n = params.face_size;
     let mips = mips.clamp(1, Cubemap::full_mip_count(n));
     let cube = with_error_scope(
@@ -84,7 +84,7 @@ pub fn equirect_to_cube(
             let uniform = EquirectToCubeUniform {
                 face_size: n,
                 samples_per_axis: params.samples_per_axis,
-                base_level: pyramid.first_level,
+                base_level,
                 level_count: pyramid.level_count(),
                 source_size: [pyramid.width, pyramid.height],
                 rotation: params.rotation,

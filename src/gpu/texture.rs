@@ -5,14 +5,23 @@ use crate::environment::{Cubemap, EquirectPyramid};
 use crate::gpu::compute::{read_texture_level, with_error_scope};
 use crate::Result;
 
-/// Uploads the pyramid's kept levels as the mips of one `Rgba32Float` 2D texture (mip 0 =
-/// level `first_level`).
+/// Uploads the pyramid's kept levels as the mips of one `Rgba32Float` 2D texture, skipping
+/// levels wider than the device's `max_texture_dimension_2d` (a 32k input on a 16k-limit
+/// device reads its 16k level instead of failing). Returns the texture and the pyramid
+/// level held in its mip 0.
 pub fn upload_equirect_pyramid(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     pyramid: &EquirectPyramid,
-) -> Result<wgpu::Texture> {
-    let levels = pyramid.stored();
+) -> Result<(wgpu::Texture, u32)> {
+    let limit = device.limits().max_texture_dimension_2d;
+    let skip = pyramid
+        .stored()
+        .iter()
+        .take_while(|l| l.width > limit || l.height > limit)
+        .count()
+        .min(pyramid.stored().len() - 1);
+    let levels = &pyramid.stored()[skip..];
     with_error_scope(device, "uploading the environment", || {
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("equirect pyramid"),
@@ -52,6 +61,7 @@ pub fn upload_equirect_pyramid(
         }
         texture
     })
+    .map(|t| (t, pyramid.first_level + skip as u32))
 }
 
 /// An `Rgba32Float` cube texture (6 array layers) with `mips` levels, usable as a storage
