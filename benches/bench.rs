@@ -192,7 +192,66 @@ fn bake_benchmarks() {
     }
 }
 
+/// Peak resident memory of `splitsum bake` on synthetic 8k×4k and 16k×8k HDR files: the
+/// child's VmHWM (a high-water mark) polled from /proc until it exits.
+fn memory_benchmarks() {
+    println!("\n## Peak memory of a default bake (synthetic HDR, RLE)\n");
+    println!("| input | peak RSS | wall s | result |");
+    println!("|---|---|---|---|");
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench-memory");
+    let _ = std::fs::create_dir_all(&dir);
+    for width in [8192u32, 16384] {
+        let input = dir.join(format!("synthetic_{width}.hdr"));
+        let e = synthetic_equirect(width);
+        if std::fs::write(
+            &input,
+            splitsum::io::hdr::encode(e.width, e.height, &e.data),
+        )
+        .is_err()
+        {
+            continue;
+        }
+        drop(e);
+        let t = Instant::now();
+        let Ok(mut child) = std::process::Command::new(env!("CARGO_BIN_EXE_splitsum"))
+            .args(["bake", "--quiet", "-o"])
+            .arg(dir.join("out"))
+            .arg(&input)
+            .spawn()
+        else {
+            continue;
+        };
+        let status_path = format!("/proc/{}/status", child.id());
+        let mut peak_kb = 0u64;
+        let status = loop {
+            if let Ok(text) = std::fs::read_to_string(&status_path) {
+                if let Some(line) = text.lines().find(|l| l.starts_with("VmHWM:")) {
+                    let kb = line
+                        .split_whitespace()
+                        .nth(1)
+                        .and_then(|v| v.parse().ok())
+                        .unwrap_or(0);
+                    peak_kb = peak_kb.max(kb);
+                }
+            }
+            if let Ok(Some(status)) = child.try_wait() {
+                break status;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        };
+        println!(
+            "| {width}×{} | {:.2} GB | {:.1} | {} |",
+            width / 2,
+            peak_kb as f64 / 1024.0 / 1024.0,
+            t.elapsed().as_secs_f64(),
+            if status.success() { "ok" } else { "FAILED" }
+        );
+        let _ = std::fs::remove_file(&input);
+    }
+}
+
 fn main() {
+    memory_benchmarks();
     bake_benchmarks();
     cubemap_benchmarks();
     let quad = LutQuadrature::default();
