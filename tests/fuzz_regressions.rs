@@ -27,3 +27,11 @@ fn ktx2_with_a_malformed_dfd() {
 fn dds_that_timed_out() {
     check("dds-timeout.dds", splitsum::io::input::decode_dds_cube);
 }
+
+#[test]
+fn ktx2_claiming_a_huge_uncompressed_level() {
+    check(
+        "ktx2-zstd-huge-length.ktx2",
+        splitsum::io::input::decode_ktx2_cube,
+    );
+}

@@ -378,9 +378,18 @@ pub fn decode_ktx2_cube(path: &Path, bytes: &[u8]) -> Result<Cubemap> {
     let data = match h.supercompression_scheme {
         None => level.data.to_vec(),
         Some(::ktx2::SupercompressionScheme::Zstandard) => {
-            let expected = level.uncompressed_byte_length as usize;
-            check_cube_level0(path, F, h.pixel_width, expected, pf)?;
-            zstd::bulk::decompress(level.data, expected).map_err(|e| bad(format!("zstd: {e}")))?
+            // The header's uncompressed length must be exactly level 0's size: it sizes the
+            // decompression buffer, so an absurd value must never reach the allocator.
+            check_dimensions(path, h.pixel_width, h.pixel_width)?;
+            let exact = Cubemap::level_len(h.pixel_width) * pf.texel_bytes() as usize;
+            if level.uncompressed_byte_length != exact as u64 {
+                let (claimed, n, format) =
+                    (level.uncompressed_byte_length, h.pixel_width, pf.name());
+                return Err(bad(format!(
+                    "level 0 claims {claimed} uncompressed bytes; a {n}×{n} {format} cube has {exact}"
+                )));
+            }
+            zstd::bulk::decompress(level.data, exact).map_err(|e| bad(format!("zstd: {e}")))?
         }
         Some(other) => {
             return Err(unsupported(format!(
