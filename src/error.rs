@@ -27,7 +27,7 @@ pub enum Error {
         /// The extension found (empty when there is none).
         extension: String,
         /// The extensions that are supported, comma separated.
-        supported: &'static str,
+        supported: String,
     },
 
     /// Encoding an output file failed (the encoder rejected the data).

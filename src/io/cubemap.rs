@@ -15,7 +15,7 @@ use crate::math::cubemap::{equirect_direction, FACES};
 use crate::{Error, Result};
 
 /// Extensions a cubemap can be written as.
-pub const CUBE_EXTENSIONS: &str = "ktx2, dds, exr, hdr";
+pub const CUBE_EXTENSIONS: &[&str] = &["ktx2", "dds", "exr", "hdr"];
 
 /// Face file suffixes in face order.
 pub const FACE_SUFFIXES: [&str; FACES] = ["px", "nx", "py", "ny", "pz", "nz"];
@@ -55,15 +55,7 @@ impl Default for CubeWriteOptions {
 
 /// Checks `path`'s extension before any work is done.
 pub fn check_cube_path(path: &Path) -> Result<()> {
-    match extension_of(path).as_str() {
-        "ktx2" | "dds" | "exr" | "hdr" => Ok(()),
-        ext => Err(Error::UnsupportedOutputFormat {
-            path: path.to_path_buf(),
-            what: "a cubemap",
-            extension: ext.to_string(),
-            supported: CUBE_EXTENSIONS,
-        }),
-    }
+    super::check_output_extension(path, "a cubemap", CUBE_EXTENSIONS)
 }
 
 /// The files `write_cubemap` would write for `path`.

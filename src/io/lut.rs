@@ -8,7 +8,7 @@ use crate::lut::BrdfLut;
 use crate::{Error, Result};
 
 /// Extensions a LUT can be written as.
-pub const LUT_EXTENSIONS: &str = "png, exr, ktx2, dds";
+pub const LUT_EXTENSIONS: &[&str] = &["png", "exr", "ktx2", "dds"];
 
 /// Options for LUT outputs.
 #[derive(Clone, Copy, Debug, Default)]
@@ -19,15 +19,7 @@ pub struct LutWriteOptions {
 
 /// Checks that `path` names a LUT format, before any work is done.
 pub fn check_lut_path(path: &Path) -> Result<()> {
-    match extension_of(path).as_str() {
-        "png" | "exr" | "ktx2" | "dds" => Ok(()),
-        ext => Err(Error::UnsupportedOutputFormat {
-            path: path.to_path_buf(),
-            what: "a BRDF LUT",
-            extension: ext.to_string(),
-            supported: LUT_EXTENSIONS,
-        }),
-    }
+    super::check_output_extension(path, "a BRDF LUT", LUT_EXTENSIONS)
 }
 
 /// Encodes `lut` for `path`'s extension: `.png` 16-bit RGB (R = A, G = B, B = 0), `.exr`

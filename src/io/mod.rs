@@ -18,6 +18,26 @@ pub use format::{EncodedTexture, PixelFormat};
 
 use std::path::Path;
 
+/// Checks that `path`'s extension is one of `allowed` (what `what` can be written as),
+/// before any work is done.
+pub fn check_output_extension(
+    path: &Path,
+    what: &'static str,
+    allowed: &[&str],
+) -> crate::Result<()> {
+    let ext = extension_of(path);
+    if allowed.contains(&ext.as_str()) {
+        Ok(())
+    } else {
+        Err(crate::Error::UnsupportedOutputFormat {
+            path: path.to_path_buf(),
+            what,
+            extension: ext,
+            supported: allowed.join(", "),
+        })
+    }
+}
+
 /// The lower-cased extension of `path`, or "" when it has none.
 pub fn extension_of(path: &Path) -> String {
     path.extension()
