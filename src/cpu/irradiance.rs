@@ -100,27 +100,49 @@ fn for_each_source_texel(
     }
 }
 
+/// A source texel's exact solid angle and luminance-weighted radiance centroid (its centre
+/// direction when it is black), from the level-0 texels it covers.
+fn texel_centroid(
+    face: u32,
+    i: u32,
+    j: u32,
+    n: u32,
+    children: &[([f32; 3], f32, [f32; 4])],
+) -> ([f32; 3], f32) {
+    let mut moment = [0.0f64; 3];
+    for (d, w, l) in children {
+        let y = (luminance(*l) * w) as f64;
+        for c in 0..3 {
+            moment[c] += y * d[c] as f64;
+        }
+    }
+    let len = (moment[0] * moment[0] + moment[1] * moment[1] + moment[2] * moment[2]).sqrt();
+    let dir = if len > 0.0 {
+        moment.map(|v| (v / len) as f32)
+    } else {
+        cube_texel_direction(face, i as i32, j as i32, n)
+    };
+    (dir, cube_texel_solid_angle(i, j, n))
+}
+
+/// Σ L Ω over a source texel's level-0 texels, per channel.
+fn texel_radiance_sum(children: &[([f32; 3], f32, [f32; 4])]) -> [f64; 3] {
+    let mut lw = [0.0f64; 3];
+    for (_, w, l) in children {
+        for c in 0..3 {
+            lw[c] += (l[c] * w) as f64;
+        }
+    }
+    lw
+}
+
 /// Every texel of mip `m` of `env`, summarised for the exact specular sum.
 pub fn source_texels(env: &Cubemap, m: usize) -> Vec<SourceTexel> {
     let n = env.level_size(m);
     let mut out = Vec::with_capacity(FACES * (n * n) as usize);
     for_each_source_texel(env, m, |face, i, j, children| {
-        let omega = cube_texel_solid_angle(i, j, n);
-        let mut moment = [0.0f64; 3];
-        let mut lw = [0.0f64; 3];
-        for (d, w, l) in children {
-            let y = (luminance(*l) * w) as f64;
-            for c in 0..3 {
-                moment[c] += y * d[c] as f64;
-                lw[c] += (l[c] * w) as f64;
-            }
-        }
-        let len = (moment[0] * moment[0] + moment[1] * moment[1] + moment[2] * moment[2]).sqrt();
-        let dir = if len > 0.0 {
-            moment.map(|v| (v / len) as f32)
-        } else {
-            cube_texel_direction(face, i as i32, j as i32, n)
-        };
+        let (dir, omega) = texel_centroid(face, i, j, n, children);
+        let lw = texel_radiance_sum(children);
         let total: f64 = children.iter().map(|c| c.1 as f64).sum();
         out.push(SourceTexel {
             dir_omega: [dir[0], dir[1], dir[2], omega],
@@ -138,22 +160,18 @@ pub fn source_texels(env: &Cubemap, m: usize) -> Vec<SourceTexel> {
 /// Every texel of mip `m` of `env` as radiance moments, for the irradiance sum.
 pub fn moment_texels(env: &Cubemap, m: usize) -> Vec<MomentTexel> {
     let n = env.level_size(m);
-    let centroids = source_texels(env, m);
     let mut out = Vec::with_capacity(FACES * (n * n) as usize);
-    let mut k = 0;
-    for_each_source_texel(env, m, |_, _, _, children| {
+    for_each_source_texel(env, m, |face, i, j, children| {
+        let (dir, omega) = texel_centroid(face, i, j, n, children);
+        let lw = texel_radiance_sum(children);
         let mut moments = [[0.0f64; 3]; 3];
-        let mut lw = [0.0f64; 3];
         for (d, w, l) in children {
             for c in 0..3 {
-                lw[c] += (l[c] * w) as f64;
                 for a in 0..3 {
                     moments[c][a] += (l[c] * w * d[a]) as f64;
                 }
             }
         }
-        let src = centroids[k];
-        k += 1;
         // Effective cap: a uniform cap of half-angle σ has a mean direction of length
         // (1 + cos σ)/2, so the luminance moment's length sets σ: a texel holding a sun
         // acts as a point, a uniform texel as a cap of its own solid angle.
@@ -165,16 +183,11 @@ pub fn moment_texels(env: &Cubemap, m: usize) -> Vec<MomentTexel> {
                 (m_lum[0] * m_lum[0] + m_lum[1] * m_lum[1] + m_lum[2] * m_lum[2]).sqrt() / l_lum;
             (2.0 * ratio - 1.0).clamp(-1.0, 1.0) as f32
         } else {
-            1.0 - src.dir_omega[3] / (2.0 * PI)
+            1.0 - omega / (2.0 * PI)
         };
         out.push(MomentTexel {
             moments: moments.map(|m| [m[0] as f32, m[1] as f32, m[2] as f32, 0.0]),
-            dir_sin2: [
-                src.dir_omega[0],
-                src.dir_omega[1],
-                src.dir_omega[2],
-                1.0 - cos_sigma * cos_sigma,
-            ],
+            dir_sin2: [dir[0], dir[1], dir[2], 1.0 - cos_sigma * cos_sigma],
             radiance_omega: [lw[0] as f32, lw[1] as f32, lw[2] as f32, 0.0],
         });
     });
