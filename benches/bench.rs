@@ -1,4 +1,6 @@
-//! `cargo bench`: timings and accuracy of the BRDF LUT on both backends, printed as tables.
+//! `cargo bench`: peak memory, bake and cubemap timings, and the BRDF LUT's timings and
+//! accuracy on both backends, printed as tables. `cargo bench --bench bench -- memory`
+//! (or bake, cubemap, lut) runs only those sections.
 //!
 //! CPU seconds come from /proc/self/stat (user + system, all threads), wall seconds from a
 //! monotonic clock. GPU times are measured around the whole kernel call (upload, dispatch,
@@ -196,8 +198,8 @@ fn bake_benchmarks() {
 /// child's VmHWM (a high-water mark) polled from /proc until it exits.
 fn memory_benchmarks() {
     println!("\n## Peak memory of a default bake (synthetic HDR, RLE)\n");
-    println!("| input | peak RSS | wall s | result |");
-    println!("|---|---|---|---|");
+    println!("| input | backend | peak RSS | wall s | result |");
+    println!("|---|---|---|---|---|");
     let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench-memory");
     let _ = std::fs::create_dir_all(&dir);
     for width in [8192u32, 16384] {
@@ -212,48 +214,68 @@ fn memory_benchmarks() {
             continue;
         }
         drop(e);
-        let t = Instant::now();
-        let Ok(mut child) = std::process::Command::new(env!("CARGO_BIN_EXE_splitsum"))
-            .args(["bake", "--quiet", "-o"])
-            .arg(dir.join("out"))
-            .arg(&input)
-            .spawn()
-        else {
-            continue;
-        };
-        let status_path = format!("/proc/{}/status", child.id());
-        let mut peak_kb = 0u64;
-        let status = loop {
-            if let Ok(text) = std::fs::read_to_string(&status_path) {
-                if let Some(line) = text.lines().find(|l| l.starts_with("VmHWM:")) {
-                    let kb = line
-                        .split_whitespace()
-                        .nth(1)
-                        .and_then(|v| v.parse().ok())
-                        .unwrap_or(0);
-                    peak_kb = peak_kb.max(kb);
+        for backend in ["auto", "cpu"] {
+            let t = Instant::now();
+            let Ok(mut child) = std::process::Command::new(env!("CARGO_BIN_EXE_splitsum"))
+                .args(["bake", "--quiet", "--backend", backend, "-o"])
+                .arg(dir.join("out"))
+                .arg(&input)
+                .spawn()
+            else {
+                continue;
+            };
+            let status_path = format!("/proc/{}/status", child.id());
+            let mut peak_kb = 0u64;
+            let status = loop {
+                if let Ok(text) = std::fs::read_to_string(&status_path) {
+                    if let Some(line) = text.lines().find(|l| l.starts_with("VmHWM:")) {
+                        let kb = line
+                            .split_whitespace()
+                            .nth(1)
+                            .and_then(|v| v.parse().ok())
+                            .unwrap_or(0);
+                        peak_kb = peak_kb.max(kb);
+                    }
                 }
-            }
-            if let Ok(Some(status)) = child.try_wait() {
-                break status;
-            }
-            std::thread::sleep(std::time::Duration::from_millis(20));
-        };
-        println!(
-            "| {width}×{} | {:.2} GB | {:.1} | {} |",
-            width / 2,
-            peak_kb as f64 / 1024.0 / 1024.0,
-            t.elapsed().as_secs_f64(),
-            if status.success() { "ok" } else { "FAILED" }
-        );
+                if let Ok(Some(status)) = child.try_wait() {
+                    break status;
+                }
+                std::thread::sleep(std::time::Duration::from_millis(20));
+            };
+            println!(
+                "| {width}×{} | {backend} | {:.2} GB | {:.1} | {} |",
+                width / 2,
+                peak_kb as f64 / 1024.0 / 1024.0,
+                t.elapsed().as_secs_f64(),
+                if status.success() { "ok" } else { "FAILED" }
+            );
+        }
         let _ = std::fs::remove_file(&input);
     }
 }
 
 fn main() {
-    memory_benchmarks();
-    bake_benchmarks();
-    cubemap_benchmarks();
+    // `cargo bench --bench bench -- memory lut` runs only the named sections.
+    let wanted: Vec<String> = std::env::args()
+        .skip(1)
+        .filter(|a| !a.starts_with('-'))
+        .collect();
+    let run = |name: &str| wanted.is_empty() || wanted.iter().any(|w| w == name);
+    if run("memory") {
+        memory_benchmarks();
+    }
+    if run("bake") {
+        bake_benchmarks();
+    }
+    if run("cubemap") {
+        cubemap_benchmarks();
+    }
+    if run("lut") {
+        lut_benchmarks();
+    }
+}
+
+fn lut_benchmarks() {
     let quad = LutQuadrature::default();
     println!("\n## BRDF LUT timings\n");
     println!("| size | backend | wall s (median) | CPU s | notes |");

@@ -12,7 +12,7 @@ use crate::cpu::sh_project::{sh_project, ShCoefficients};
 use crate::environment::Cubemap;
 use crate::io::atomic::write_all_atomic;
 use crate::io::cubemap::{encode_texture, to_cross};
-use crate::io::input::{load_environment, InputOptions};
+use crate::io::input::{load_environment, InputOptions, LoadedEnvironment};
 use crate::io::lut::{encode_lut, LutWriteOptions};
 use crate::io::{dds, exr, ktx2, PixelFormat};
 use crate::lut::BrdfLut;
@@ -310,10 +310,14 @@ pub fn bake(
     };
 
     let done = timed(Stage::Load, progress);
-    let loaded = load_environment(
+    let LoadedEnvironment {
+        env: source,
+        warnings,
+    } = load_environment(
         input,
         &InputOptions {
             exposure_ev: opts.exposure_ev,
+            cube_size: Some(opts.specular_size),
         },
     )?;
     done(&mut timings);
@@ -321,11 +325,12 @@ pub fn bake(
     let done = timed(Stage::Cubemap, progress);
     let env = environment_to_cube(
         backend,
-        &loaded.env,
+        &source,
         opts.specular_size,
         true,
         opts.rotate_degrees,
     )?;
+    drop(source);
     done(&mut timings);
 
     let done = timed(Stage::Specular, progress);
@@ -379,7 +384,7 @@ pub fn bake(
         out_dir: dir,
         outputs: out.outputs,
         timings,
-        warnings: loaded.warnings,
+        warnings,
     })
 }
 

@@ -92,6 +92,7 @@ fn run_cubemap(args: CubemapArgs) -> anyhow::Result<()> {
     }
     let opts = InputOptions {
         exposure_ev: args.input_opts.exposure,
+        cube_size: args.size,
     };
     let start = Instant::now();
     let loaded = match &args.input {

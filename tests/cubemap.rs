@@ -320,3 +320,50 @@ fn inputs_beyond_the_texture_limit_are_reduced() {
         }
     }
 }
+
+/// Issue 5 (memory): with `InputOptions::cube_size` an equirect is reduced while it is
+/// read (row by row for .hdr, right after decoding for .exr) to the coarsest pyramid level
+/// the cube samples. The cube must match the one converted from the full-size image: the
+/// kept levels are bit-identical (tested in `environment::pyramid`), only the per-sample
+/// level selection is computed from the reduced height, which moves a trilinear weight by
+/// float rounding. Bound 1e-5 relative to the texel: a few ulps of that weight.
+#[test]
+fn reducing_on_load_gives_the_same_cube() {
+    let inputs = [
+        std::path::PathBuf::from("tests/data/venice_sunset_1k.hdr"),
+        std::path::PathBuf::from("../shared/data/env/venice_sunset_1k_f32_piz.exr"),
+    ];
+    let backend = CpuBackend;
+    for path in inputs.iter().filter(|p| p.exists()) {
+        let full = load_environment(path, &InputOptions::default()).unwrap();
+        for size in [8u32, 32] {
+            let opts = InputOptions {
+                cube_size: Some(size),
+                ..Default::default()
+            };
+            let reduced = load_environment(path, &opts).unwrap();
+            let (Environment::Equirect(f), Environment::Equirect(r)) = (&full.env, &reduced.env)
+            else {
+                panic!("{} is not an equirect", path.display());
+            };
+            let levels = splitsum::io::input::reduction_levels(f.height, size);
+            assert!(levels >= 1, "{size}: only {levels} halvings");
+            assert_eq!(r.height, f.height >> levels, "{}", path.display());
+            let a = environment_to_cube(&backend, &full.env, size, true, 30.0).unwrap();
+            let b = environment_to_cube(&backend, &reduced.env, size, true, 30.0).unwrap();
+            let mut worst = 0.0f32;
+            for (la, lb) in a.levels.iter().zip(&b.levels) {
+                for (ta, tb) in la.iter().zip(lb) {
+                    for c in 0..3 {
+                        worst = worst.max((ta[c] - tb[c]).abs() / ta[c].abs().max(1e-6));
+                    }
+                }
+            }
+            assert!(worst <= 1e-5, "{} at {size}: {worst}", path.display());
+            eprintln!(
+                "{} at {size}: worst relative difference {worst:.2e}",
+                path.display()
+            );
+        }
+    }
+}

@@ -5,7 +5,8 @@
 use super::limits::check_dimensions;
 use crate::environment::Equirect;
 use crate::{Error, Result};
-use std::path::Path;
+use std::io::Read;
+use std::path::{Path, PathBuf};
 
 const FORMAT: &str = "Radiance HDR";
 
@@ -15,7 +16,7 @@ pub fn rgbe_to_rgb(p: [u8; 4]) -> [f32; 3] {
     if p[3] == 0 {
         return [0.0; 3];
     }
-    let f = (p[3] as f32 - 136.0).exp2();
+    let f = exponent_scale()[p[3] as usize];
     [
         (p[0] as f32 + 0.5) * f,
         (p[1] as f32 + 0.5) * f,
@@ -40,101 +41,220 @@ pub fn rgb_to_rgbe(c: [f32; 3]) -> [u8; 4] {
     [q(c[0]), q(c[1]), q(c[2]), (e + 128) as u8]
 }
 
-struct Cursor<'a> {
-    data: &'a [u8],
+/// 2^(e − 136) for every exponent byte (index 0, black, is unused).
+fn exponent_scale() -> &'static [f32; 256] {
+    static TABLE: std::sync::OnceLock<[f32; 256]> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| std::array::from_fn(|e| (e as f32 - 136.0).exp2()))
+}
+
+/// Longest header line accepted (a guard against binary garbage without newlines).
+const MAX_HEADER_LINE: usize = 64 * 1024;
+
+/// A buffered byte reader: the header and the run-length scanlines are read a byte at a
+/// time, so this keeps that to a bounds check.
+struct ByteSource<R> {
+    inner: R,
+    buf: Box<[u8]>,
     pos: usize,
+    len: usize,
+    error: Option<std::io::Error>,
 }
 
-impl Cursor<'_> {
-    fn byte(&mut self) -> Option<u8> {
-        let b = *self.data.get(self.pos)?;
-        self.pos += 1;
-        Some(b)
-    }
-    fn line(&mut self) -> Option<&[u8]> {
-        let start = self.pos;
-        let len = self.data[start..].iter().position(|&b| b == b'\n')?;
-        self.pos = start + len + 1;
-        Some(&self.data[start..start + len])
-    }
-}
-
-/// Parses a `.hdr` file's bytes; `path` is only used in errors.
-pub fn decode(path: &Path, bytes: &[u8]) -> Result<Equirect> {
-    let bad = |message: String| Error::Decode {
-        path: path.to_path_buf(),
-        format: FORMAT,
-        message,
-    };
-    let mut cur = Cursor {
-        data: bytes,
-        pos: 0,
-    };
-    let magic = cur
-        .line()
-        .ok_or_else(|| bad("empty or missing header".into()))?;
-    if !(magic.starts_with(b"#?RADIANCE")
-        || magic.starts_with(b"#?RGBE")
-        || magic.starts_with(b"#?"))
-    {
-        return Err(bad("missing the '#?RADIANCE' signature".into()));
-    }
-    loop {
-        let line = cur
-            .line()
-            .ok_or_else(|| bad("header has no end (no blank line)".into()))?;
-        if line.is_empty() {
-            break;
+impl<R: Read> ByteSource<R> {
+    fn new(inner: R) -> Self {
+        ByteSource {
+            inner,
+            buf: vec![0; 1 << 18].into_boxed_slice(),
+            pos: 0,
+            len: 0,
+            error: None,
         }
-        if let Some(fmt) = line.strip_prefix(b"FORMAT=") {
-            let fmt = String::from_utf8_lossy(fmt).trim().to_string();
-            if fmt != "32-bit_rle_rgbe" {
-                return Err(Error::UnsupportedInput {
-                    path: path.to_path_buf(),
-                    message: format!(
-                        "Radiance pixel format '{fmt}' is not supported (only 32-bit_rle_rgbe)"
-                    ),
-                });
+    }
+
+    /// Refills the buffer; false at the end of the input or on an I/O error (kept).
+    #[cold]
+    fn refill(&mut self) -> bool {
+        loop {
+            match self.inner.read(&mut self.buf) {
+                Ok(0) => return false,
+                Ok(n) => {
+                    (self.pos, self.len) = (0, n);
+                    return true;
+                }
+                Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+                Err(e) => {
+                    self.error = Some(e);
+                    return false;
+                }
             }
         }
     }
-    let res = cur
-        .line()
-        .ok_or_else(|| bad("missing the resolution line".into()))?;
-    let res = String::from_utf8_lossy(res).to_string();
-    let parts: Vec<&str> = res.split_whitespace().collect();
-    let (height, width) = match parts.as_slice() {
-        ["-Y", h, "+X", w] => (
-            h.parse::<u32>()
-                .map_err(|_| bad(format!("bad height in '{res}'")))?,
-            w.parse::<u32>()
-                .map_err(|_| bad(format!("bad width in '{res}'")))?,
-        ),
-        [_, _, _, _] => {
-            return Err(Error::UnsupportedInput {
-                path: path.to_path_buf(),
-                message: format!(
+
+    #[inline]
+    fn byte(&mut self) -> Option<u8> {
+        if self.pos == self.len && !self.refill() {
+            return None;
+        }
+        let b = self.buf[self.pos];
+        self.pos += 1;
+        Some(b)
+    }
+
+    /// The next line without its '\n'; None at the end of the input, or when the line is
+    /// longer than [`MAX_HEADER_LINE`].
+    fn line(&mut self) -> Option<Vec<u8>> {
+        let mut line = Vec::new();
+        loop {
+            match self.byte()? {
+                b'\n' => return Some(line),
+                _ if line.len() == MAX_HEADER_LINE => return None,
+                b => line.push(b),
+            }
+        }
+    }
+}
+
+/// An incremental `.hdr` reader: [`HdrReader::new`] parses the header, then
+/// [`HdrReader::read_rows`] decodes scanlines top to bottom, so a caller can reduce a
+/// large image while it is read instead of holding it whole.
+pub struct HdrReader<R> {
+    path: PathBuf,
+    src: ByteSource<R>,
+    width: u32,
+    height: u32,
+    next_row: u32,
+    scan: Vec<[u8; 4]>,
+}
+
+impl<R: Read> HdrReader<R> {
+    /// Parses the header from `reader` (`path` is only used in errors) and checks the
+    /// dimensions against the limits before anything is allocated.
+    pub fn new(path: &Path, reader: R) -> Result<Self> {
+        let mut src = ByteSource::new(reader);
+        let bad = |message: String| Error::Decode {
+            path: path.to_path_buf(),
+            format: FORMAT,
+            message,
+        };
+        let io_or = |src: &mut ByteSource<R>, message: &str| match src.error.take() {
+            Some(e) => Error::io(path, e),
+            None => bad(message.into()),
+        };
+        let magic = src
+            .line()
+            .ok_or_else(|| io_or(&mut src, "empty or missing header"))?;
+        if !magic.starts_with(b"#?") {
+            return Err(bad("missing the '#?RADIANCE' signature".into()));
+        }
+        loop {
+            let line = src
+                .line()
+                .ok_or_else(|| io_or(&mut src, "header has no end (no blank line)"))?;
+            if line.is_empty() {
+                break;
+            }
+            if let Some(fmt) = line.strip_prefix(b"FORMAT=") {
+                let fmt = String::from_utf8_lossy(fmt).trim().to_string();
+                if fmt != "32-bit_rle_rgbe" {
+                    return Err(Error::UnsupportedInput {
+                        path: path.to_path_buf(),
+                        message: format!(
+                            "Radiance pixel format '{fmt}' is not supported (only 32-bit_rle_rgbe)"
+                        ),
+                    });
+                }
+            }
+        }
+        let res = src
+            .line()
+            .ok_or_else(|| io_or(&mut src, "missing the resolution line"))?;
+        let res = String::from_utf8_lossy(&res).to_string();
+        let parts: Vec<&str> = res.split_whitespace().collect();
+        let (height, width) = match parts.as_slice() {
+            ["-Y", h, "+X", w] => (
+                h.parse::<u32>()
+                    .map_err(|_| bad(format!("bad height in '{res}'")))?,
+                w.parse::<u32>()
+                    .map_err(|_| bad(format!("bad width in '{res}'")))?,
+            ),
+            [_, _, _, _] => {
+                return Err(Error::UnsupportedInput {
+                    path: path.to_path_buf(),
+                    message: format!(
                     "Radiance orientation '{res}' is not supported (only the standard '-Y H +X W')"
                 ),
-            })
+                })
+            }
+            _ => return Err(bad(format!("bad resolution line '{res}'"))),
+        };
+        check_dimensions(path, width, height)?;
+        Ok(HdrReader {
+            path: path.to_path_buf(),
+            src,
+            width,
+            height,
+            next_row: 0,
+            scan: vec![[0u8; 4]; width as usize],
+        })
+    }
+
+    /// Width in texels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in texels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Decodes the next `out.len() / width` scanlines (at most the rows left) into linear
+    /// RGB.
+    pub fn read_rows(&mut self, out: &mut [[f32; 3]]) -> Result<()> {
+        let w = self.width as usize;
+        for row in out.chunks_exact_mut(w) {
+            if self.next_row == self.height {
+                break;
+            }
+            let y = self.next_row;
+            if let Err(e) = read_scanline(&mut self.src, &mut self.scan) {
+                let message = match e {
+                    ScanError::Truncated => {
+                        if let Some(io) = self.src.error.take() {
+                            return Err(Error::io(&self.path, io));
+                        }
+                        format!("truncated at scanline {y} of {}", self.height)
+                    }
+                    ScanError::Corrupt(m) => format!("scanline {y}: {m}"),
+                };
+                return Err(Error::Decode {
+                    path: self.path.clone(),
+                    format: FORMAT,
+                    message,
+                });
+            }
+            for (t, &p) in row.iter_mut().zip(&self.scan) {
+                *t = rgbe_to_rgb(p);
+            }
+            self.next_row += 1;
         }
-        _ => return Err(bad(format!("bad resolution line '{res}'"))),
-    };
-    check_dimensions(path, width, height)?;
-    let w = width as usize;
-    let mut data = Vec::with_capacity(w * height as usize);
-    let mut scan = vec![[0u8; 4]; w];
-    let truncated = |y: u32| bad(format!("truncated at scanline {y} of {height}"));
-    for y in 0..height {
-        read_scanline(&mut cur, &mut scan).map_err(|e| match e {
-            ScanError::Truncated => truncated(y),
-            ScanError::Corrupt(m) => bad(format!("scanline {y}: {m}")),
-        })?;
-        data.extend(scan.iter().map(|&p| rgbe_to_rgb(p)));
+        Ok(())
+    }
+}
+
+/// Parses a whole `.hdr` file held in memory; `path` is only used in errors.
+pub fn decode(path: &Path, bytes: &[u8]) -> Result<Equirect> {
+    let mut reader = HdrReader::new(path, bytes)?;
+    let (w, h) = (reader.width() as usize, reader.height() as usize);
+    let mut data = Vec::new();
+    let mut row = vec![[0.0f32; 3]; w];
+    for _ in 0..h {
+        reader.read_rows(&mut row)?;
+        data.extend_from_slice(&row);
     }
     Ok(Equirect {
-        width,
-        height,
+        width: w as u32,
+        height: h as u32,
         data,
     })
 }
@@ -144,9 +264,12 @@ enum ScanError {
     Corrupt(String),
 }
 
-fn read_scanline(cur: &mut Cursor<'_>, scan: &mut [[u8; 4]]) -> std::result::Result<(), ScanError> {
+fn read_scanline<R: Read>(
+    cur: &mut ByteSource<R>,
+    scan: &mut [[u8; 4]],
+) -> std::result::Result<(), ScanError> {
     let w = scan.len();
-    let b = |cur: &mut Cursor<'_>| cur.byte().ok_or(ScanError::Truncated);
+    let b = |cur: &mut ByteSource<R>| cur.byte().ok_or(ScanError::Truncated);
     let first = [b(cur)?, b(cur)?, b(cur)?, b(cur)?];
     if (8..0x8000).contains(&w) && first[0] == 2 && first[1] == 2 && first[2] & 0x80 == 0 {
         // New-style RLE: four channel planes, each a sequence of runs and literals.

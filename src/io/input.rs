@@ -8,7 +8,8 @@ use std::path::{Path, PathBuf};
 use super::format::PixelFormat;
 use super::limits::check_dimensions;
 use super::{exr, extension_of, hdr, ldr};
-use crate::environment::{Cubemap, Environment, Equirect};
+use crate::cpu::equirect_to_cube::EquirectToCubeParams;
+use crate::environment::{Cubemap, Environment, Equirect, EquirectReducer};
 use crate::math::cubemap::FACES;
 use crate::{Error, Result};
 
@@ -41,6 +42,57 @@ pub const VERTICAL_CROSS: [(u32, u32); FACES] = [(2, 1), (0, 1), (1, 0), (1, 2),
 pub struct InputOptions {
     /// Exposure in EV: radiance is multiplied by 2^EV.
     pub exposure_ev: f32,
+    /// The face size of the cube the input will be converted to, when known. An equirect
+    /// is then reduced, as it is read, to the coarsest level of its area-filtered pyramid
+    /// that such a cube still samples ([`reduction_levels`]): a `.hdr` is decoded row by
+    /// row into that level and never held at full size; other formats are decoded whole
+    /// and reduced at once. The conversion's result is the same either way, up to the
+    /// rounding of its per-sample level selection.
+    pub cube_size: Option<u32>,
+}
+
+/// How many times an equirect `height` rows high can be halved before a `face_size` cube
+/// would sample finer than what is kept: the conversion's finest needed pyramid level
+/// (see [`EquirectToCubeParams`]).
+pub fn reduction_levels(height: u32, face_size: u32) -> u32 {
+    EquirectToCubeParams::new(face_size, height, 0.0).base_level
+}
+
+/// Texels decoded per batch when streaming a `.hdr` (about 12 MiB of f32 RGB).
+const STREAM_BATCH_TEXELS: usize = 1 << 20;
+
+/// Reads a `.hdr` row by row. An equirect is reduced by
+/// [`reduction_levels`] while it is read (when `opts.cube_size` is set); anything else
+/// is returned whole. RGBE holds only finite, non-negative values, so there is nothing to
+/// sanitise; the exposure is applied to each batch of rows before it is reduced.
+fn read_hdr_streaming(path: &Path, opts: &InputOptions) -> Result<Equirect> {
+    let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+    if file.metadata().map(|m| m.len() == 0).unwrap_or(false) {
+        return Err(Error::Decode {
+            path: path.to_path_buf(),
+            format: "input",
+            message: "the file is empty".into(),
+        });
+    }
+    let mut reader = hdr::HdrReader::new(path, file)?;
+    let (w, h) = (reader.width(), reader.height());
+    let levels = match opts.cube_size {
+        Some(size) if w == 2 * h => reduction_levels(h, size),
+        _ => 0,
+    };
+    let mut reducer = EquirectReducer::new(w, h, levels);
+    let rows_per_batch = (STREAM_BATCH_TEXELS / w as usize).max(1);
+    let mut batch = vec![[0.0f32; 3]; rows_per_batch * w as usize];
+    let mut y = 0;
+    while y < h {
+        let n = (rows_per_batch as u32).min(h - y);
+        let rows = &mut batch[..(n * w) as usize];
+        reader.read_rows(rows)?;
+        apply_exposure(rows, opts)?;
+        reducer.push(rows);
+        y += n;
+    }
+    Ok(reducer.finish())
 }
 
 /// A loaded environment with the warnings its loading produced.
@@ -190,9 +242,22 @@ pub fn load_environment(path: &Path, opts: &InputOptions) -> Result<LoadedEnviro
             warnings,
         });
     }
-    let mut img = read_image(path)?;
-    sanitize_with_warning(path, &mut img.data, &mut warnings);
-    apply_exposure(&mut img.data, opts)?;
+    let img = if ext == "hdr" {
+        read_hdr_streaming(path, opts)?
+    } else {
+        let mut img = read_image(path)?;
+        sanitize_with_warning(path, &mut img.data, &mut warnings);
+        apply_exposure(&mut img.data, opts)?;
+        match opts.cube_size {
+            Some(size) if img.width == 2 * img.height => {
+                let mut reducer =
+                    EquirectReducer::new(img.width, img.height, reduction_levels(img.height, size));
+                reducer.push_all(&img.data);
+                reducer.finish()
+            }
+            _ => img,
+        }
+    };
     let env = environment_from_image(path, img)?;
     Ok(LoadedEnvironment { env, warnings })
 }

@@ -1,0 +1,94 @@
+//! In-memory environments: equirectangular images (with an energy-preserving mip pyramid,
+//! see [`pyramid`]) and cubemaps (with mip chains), both linear RGB radiance.
+
+mod pyramid;
+
+pub use pyramid::{
+    prefilter_latitude, pyramid_level_count, EquirectPyramid, EquirectReducer, RowDownsampler,
+};
+
+use crate::math::cubemap::FACES;
+
+/// A linear-RGB equirectangular image, rows top (+Y) to bottom.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Equirect {
+    /// Width in texels.
+    pub width: u32,
+    /// Height in texels.
+    pub height: u32,
+    /// Row-major RGB radiance.
+    pub data: Vec<[f32; 3]>,
+}
+
+impl Equirect {
+    /// Texel (x, y).
+    pub fn get(&self, x: u32, y: u32) -> [f32; 3] {
+        self.data[(y * self.width + x) as usize]
+    }
+
+    /// Solid angle of one texel of row `y` (all texels of a row are equal):
+    /// (2π / W) · (cos θ_top − cos θ_bottom).
+    pub fn row_solid_angle(&self, y: u32) -> f64 {
+        let h = self.height as f64;
+        let pi = std::f64::consts::PI;
+        2.0 * pi / self.width as f64 * ((pi * y as f64 / h).cos() - (pi * (y + 1) as f64 / h).cos())
+    }
+
+    /// Half-size copy (floor, at least 1×1) by an exact area filter: every target texel is
+    /// the solid-angle-weighted mean of the source area it covers (fractional overlaps
+    /// included), so ∫ L dω is the same at every level. Streams the rows through a
+    /// [`RowDownsampler`], so the only extra memory is the result and a few rows.
+    pub fn downsample(&self) -> Equirect {
+        let mut reducer = EquirectReducer::new(self.width, self.height, 1);
+        reducer.push_all(&self.data);
+        reducer.finish()
+    }
+}
+
+/// A cubemap with a mip chain: `levels[m]` holds the 6 faces (+X, −X, +Y, −Y, +Z, −Z) of
+/// size `size >> m`, face-major, rows top to bottom, RGBA (A = 1).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cubemap {
+    /// Edge of level 0 in texels.
+    pub size: u32,
+    /// Mip levels, largest first.
+    pub levels: Vec<Vec<[f32; 4]>>,
+}
+
+impl Cubemap {
+    /// Edge of mip `m`.
+    pub fn level_size(&self, m: usize) -> u32 {
+        (self.size >> m).max(1)
+    }
+
+    /// Texel (i, j) of `face` at mip `m`.
+    pub fn texel(&self, m: usize, face: u32, i: u32, j: u32) -> [f32; 4] {
+        let n = self.level_size(m);
+        self.levels[m][((face * n + j) * n + i) as usize]
+    }
+
+    /// Texels of one face at mip `m`.
+    pub fn face(&self, m: usize, face: usize) -> &[[f32; 4]] {
+        let n = self.level_size(m) as usize;
+        &self.levels[m][face * n * n..(face + 1) * n * n]
+    }
+
+    /// Number of levels in a full chain down to 1×1: log2(size) + 1.
+    pub fn full_mip_count(size: u32) -> u32 {
+        32 - size.leading_zeros()
+    }
+
+    /// Texels per level for `FACES` faces of edge `n`.
+    pub fn level_len(n: u32) -> usize {
+        FACES * (n as usize) * (n as usize)
+    }
+}
+
+/// An environment as loaded from a file.
+#[derive(Clone, Debug)]
+pub enum Environment {
+    /// An equirectangular (latitude-longitude) image.
+    Equirect(Equirect),
+    /// A cubemap (from face files, a cross, or a KTX2/DDS cubemap).
+    Cube(Cubemap),
+}
