@@ -197,23 +197,31 @@ fn bake_benchmarks() {
 /// Peak resident memory of `splitsum bake` on synthetic 8k×4k and 16k×8k HDR files: the
 /// child's VmHWM (a high-water mark) polled from /proc until it exits.
 fn memory_benchmarks() {
-    println!("\n## Peak memory of a default bake (synthetic HDR, RLE)\n");
+    println!("\n## Peak memory of a default bake (synthetic .hdr with RLE, .exr float32 as splitsum writes it)\n");
     println!("| input | backend | peak RSS | wall s | result |");
     println!("|---|---|---|---|---|");
     let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench-memory");
     let _ = std::fs::create_dir_all(&dir);
-    for width in [8192u32, 16384] {
-        let input = dir.join(format!("synthetic_{width}.hdr"));
+    for (width, ext) in [
+        (8192u32, "hdr"),
+        (16384, "hdr"),
+        (8192, "exr"),
+        (16384, "exr"),
+    ] {
+        let input = dir.join(format!("synthetic_{width}.{ext}"));
         let e = synthetic_equirect(width);
-        if std::fs::write(
-            &input,
-            splitsum::io::hdr::encode(e.width, e.height, &e.data),
-        )
-        .is_err()
-        {
+        let bytes = if ext == "hdr" {
+            splitsum::io::hdr::encode(e.width, e.height, &e.data)
+        } else {
+            match splitsum::io::exr::encode_rgb32(e.width, e.height, &e.data) {
+                Ok(b) => b,
+                Err(_) => continue,
+            }
+        };
+        drop(e);
+        if std::fs::write(&input, bytes).is_err() {
             continue;
         }
-        drop(e);
         for backend in ["auto", "cpu"] {
             let t = Instant::now();
             let Ok(mut child) = std::process::Command::new(env!("CARGO_BIN_EXE_splitsum"))
@@ -243,7 +251,7 @@ fn memory_benchmarks() {
                 std::thread::sleep(std::time::Duration::from_millis(20));
             };
             println!(
-                "| {width}×{} | {backend} | {:.2} GB | {:.1} | {} |",
+                "| {width}×{} .{ext} | {backend} | {:.2} GB | {:.1} | {} |",
                 width / 2,
                 peak_kb as f64 / 1024.0 / 1024.0,
                 t.elapsed().as_secs_f64(),

@@ -1,4 +1,5 @@
-//! OpenEXR writer for float32 images with named channels.
+//! OpenEXR reader (whole, or streamed row by row into a [`RowSink`]) and writer for
+//! float32 images with named channels.
 
 use std::io::Cursor;
 
@@ -49,22 +50,27 @@ pub fn encode_rgb32(
     Ok(out.into_inner())
 }
 
-/// Reads the first layer's R, G and B channels (half, float or uint) at full resolution.
-/// The header is read first, so the size is checked before any pixel is allocated and an
-/// unsupported compression is named in the error.
-pub fn decode(path: &std::path::Path, bytes: &[u8]) -> crate::Result<crate::environment::Equirect> {
+/// Receives an image's rows, top to bottom, in batches of whole rows.
+pub trait RowSink {
+    /// Takes the next rows (a multiple of the width); returns false to stop caring about
+    /// the rest (the caller will read the file another way).
+    fn rows(&mut self, rows: &mut [[f32; 3]]) -> bool;
+}
+
+/// Width, height and compression of an EXR's first layer, after checking its size and
+/// that it has R, G and B channels (nothing is allocated for pixels yet).
+fn check_header(
+    path: &std::path::Path,
+    reader: impl std::io::Read + std::io::Seek,
+) -> crate::Result<(usize, usize, Compression, usize)> {
     use crate::Error;
-    let bad = |message: String| Error::Decode {
+    let meta = exr::meta::MetaData::read_from_buffered(reader, false)
+        .map_err(|e| decode_error(path, e))?;
+    let header = meta.headers.first().ok_or_else(|| Error::Decode {
         path: path.to_path_buf(),
         format: "OpenEXR",
-        message,
-    };
-    let meta = exr::meta::MetaData::read_from_buffered(Cursor::new(bytes), false)
-        .map_err(|e| bad(e.to_string()))?;
-    let header = meta
-        .headers
-        .first()
-        .ok_or_else(|| bad("no layers".into()))?;
+        message: "no layers".into(),
+    })?;
     let size = header.layer_size;
     super::limits::check_dimensions(path, size.0 as u32, size.1 as u32)?;
     let names: Vec<String> = header
@@ -84,8 +90,41 @@ pub fn decode(path: &std::path::Path, bytes: &[u8]) -> crate::Result<crate::envi
             });
         }
     }
-    let compression = header.compression;
-    let (w, h) = (size.0, size.1);
+    let block_rows = match header.blocks {
+        exr::meta::BlockDescription::ScanLines => header.compression.scan_lines_per_block(),
+        exr::meta::BlockDescription::Tiles(t) => t.tile_size.y(),
+    };
+    Ok((size.0, size.1, header.compression, block_rows.max(1)))
+}
+
+fn decode_error(path: &std::path::Path, e: exr::error::Error) -> crate::Error {
+    crate::Error::Decode {
+        path: path.to_path_buf(),
+        format: "OpenEXR",
+        message: e.to_string(),
+    }
+}
+
+/// Maps a pixel-reading error: an unsupported compression or feature is named.
+fn read_error(
+    path: &std::path::Path,
+    compression: Compression,
+    e: exr::error::Error,
+) -> crate::Error {
+    match e {
+        exr::error::Error::NotSupported(what) => crate::Error::UnsupportedInput {
+            path: path.to_path_buf(),
+            message: format!("OpenEXR {compression} compression or feature not supported: {what}"),
+        },
+        other => decode_error(path, other),
+    }
+}
+
+/// Reads the first layer's R, G and B channels (half, float or uint) at full resolution.
+/// The header is read first, so the size is checked before any pixel is allocated and an
+/// unsupported compression is named in the error.
+pub fn decode(path: &std::path::Path, bytes: &[u8]) -> crate::Result<crate::environment::Equirect> {
+    let (w, h, compression, _) = check_header(path, Cursor::new(bytes))?;
     let image = read()
         .no_deep_data()
         .largest_resolution_level()
@@ -99,18 +138,196 @@ pub fn decode(path: &std::path::Path, bytes: &[u8]) -> crate::Result<crate::envi
         .all_attributes()
         .non_parallel()
         .from_buffered(Cursor::new(bytes))
-        .map_err(|e| match e {
-            exr::error::Error::NotSupported(what) => Error::UnsupportedInput {
-                path: path.to_path_buf(),
-                message: format!(
-                    "OpenEXR {compression} compression or feature not supported: {what}"
-                ),
-            },
-            other => bad(other.to_string()),
-        })?;
+        .map_err(|e| read_error(path, compression, e))?;
     Ok(crate::environment::Equirect {
         width: w as u32,
         height: h as u32,
         data: image.layer_data.channel_data.pixels,
     })
+}
+
+/// Collects pixels as the decoder delivers them into a band of whole rows (a multiple of
+/// the block height) and hands each full band to a [`RowSink`]. Blocks may arrive in any
+/// order within the band (tiles of one tile row); a pixel outside the current band means
+/// the file is not stored top to bottom, and streaming stops.
+struct RowBatcher<S> {
+    sink: Option<S>,
+    width: usize,
+    height: usize,
+    band: Vec<[f32; 3]>,
+    band_rows: usize,
+    band_start: usize,
+    filled: usize,
+    in_order: bool,
+}
+
+impl<S: RowSink> RowBatcher<S> {
+    fn rows_in_band(&self) -> usize {
+        self.band_rows.min(self.height - self.band_start)
+    }
+
+    fn set(&mut self, pos: Vec2<usize>, texel: [f32; 3]) {
+        let (x, y) = (pos.x(), pos.y());
+        if !self.in_order || x >= self.width {
+            self.in_order = false;
+            return;
+        }
+        if y < self.band_start || y >= self.band_start + self.rows_in_band() {
+            self.in_order = false;
+            return;
+        }
+        self.band[(y - self.band_start) * self.width + x] = texel;
+        self.filled += 1;
+        if self.filled == self.rows_in_band() * self.width {
+            let n = self.filled;
+            if let Some(sink) = &mut self.sink {
+                if !sink.rows(&mut self.band[..n]) {
+                    self.in_order = false;
+                }
+            }
+            self.band[..n].fill([0.0; 3]);
+            self.band_start += self.rows_in_band();
+            self.filled = 0;
+        }
+    }
+}
+
+/// The info [`decode_streaming`] needs before it reads pixels.
+#[derive(Clone, Copy, Debug)]
+pub struct ExrInfo {
+    /// Width of the first layer.
+    pub width: u32,
+    /// Height of the first layer.
+    pub height: u32,
+    compression: Compression,
+    /// Rows per block: the scanlines of one compressed block, or the tile height.
+    block_rows: usize,
+}
+
+/// Reads and checks the header of an EXR file (see [`decode`]).
+pub fn read_info(
+    path: &std::path::Path,
+    reader: impl std::io::Read + std::io::Seek,
+) -> crate::Result<ExrInfo> {
+    let (w, h, compression, block_rows) = check_header(path, reader)?;
+    Ok(ExrInfo {
+        width: w as u32,
+        height: h as u32,
+        compression,
+        block_rows,
+    })
+}
+
+/// Decodes the first layer like [`decode`] but hands its rows to `sink` in bands of
+/// about `batch_texels` texels (whole blocks) instead of holding the image. Blocks are
+/// decompressed one at a time in file order, so a file stored top to bottom (INCREASING_Y
+/// scanlines, or tiles row of tiles by row of tiles) streams; for any other order, or when
+/// the sink returns false, the result is `None` and the caller reads the file whole.
+pub fn decode_streaming<S: RowSink>(
+    path: &std::path::Path,
+    info: ExrInfo,
+    reader: impl std::io::Read + std::io::Seek,
+    sink: S,
+    batch_texels: usize,
+) -> crate::Result<Option<S>> {
+    let (w, h) = (info.width as usize, info.height as usize);
+    let band_rows = (batch_texels / (w * info.block_rows)).max(1) * info.block_rows;
+    let slot = std::cell::Cell::new(Some(sink));
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .rgb_channels(
+            |_, _| RowBatcher {
+                sink: slot.take(),
+                width: w,
+                height: h,
+                band: vec![[0.0; 3]; band_rows.min(h) * w],
+                band_rows,
+                band_start: 0,
+                filled: 0,
+                in_order: true,
+            },
+            |b: &mut RowBatcher<S>, pos: Vec2<usize>, (r, g, b_): (f32, f32, f32)| {
+                b.set(pos, [r, g, b_])
+            },
+        )
+        .first_valid_layer()
+        .all_attributes()
+        .non_parallel()
+        .from_buffered(reader)
+        .map_err(|e| read_error(path, info.compression, e))?;
+    let batcher = image.layer_data.channel_data.pixels;
+    let complete = batcher.in_order && batcher.band_start == h;
+    Ok(batcher.sink.filter(|_| complete))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Records the first texel of every band it receives.
+    struct Firsts(Vec<[f32; 3]>);
+
+    impl RowSink for Firsts {
+        fn rows(&mut self, rows: &mut [[f32; 3]]) -> bool {
+            self.0.push(rows[0]);
+            true
+        }
+    }
+
+    fn batcher(width: usize, height: usize, band_rows: usize) -> RowBatcher<Firsts> {
+        RowBatcher {
+            sink: Some(Firsts(Vec::new())),
+            width,
+            height,
+            band: vec![[0.0; 3]; band_rows.min(height) * width],
+            band_rows,
+            band_start: 0,
+            filled: 0,
+            in_order: true,
+        }
+    }
+
+    /// Tiles arrive in any order within a band of rows: each band is handed on once full,
+    /// the last (short) band included.
+    #[test]
+    fn bands_fill_in_any_order() {
+        let mut b = batcher(4, 5, 2);
+        // Right half before left half in every band, as tiles of a row of tiles would.
+        for y0 in [0, 2, 4] {
+            for xs in [2..4, 0..2] {
+                for y in y0..(y0 + 2).min(5) {
+                    for x in xs.clone() {
+                        b.set(Vec2(x, y), [(y * 4 + x) as f32; 3]);
+                    }
+                }
+            }
+        }
+        assert!(b.in_order);
+        assert_eq!(b.band_start, 5);
+        assert_eq!(b.sink.unwrap().0, vec![[0.0; 3], [8.0; 3], [16.0; 3]]);
+    }
+
+    /// A block from a later band before the current band is full (bottom-up lines,
+    /// random tiles) stops streaming; so does a position outside the image.
+    #[test]
+    fn a_block_from_another_band_stops_streaming() {
+        let mut b = batcher(4, 4, 2);
+        b.set(Vec2(0, 2), [1.0; 3]);
+        assert!(!b.in_order);
+        let mut b = batcher(4, 4, 2);
+        b.set(Vec2(4, 0), [1.0; 3]);
+        assert!(!b.in_order);
+        let mut b = batcher(4, 4, 2);
+        for x in 0..4 {
+            b.set(Vec2(x, 1), [1.0; 3]);
+        }
+        assert!(b.in_order && b.band_start == 0);
+        for x in 0..4 {
+            b.set(Vec2(x, 0), [1.0; 3]);
+        }
+        assert_eq!(b.band_start, 2);
+        b.set(Vec2(0, 1), [1.0; 3]);
+        assert!(!b.in_order);
+    }
 }
