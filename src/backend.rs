@@ -106,15 +106,9 @@ impl Backend for GpuBackend {
 
     fn brdf_lut(&self, width: u32, height: u32) -> Result<BrdfLut> {
         validate_lut_size(width, height)?;
-        let lut = gpu::brdf_lut::brdf_lut(
-            &self.ctx.device,
-            &self.ctx.queue,
-            width,
-            height,
-            &LutQuadrature::default(),
-        )?;
-        self.ctx.take_uncaptured_error("brdf_lut")?;
-        Ok(lut)
+        self.ctx.run_kernel("brdf_lut", |device, queue| {
+            gpu::brdf_lut::brdf_lut(device, queue, width, height, &LutQuadrature::default())
+        })
     }
 
     fn equirect_to_cube(
@@ -123,28 +117,21 @@ impl Backend for GpuBackend {
         params: &EquirectToCubeParams,
         mips: u32,
     ) -> Result<Cubemap> {
-        let cube = gpu::equirect_to_cube::equirect_to_cube(
-            &self.ctx.device,
-            &self.ctx.queue,
-            pyramid,
-            params,
-            mips,
-        )?;
-        self.ctx.take_uncaptured_error("equirect_to_cube")?;
-        Ok(cube)
+        self.ctx.run_kernel("equirect_to_cube", |device, queue| {
+            gpu::equirect_to_cube::equirect_to_cube(device, queue, pyramid, params, mips)
+        })
     }
 
     fn prefilter_specular(&self, env: &Cubemap, samples: u32) -> Result<Cubemap> {
-        let out =
-            gpu::prefilter::prefilter_specular(&self.ctx.device, &self.ctx.queue, env, samples)?;
-        self.ctx.take_uncaptured_error("prefilter_specular")?;
-        Ok(out)
+        self.ctx.run_kernel("prefilter_specular", |device, queue| {
+            gpu::prefilter::prefilter_specular(device, queue, env, samples)
+        })
     }
 
     fn irradiance(&self, env: &Cubemap, size: u32) -> Result<Cubemap> {
-        let out = gpu::prefilter::irradiance(&self.ctx.device, &self.ctx.queue, env, size)?;
-        self.ctx.take_uncaptured_error("irradiance")?;
-        Ok(out)
+        self.ctx.run_kernel("irradiance", |device, queue| {
+            gpu::prefilter::irradiance(device, queue, env, size)
+        })
     }
 }
 

@@ -177,11 +177,12 @@ fn run_bake(args: BakeArgs) -> anyhow::Result<()> {
             false
         }
     };
-    let lut = if args.no_lut {
+    let lut_size = 512;
+    let mut lut = if args.no_lut {
         None
     } else {
-        let lut = match backend.brdf_lut(512, 512) {
-            Err(e) if fall_back(&e, &mut backend) => backend.brdf_lut(512, 512),
+        let lut = match backend.brdf_lut(lut_size, lut_size) {
+            Err(e) if fall_back(&e, &mut backend) => backend.brdf_lut(lut_size, lut_size),
             r => r,
         };
         Some(lut.context("computing the BRDF LUT")?)
@@ -210,7 +211,16 @@ fn run_bake(args: BakeArgs) -> anyhow::Result<()> {
             }),
             None => match bake(backend.as_ref(), input, &args.output, &opts, lut.as_ref(), &mut progress) {
                 Err(e) if fall_back(&e, &mut backend) => {
-                    bake(backend.as_ref(), input, &args.output, &opts, lut.as_ref(), &mut progress)
+                    // Redo everything on the CPU, the LUT included, so the outputs are
+                    // exactly a CPU bake's, as the manifest says.
+                    let relut = match lut {
+                        Some(_) => backend.brdf_lut(lut_size, lut_size).map(Some),
+                        None => Ok(None),
+                    };
+                    relut.and_then(|l| {
+                        lut = l;
+                        bake(backend.as_ref(), input, &args.output, &opts, lut.as_ref(), &mut progress)
+                    })
                 }
                 r => r,
             },

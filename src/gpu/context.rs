@@ -9,6 +9,12 @@ use crate::{Error, Result};
 /// GPU adapter existed: `--backend auto` then uses the CPU backend.
 pub const HIDE_GPU_ENV: &str = "SPLITSUM_NO_GPU";
 
+/// Set this environment variable to a kernel name (`brdf_lut`, `equirect_to_cube`,
+/// `prefilter_specular`, `irradiance`) to make splitsum destroy its GPU device just before
+/// it runs that kernel: a test hook that simulates a device lost in the middle of a job
+/// (`--backend auto` must then finish on the CPU, `--backend gpu` fail cleanly).
+pub const LOSE_DEVICE_ENV: &str = "SPLITSUM_LOSE_DEVICE_AT";
+
 /// A device and queue with the adapter they came from.
 pub struct GpuContext {
     /// The logical device.
@@ -20,6 +26,8 @@ pub struct GpuContext {
     /// The first error wgpu reported outside an error scope, if any (instead of wgpu's
     /// default handler, which panics).
     uncaptured: Arc<Mutex<Option<String>>>,
+    /// Why the device was lost, once it has been (wgpu's device-lost callback).
+    lost: Arc<Mutex<Option<String>>>,
 }
 
 impl std::fmt::Debug for GpuContext {
@@ -68,11 +76,28 @@ impl GpuContext {
                 slot.get_or_insert_with(|| e.to_string());
             }
         }));
+        let lost = Arc::new(Mutex::new(None::<String>));
+        let sink = lost.clone();
+        device.set_device_lost_callback(move |reason, message| {
+            if let Ok(mut slot) = sink.lock() {
+                let why = match reason {
+                    wgpu::DeviceLostReason::Destroyed => "it was destroyed",
+                    wgpu::DeviceLostReason::Unknown => "driver error or reset",
+                };
+                let detail = if message.is_empty() {
+                    String::new()
+                } else {
+                    format!(": {message}")
+                };
+                slot.get_or_insert_with(|| format!("the GPU device was lost ({why}){detail}"));
+            }
+        });
         Ok(GpuContext {
             device,
             queue,
             adapter_info,
             uncaptured,
+            lost,
         })
     }
 
@@ -80,6 +105,38 @@ impl GpuContext {
     pub fn adapter_description(&self) -> String {
         let i = &self.adapter_info;
         format!("{} ({:?}, {:?})", i.name, i.backend, i.device_type)
+    }
+
+    /// Why the device was lost, if it has been.
+    pub fn lost_reason(&self) -> Option<String> {
+        self.lost.lock().ok().and_then(|s| s.clone())
+    }
+
+    /// Runs one kernel: honours [`LOSE_DEVICE_ENV`], then turns any error the kernel
+    /// returned or wgpu reported outside an error scope into [`Error::Gpu`] for
+    /// `kernel`, naming a device loss as such (the raw wgpu error after a loss is a
+    /// confusing "invalid pipeline" validation message).
+    pub fn run_kernel<T>(
+        &self,
+        kernel: &str,
+        f: impl FnOnce(&wgpu::Device, &wgpu::Queue) -> Result<T>,
+    ) -> Result<T> {
+        if std::env::var(LOSE_DEVICE_ENV).is_ok_and(|v| v == kernel) {
+            self.device.destroy();
+        }
+        let result = f(&self.device, &self.queue);
+        let result = result.and_then(|v| self.take_uncaptured_error(kernel).map(|()| v));
+        if result.is_err() {
+            // Device-lost callbacks run from poll; let a pending one report.
+            let _ = self.device.poll(wgpu::PollType::Poll);
+        }
+        match (result, self.lost_reason()) {
+            (Err(Error::Gpu { .. }), Some(lost)) => Err(Error::Gpu {
+                stage: kernel.to_string(),
+                message: lost,
+            }),
+            (result, _) => result,
+        }
     }
 
     /// Returns the first error wgpu reported outside an error scope since the last call.

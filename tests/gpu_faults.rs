@@ -1,0 +1,117 @@
+//! GPU faults in the middle of a job (issue 5). A lost device must come back as
+//! `Error::Gpu` naming the loss, never a panic or a hang; `bake --backend auto` then
+//! finishes on the CPU with a warning and `--backend gpu` fails cleanly. The loss is real:
+//! the device is destroyed (directly, or by the `SPLITSUM_LOSE_DEVICE_AT` hook in the
+//! binary) and wgpu's device-lost callback and error scopes report it.
+mod common;
+
+use std::path::Path;
+use std::process::Command;
+
+use splitsum::gpu::context::LOSE_DEVICE_ENV;
+use splitsum::{Backend, Cubemap, Error, GpuBackend};
+
+/// A grey 8² cube with its full mip chain.
+fn grey_cube() -> Cubemap {
+    let mut cube = Cubemap {
+        size: 8,
+        levels: vec![vec![[0.5, 0.5, 0.5, 1.0]; Cubemap::level_len(8)]],
+    };
+    splitsum::cpu::cube_downsample::build_mips(&mut cube, 4);
+    cube
+}
+
+/// Runs one kernel of the backend on a cube.
+type KernelRun = fn(&GpuBackend, &Cubemap) -> splitsum::Result<()>;
+
+#[test]
+fn every_kernel_reports_a_lost_device() {
+    let env = grey_cube();
+    let kernels: [(&str, KernelRun); 3] = [
+        ("brdf_lut", |b, _| b.brdf_lut(16, 16).map(drop)),
+        ("prefilter_specular", |b, e| {
+            b.prefilter_specular(e, 16).map(drop)
+        }),
+        ("irradiance", |b, e| b.irradiance(e, 4).map(drop)),
+    ];
+    for (name, run) in kernels {
+        let Some(ctx) = common::gpu() else { return };
+        let backend = GpuBackend { ctx };
+        run(&backend, &env).unwrap();
+        backend.ctx.device.destroy();
+        match run(&backend, &env) {
+            Err(Error::Gpu { stage, message }) => {
+                assert_eq!(stage, name);
+                assert!(message.contains("GPU device was lost"), "{name}: {message}");
+            }
+            other => panic!("{name}: expected a GPU error, got {other:?}"),
+        }
+    }
+}
+
+fn bake(out: &Path, backend: &str, lose_at: Option<&str>) -> std::process::Output {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_splitsum"));
+    cmd.args([
+        "bake",
+        "--specular-size",
+        "16",
+        "--irradiance-size",
+        "8",
+        "--backend",
+        backend,
+        "-o",
+    ])
+    .arg(out)
+    .arg("tests/data/venice_sunset_1k.hdr");
+    if let Some(kernel) = lose_at {
+        cmd.env(LOSE_DEVICE_ENV, kernel);
+    }
+    cmd.output().unwrap()
+}
+
+/// The device is lost before the LUT (the first GPU kernel) or before the prefilter (in
+/// the middle of the bake): `auto` warns, redoes the work on the CPU and writes exactly
+/// what a CPU bake writes; `gpu` exits 1 with the reason and leaves no files.
+#[test]
+fn bake_falls_back_to_the_cpu_when_the_device_is_lost() {
+    if common::gpu().is_none() {
+        return;
+    }
+    let dir = common::output_dir("gpu-fault-bake");
+    let o = bake(&dir.join("cpu"), "cpu", None);
+    assert!(o.status.success());
+    let reference = dir.join("cpu/venice_sunset_1k");
+    for kernel in ["brdf_lut", "prefilter_specular"] {
+        let out = dir.join(format!("auto-{kernel}"));
+        let o = bake(&out, "auto", Some(kernel));
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "{kernel}: {err}");
+        assert!(
+            err.contains("GPU device was lost") && err.contains("continuing on the CPU backend"),
+            "{kernel}: {err}"
+        );
+        for file in [
+            "specular.ktx2",
+            "irradiance.ktx2",
+            "sh.json",
+            "brdf_lut.png",
+        ] {
+            let got = std::fs::read(out.join("venice_sunset_1k").join(file)).unwrap();
+            let want = std::fs::read(reference.join(file)).unwrap();
+            assert!(got == want, "{kernel}: {file} differs from the CPU bake");
+        }
+        let manifest = std::fs::read_to_string(out.join("venice_sunset_1k/manifest.json")).unwrap();
+        assert!(manifest.contains("\"backend\": \"cpu"), "{manifest}");
+
+        let out = dir.join(format!("gpu-{kernel}"));
+        let o = bake(&out, "gpu", Some(kernel));
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{kernel}: {err}");
+        assert!(err.contains("GPU device was lost"), "{kernel}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+        assert!(
+            !out.join("venice_sunset_1k").exists(),
+            "{kernel}: partial output"
+        );
+    }
+}
