@@ -67,6 +67,9 @@ pub enum Command {
 
 /// `splitsum bake`.
 #[derive(Debug, Args)]
+#[command(
+    after_help = "Exit codes: 0 every input baked, 1 an input failed (the others are still baked), 2 usage error."
+)]
 pub struct BakeArgs {
     /// Input environments (equirects, crosses, KTX2/DDS cubemaps, face patterns).
     #[arg(required = true)]

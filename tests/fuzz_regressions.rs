@@ -1,8 +1,37 @@
 //! Inputs found by the cargo-fuzz targets in fuzz/ (see fuzz/README.md): each must give a
 //! clean error quickly, never a panic or a hang.
 
+use std::alloc::{GlobalAlloc, Layout, System};
 use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
+
+/// The system allocator, recording the largest single request (the OOM finds are about
+/// allocations sized from a header, which a lazily zeroed page would hide from RSS).
+struct Tracking;
+
+static LARGEST: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for Tracking {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        LARGEST.fetch_max(layout.size(), Ordering::Relaxed);
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        LARGEST.fetch_max(layout.size(), Ordering::Relaxed);
+        unsafe { System.alloc_zeroed(layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        LARGEST.fetch_max(new_size, Ordering::Relaxed);
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+}
+
+#[global_allocator]
+static ALLOCATOR: Tracking = Tracking;
 
 fn check(name: &str, decode: impl Fn(&Path, &[u8]) -> splitsum::Result<splitsum::Cubemap>) {
     let path = Path::new("tests/fuzz_regressions").join(name);
@@ -34,4 +63,27 @@ fn ktx2_claiming_a_huge_uncompressed_level() {
         "ktx2-zstd-huge-length.ktx2",
         splitsum::io::input::decode_ktx2_cube,
     );
+}
+
+/// A 2 kB EXR whose header claims 16384×11000 (within the size limits): the whole decode
+/// used to allocate the 2.2 GB image before reading a block (a libFuzzer out-of-memory
+/// find). Bands are now allocated as blocks arrive, so the error comes with no allocation
+/// larger than 64 MiB (the largest any test in this binary may make).
+#[test]
+fn exr_claiming_a_huge_size_allocates_little() {
+    let path = Path::new("tests/fuzz_regressions/exr-huge-claimed-size.exr");
+    let bytes = std::fs::read(path).unwrap();
+    let info = splitsum::io::exr::read_info(path, std::io::Cursor::new(&bytes)).unwrap();
+    assert!(
+        info.width as u64 * info.height as u64 * 12 > 1 << 30,
+        "{info:?}"
+    );
+    check("exr-huge-claimed-size.exr", |p, b| {
+        splitsum::io::exr::decode(p, b).map(|_| splitsum::Cubemap {
+            size: 1,
+            levels: Vec::new(),
+        })
+    });
+    let largest = LARGEST.load(Ordering::Relaxed);
+    assert!(largest < 64 << 20, "largest allocation {largest} bytes");
 }

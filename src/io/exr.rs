@@ -120,6 +120,57 @@ fn read_error(
     }
 }
 
+/// Pixel storage of a whole decode that allocates a band of rows only when one of its
+/// pixels arrives: a small file claiming a large size (found by the `exr` fuzz target,
+/// `tests/fuzz_regressions/exr-huge-claimed-size.exr`) allocates nothing before its
+/// blocks are actually read.
+struct LazyBands {
+    width: usize,
+    height: usize,
+    bands: Vec<Option<Vec<[f32; 3]>>>,
+}
+
+impl LazyBands {
+    const ROWS: usize = 64;
+
+    fn new(width: usize, height: usize) -> Self {
+        LazyBands {
+            width,
+            height,
+            bands: vec![None; height.div_ceil(Self::ROWS)],
+        }
+    }
+
+    fn rows_in(&self, band: usize) -> usize {
+        Self::ROWS.min(self.height - band * Self::ROWS)
+    }
+
+    fn set(&mut self, pos: Vec2<usize>, texel: [f32; 3]) {
+        let (x, y) = (pos.x(), pos.y());
+        if x >= self.width || y >= self.height {
+            return;
+        }
+        let b = y / Self::ROWS;
+        let len = self.rows_in(b) * self.width;
+        let band = self.bands[b].get_or_insert_with(|| vec![[0.0; 3]; len]);
+        band[(y - b * Self::ROWS) * self.width + x] = texel;
+    }
+
+    /// The whole image, row-major; bands never written are black. Each band is freed as
+    /// it is copied, so the peak stays about one image.
+    fn into_data(self) -> Vec<[f32; 3]> {
+        let mut data = Vec::with_capacity(self.width * self.height);
+        let rows: Vec<usize> = (0..self.bands.len()).map(|b| self.rows_in(b)).collect();
+        for (band, rows) in self.bands.into_iter().zip(rows) {
+            match band {
+                Some(v) => data.extend_from_slice(&v),
+                None => data.resize(data.len() + rows * self.width, [0.0; 3]),
+            }
+        }
+        data
+    }
+}
+
 /// Reads the first layer's R, G and B channels (half, float or uint) at full resolution.
 /// The header is read first, so the size is checked before any pixel is allocated and an
 /// unsupported compression is named in the error.
@@ -129,9 +180,9 @@ pub fn decode(path: &std::path::Path, bytes: &[u8]) -> crate::Result<crate::envi
         .no_deep_data()
         .largest_resolution_level()
         .rgb_channels(
-            |_, _| vec![[0.0f32; 3]; w * h],
-            move |data: &mut Vec<[f32; 3]>, pos: Vec2<usize>, (r, g, b): (f32, f32, f32)| {
-                data[pos.y() * w + pos.x()] = [r, g, b];
+            |_, _| LazyBands::new(w, h),
+            |data: &mut LazyBands, pos: Vec2<usize>, (r, g, b): (f32, f32, f32)| {
+                data.set(pos, [r, g, b])
             },
         )
         .first_valid_layer()
@@ -142,7 +193,7 @@ pub fn decode(path: &std::path::Path, bytes: &[u8]) -> crate::Result<crate::envi
     Ok(crate::environment::Equirect {
         width: w as u32,
         height: h as u32,
-        data: image.layer_data.channel_data.pixels,
+        data: image.layer_data.channel_data.pixels.into_data(),
     })
 }
 
