@@ -1,18 +1,20 @@
 // Prefiltered specular, one mip, by filtered importance sampling (Colbert & Krivanek 2007):
 // GGX-distributed half vectors (Hammersley), l = reflect(-n, h), weight n.l, each sample
 // reading the environment's mip chain (with its hot texels blacked out) at
-// lod = 0.5 log2(omega_s / omega_p) + bias; the hot texels are summed exactly.
+// lod = 0.5 log2(omega_s / omega_p) + bias; the hot texels are summed exactly. The samples
+// depend only on the level: the Rust side builds them once in n's tangent frame
+// (ggx_lobe_samples in src/cpu/prefilter_specular.rs) and every texel rotates them.
 // CPU mirror: prefilter_texel in src/cpu/prefilter_specular.rs.
 
 struct PrefilterParams {
     env_size: u32,
     env_levels: u32,
     out_size: u32,
-    samples: u32,
+    samples: u32,    // points drawn (N, the hot sum's multiplier)
     roughness: f32,
-    lod_bias: f32,
-    omega_p: f32,   // solid angle of a level-0 environment texel (mean)
-    hot_count: u32, // hot texels summed exactly
+    lobe_count: u32, // samples above the horizon, in `lobe`
+    hot_count: u32,  // hot texels summed exactly
+    _pad: u32,
 }
 
 @group(0) @binding(0) var<uniform> params: PrefilterParams;
@@ -20,6 +22,8 @@ struct PrefilterParams {
 @group(0) @binding(2) var output: texture_storage_2d_array<rgba32float, write>;
 // Hot texels, two vec4 each: (centroid direction, solid angle), (radiance, unused).
 @group(0) @binding(3) var<storage, read> hot: array<vec4<f32>>;
+// Lobe samples in the tangent frame: (l.x, l.y, l.z = n.l, lod).
+@group(0) @binding(4) var<storage, read> lobe: array<vec4<f32>>;
 
 // Exact part: sum of L W (n.l) pdf(l) over the hot texels, pdf(l) = D(n.h) / 4.
 fn hot_texels_sum(n: vec3<f32>, alpha: f32) -> vec3<f32> {
@@ -46,26 +50,16 @@ fn tangent_frame(n: vec3<f32>) -> mat2x3<f32> {
 }
 
 fn prefilter_texel(n: vec3<f32>) -> vec4<f32> {
-    let alpha = alpha_from_roughness(params.roughness);
     let tb = tangent_frame(n);
     var sum = vec3<f32>(0.0);
     var weight = 0.0;
-    for (var i = 0u; i < params.samples; i++) {
-        let h_t = importance_sample_ggx(hammersley(i, params.samples), alpha);
-        let h = tb[0] * h_t.x + tb[1] * h_t.y + n * h_t.z;
-        let n_dot_h = h_t.z;
-        let l = 2.0 * n_dot_h * h - n;
-        let n_dot_l = dot(n, l);
-        if (n_dot_l > 0.0) {
-            // pdf(l) = D / 4 for v = n.
-            let pdf = d_ggx(n_dot_h, alpha) * 0.25;
-            let omega_s = 1.0 / (f32(params.samples) * pdf);
-            let lod = 0.5 * log2(omega_s / params.omega_p) + params.lod_bias;
-            sum += sample_cube_lod(env, params.env_size, params.env_levels, l, lod) * n_dot_l;
-            weight += n_dot_l;
-        }
+    for (var i = 0u; i < params.lobe_count; i++) {
+        let s = lobe[i];
+        let l = tb[0] * s.x + tb[1] * s.y + n * s.z;
+        sum += sample_cube_lod(env, params.env_size, params.env_levels, l, s.w) * s.z;
+        weight += s.z;
     }
-    let hot_sum = hot_texels_sum(n, alpha);
+    let hot_sum = hot_texels_sum(n, alpha_from_roughness(params.roughness));
     return vec4<f32>((sum + f32(params.samples) * hot_sum) / weight, 1.0);
 }
 

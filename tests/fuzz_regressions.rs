@@ -67,18 +67,33 @@ fn ktx2_claiming_a_huge_uncompressed_level() {
 
 /// A 2 kB EXR whose header claims 16384×11000 (within the size limits): the whole decode
 /// used to allocate the 2.2 GB image before reading a block (a libFuzzer out-of-memory
-/// find). Bands are now allocated as blocks arrive, so the error comes with no allocation
-/// larger than 64 MiB (the largest any test in this binary may make).
+/// find). Bands are now allocated as blocks arrive (and this DWA file's chunks are checked
+/// before decoding), so the error comes with no allocation larger than 64 MiB (the
+/// largest any test in this binary may make).
 #[test]
 fn exr_claiming_a_huge_size_allocates_little() {
     let path = Path::new("tests/fuzz_regressions/exr-huge-claimed-size.exr");
     let bytes = std::fs::read(path).unwrap();
-    let info = splitsum::io::exr::read_info(path, std::io::Cursor::new(&bytes)).unwrap();
-    assert!(
-        info.width as u64 * info.height as u64 * 12 > 1 << 30,
-        "{info:?}"
-    );
+    let meta =
+        exr::meta::MetaData::read_from_buffered(std::io::Cursor::new(&bytes), false).unwrap();
+    let size = meta.headers[0].layer_size;
+    assert!(size.0 as u64 * size.1 as u64 * 12 > 1 << 30, "{size:?}");
     check("exr-huge-claimed-size.exr", |p, b| {
+        splitsum::io::exr::decode(p, b).map(|_| splitsum::Cubemap {
+            size: 1,
+            levels: Vec::new(),
+        })
+    });
+    let largest = LARGEST.load(Ordering::Relaxed);
+    assert!(largest < 64 << 20, "largest allocation {largest} bytes");
+}
+
+/// A DWA chunk whose leader claims 2⁶¹ AC coefficients: the `exr` crate asked the
+/// allocator for 4 EiB, which aborts the process (an abort, not a panic, so no
+/// catch_unwind could save it). splitsum checks every DWA chunk's counters first.
+#[test]
+fn exr_dwa_chunk_claiming_a_huge_count() {
+    check("exr-dwa-huge-count.exr", |p, b| {
         splitsum::io::exr::decode(p, b).map(|_| splitsum::Cubemap {
             size: 1,
             levels: Vec::new(),

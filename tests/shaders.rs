@@ -118,7 +118,7 @@ fn kernel_uniforms_match_rust() {
         PREFILTER_SAMPLED,
         "PrefilterParams",
         PrefilterUniform,
-        [env_size, env_levels, out_size, samples, roughness, lod_bias, omega_p, hot_count]
+        [env_size, env_levels, out_size, samples, roughness, lobe_count, hot_count, _pad]
     );
     assert_layout!(
         CONVOLVE_EXACT,

@@ -2,7 +2,9 @@
 //! (Karis 2013), with n = v = r, for mip m of M at roughness r = m/(M − 1).
 //!
 //! Estimator: P(n) = Σ L(lᵢ) (n·lᵢ) / Σ (n·lᵢ), lᵢ = reflect(−n, hᵢ) with hᵢ GGX-distributed
-//! (Hammersley points), which converges to ∫ L D (n·l) dl / ∫ D (n·l) dl. Filtered
+//! (Hammersley points), which converges to ∫ L D (n·l) dl / ∫ D (n·l) dl. The samples
+//! depend only on the level, so they are computed once per level in n's tangent frame
+//! ([`ggx_lobe_samples`]) and rotated to each texel. Filtered
 //! importance sampling (Colbert & Křivánek 2007): each sample reads the environment's
 //! solid-angle-correct mip chain at lod = ½ log₂(Ωs/Ωp) + bias, Ωs = 1/(N pdf) the sample's
 //! solid angle, pdf(l) = D(n·h)/4 for n = v, Ωp the solid angle of a level-0 texel. A
@@ -140,36 +142,58 @@ pub fn hot_texels_sum(hot: &[SourceTexel], n: [f32; 3], alpha: f32) -> [f32; 3] 
     sum
 }
 
-/// Prefiltered radiance around unit direction `n` at `roughness`: filtered importance
-/// sampling of `src.rest` plus the exact sum of `src.hot`, both over the sampled
-/// normaliser: (Σᵢ L(lᵢ)(n·lᵢ) + N·Σ_hot) / Σᵢ (n·lᵢ).
-pub fn prefilter_texel(src: &SampledSource, n: [f32; 3], roughness: f32, samples: u32) -> [f32; 4] {
-    let env = &src.rest;
+/// The filtered-importance samples of the GGX lobe at `roughness` around n = v, in the
+/// tangent frame of n (z along n), each `[l.x, l.y, l.z = n·l, lod]`: l = reflect(−n, h)
+/// for the i-th of `samples` Hammersley half vectors h, read at
+/// lod = ½ log₂(Ωs / Ωp) + [`LOD_BIAS`], where Ωs = 1 / (N pdf(l)) is the sample's solid
+/// angle and Ωp = 4π / (6 n²) a level-0 texel's (n = `env_size`). Samples below the
+/// horizon (n·l ≤ 0) are left out. They depend on nothing else, so a level computes them
+/// once and every texel only rotates them; the GPU kernel reads the same table.
+pub fn ggx_lobe_samples(samples: u32, roughness: f32, env_size: u32) -> Vec<[f32; 4]> {
     let alpha = alpha_from_roughness(roughness);
-    let (t, b) = tangent_frame(n);
-    // Solid angle of a level-0 texel (the mean over the sphere).
-    let omega_p = 4.0 * PI / (6.0 * (env.size * env.size) as f32);
-    let mut sum = [0.0f32; 3];
-    let mut weight = 0.0f32;
-    for i in 0..samples {
-        let h_t = importance_sample_ggx(hammersley(i, samples), alpha);
-        let h = [0, 1, 2].map(|k| t[k] * h_t[0] + b[k] * h_t[1] + n[k] * h_t[2]);
-        let n_dot_h = h_t[2];
-        let l = [0, 1, 2].map(|k| 2.0 * n_dot_h * h[k] - n[k]);
-        let n_dot_l = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
-        if n_dot_l > 0.0 {
+    let omega_p = 4.0 * PI / (6.0 * (env_size * env_size) as f32);
+    (0..samples)
+        .filter_map(|i| {
+            let h = importance_sample_ggx(hammersley(i, samples), alpha);
+            let n_dot_h = h[2];
+            // l = 2 (n·h) h − n, with n = (0, 0, 1).
+            let l = [
+                2.0 * n_dot_h * h[0],
+                2.0 * n_dot_h * h[1],
+                2.0 * n_dot_h * n_dot_h - 1.0,
+            ];
             // pdf(l) = D(n·h) (n·h) / (4 v·h) = D / 4 for v = n.
             let pdf = d_ggx(n_dot_h, alpha) * 0.25;
             let omega_s = 1.0 / (samples as f32 * pdf);
             let lod = 0.5 * (omega_s / omega_p).log2() + LOD_BIAS;
-            let v = sample_cube_lod(env, l, lod);
-            for c in 0..3 {
-                sum[c] += v[c] * n_dot_l;
-            }
-            weight += n_dot_l;
+            (l[2] > 0.0).then_some([l[0], l[1], l[2], lod])
+        })
+        .collect()
+}
+
+/// Prefiltered radiance around unit direction `n`: filtered importance sampling of
+/// `src.rest` with the `lobe` of [`ggx_lobe_samples`] (drawn from `samples` points) plus
+/// the exact sum of `src.hot` at `roughness`, both over the sampled normaliser:
+/// (Σᵢ L(lᵢ)(n·lᵢ) + N·Σ_hot) / Σᵢ (n·lᵢ).
+pub fn prefilter_texel(
+    src: &SampledSource,
+    n: [f32; 3],
+    roughness: f32,
+    lobe: &[[f32; 4]],
+    samples: u32,
+) -> [f32; 4] {
+    let (t, b) = tangent_frame(n);
+    let mut sum = [0.0f32; 3];
+    let mut weight = 0.0f32;
+    for s in lobe {
+        let l = [0, 1, 2].map(|k| t[k] * s[0] + b[k] * s[1] + n[k] * s[2]);
+        let v = sample_cube_lod(&src.rest, l, s[3]);
+        for c in 0..3 {
+            sum[c] += v[c] * s[2];
         }
+        weight += s[2];
     }
-    let hot = hot_texels_sum(&src.hot, n, alpha);
+    let hot = hot_texels_sum(&src.hot, n, alpha_from_roughness(roughness));
     let k = samples as f32;
     [
         (sum[0] + k * hot[0]) / weight,
@@ -273,9 +297,12 @@ pub fn prefilter_level(
                 prefilter_exact_texel(&source, dir(face, i, j), roughness)
             })
         }
-        LevelMethod::Sampled { samples } => fill_cube_level(size, |face, i, j| {
-            prefilter_texel(sampled, dir(face, i, j), roughness, samples)
-        }),
+        LevelMethod::Sampled { samples } => {
+            let lobe = ggx_lobe_samples(samples, roughness, env.size);
+            fill_cube_level(size, |face, i, j| {
+                prefilter_texel(sampled, dir(face, i, j), roughness, &lobe, samples)
+            })
+        }
     }
 }
 

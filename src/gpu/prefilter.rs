@@ -2,13 +2,11 @@
 //! `shaders/convolve_exact.wgsl` (CPU mirrors in `cpu/prefilter_specular.rs` and
 //! `cpu/irradiance.rs`); the method per level is chosen by the same Rust function.
 
-use std::f32::consts::PI;
-
 use crate::cpu::irradiance::{
     irradiance_source_level, moment_texels, source_texels, MomentTexel, SourceTexel,
 };
 use crate::cpu::prefilter_specular::{
-    level_method, mip_roughness, split_hot_texels, LevelMethod, LOD_BIAS,
+    ggx_lobe_samples, level_method, mip_roughness, split_hot_texels, LevelMethod,
 };
 use crate::environment::Cubemap;
 use crate::gpu::compute::{buffer_with_data, with_error_scope, ComputeKernel};
@@ -29,16 +27,16 @@ pub struct PrefilterUniform {
     pub env_levels: u32,
     /// Output level edge.
     pub out_size: u32,
-    /// GGX samples per texel.
+    /// GGX points drawn per texel (N).
     pub samples: u32,
     /// Roughness of the level.
     pub roughness: f32,
-    /// Filtered-importance-sampling lod bias.
-    pub lod_bias: f32,
-    /// Mean solid angle of a level-0 environment texel.
-    pub omega_p: f32,
+    /// Lobe samples above the horizon (the length of the lobe table).
+    pub lobe_count: u32,
     /// Number of hot texels summed exactly.
     pub hot_count: u32,
+    /// Padding.
+    pub _pad: u32,
 }
 
 /// Uniform block of `convolve_exact.wgsl` (layout checked in tests/shaders.rs).
@@ -197,16 +195,27 @@ pub fn prefilter_specular(
                     record_exact(device, &mut encoder, &exact, &source, n, &target)
                 }
                 LevelMethod::Sampled { samples } => {
+                    let mut lobe = ggx_lobe_samples(samples, r, env.size);
+                    let lobe_count = lobe.len() as u32;
+                    if lobe.is_empty() {
+                        lobe.push([0.0; 4]); // a storage binding cannot be empty
+                    }
                     let uniform = PrefilterUniform {
                         env_size: env.size,
                         env_levels: env.levels.len() as u32,
                         out_size: n,
                         samples,
                         roughness: r,
-                        lod_bias: LOD_BIAS,
-                        omega_p: 4.0 * PI / (6.0 * (env.size * env.size) as f32),
+                        lobe_count,
                         hot_count: split.hot.len() as u32,
+                        _pad: 0,
                     };
+                    let lobe_buf = buffer_with_data(
+                        device,
+                        "lobe samples",
+                        bytemuck::cast_slice(&lobe),
+                        wgpu::BufferUsages::STORAGE,
+                    );
                     let ubuf = buffer_with_data(
                         device,
                         "prefilter params",
@@ -221,6 +230,7 @@ pub fn prefilter_specular(
                             wgpu::BindingResource::TextureView(&source_view),
                             wgpu::BindingResource::TextureView(&target),
                             hot_buf.as_entire_binding(),
+                            lobe_buf.as_entire_binding(),
                         ],
                         [n, n, 6],
                     );

@@ -57,14 +57,15 @@ pub trait RowSink {
     fn rows(&mut self, rows: &mut [[f32; 3]]) -> bool;
 }
 
-/// Width, height and compression of an EXR's first layer, after checking its size and
-/// that it has R, G and B channels (nothing is allocated for pixels yet).
-fn check_header(
+/// Width, height, compression and rows per block of an EXR's first layer, after checking
+/// its size, that it has R, G and B channels and (DWA files) every chunk's counters;
+/// nothing is allocated for pixels yet.
+fn check_header<R: std::io::Read + std::io::Seek>(
     path: &std::path::Path,
-    reader: impl std::io::Read + std::io::Seek,
+    mut reader: R,
 ) -> crate::Result<(usize, usize, Compression, usize)> {
     use crate::Error;
-    let meta = exr::meta::MetaData::read_from_buffered(reader, false)
+    let meta = exr::meta::MetaData::read_from_buffered(&mut reader, false)
         .map_err(|e| decode_error(path, e))?;
     let header = meta.headers.first().ok_or_else(|| Error::Decode {
         path: path.to_path_buf(),
@@ -94,7 +95,74 @@ fn check_header(
         exr::meta::BlockDescription::ScanLines => header.compression.scan_lines_per_block(),
         exr::meta::BlockDescription::Tiles(t) => t.tile_size.y(),
     };
+    if meta
+        .headers
+        .iter()
+        .any(|h| matches!(h.compression, Compression::DWAA(_) | Compression::DWAB(_)))
+    {
+        reader
+            .seek(std::io::SeekFrom::Start(0))
+            .map_err(|e| Error::io(path, e))?;
+        check_dwa_chunks(path, reader)?;
+    }
     Ok((size.0, size.1, header.compression, block_rows.max(1)))
+}
+
+/// Counters 1, 6, 7, 8 and 9 of the eleven little-endian u64s that open every DWA chunk:
+/// the uncompressed "unknown" section, the RLE sizes and the AC and DC coefficient counts.
+const DWA_SIZE_COUNTERS: [usize; 5] = [1, 6, 7, 8, 9];
+
+/// The `exr` crate sizes some DWAA/DWAB buffers from the counters in each chunk's leader
+/// before checking them: a counter of 2⁶¹ AC coefficients made it request 4 EiB, which
+/// aborts the process (a fuzz find, `tests/fuzz_regressions/exr-dwa-huge-count.exr`).
+/// Every DWA chunk's counters are therefore checked first against a generous bound on
+/// what a block can hold: 4 × its pixels (rounded up to whole 8×8 DCT blocks) × the
+/// bytes per pixel of all channels.
+fn check_dwa_chunks(
+    path: &std::path::Path,
+    reader: impl std::io::Read + std::io::Seek,
+) -> crate::Result<()> {
+    let chunks = exr::block::read(reader, false).map_err(|e| decode_error(path, e))?;
+    let headers = chunks.headers().to_vec();
+    for (index, chunk) in chunks
+        .all_chunks(false)
+        .map_err(|e| decode_error(path, e))?
+        .enumerate()
+    {
+        let chunk = chunk.map_err(|e| decode_error(path, e))?;
+        let Some(header) = headers.get(chunk.layer_index) else {
+            continue;
+        };
+        if !matches!(header.compression, Compression::DWAA(_) | Compression::DWAB(_)) {
+            continue;
+        }
+        let bytes = match &chunk.compressed_block {
+            exr::block::chunk::CompressedBlock::ScanLine(b) => &b.compressed_pixels_le,
+            exr::block::chunk::CompressedBlock::Tile(b) => &b.compressed_pixels_le,
+            _ => continue,
+        };
+        let block = header.max_block_pixel_size();
+        let bound = 4
+            * block.x().next_multiple_of(8) as u64
+            * block.y().next_multiple_of(8) as u64
+            * header.channels.bytes_per_pixel as u64;
+        for k in DWA_SIZE_COUNTERS {
+            let Some(counter) = bytes.get(8 * k..8 * k + 8) else {
+                break; // a truncated leader: the decoder reports it
+            };
+            let value = u64::from_le_bytes(counter.try_into().unwrap_or([0; 8]));
+            if value > bound {
+                return Err(crate::Error::Decode {
+                    path: path.to_path_buf(),
+                    format: "OpenEXR",
+                    message: format!(
+                        "DWA chunk {index} claims {value} for a block of at most {bound} bytes"
+                    ),
+                });
+            }
+        }
+    }
+    Ok(())
 }
 
 fn decode_error(path: &std::path::Path, e: exr::error::Error) -> crate::Error {
