@@ -18,12 +18,11 @@ fn fetch_cube_texel(src: texture_2d_array<f32>, size0: u32, m: u32, face: u32, x
     return textureLoad(src, vec2<i32>(xi, yi), i32(f), i32(m)).rgb;
 }
 
-fn sample_cube_bilinear(src: texture_2d_array<f32>, size0: u32, m: u32, d: vec3<f32>) -> vec3<f32> {
-    let c = cube_face_coords(d);
-    let face = u32(c.x);
+// Bilinear lookup of mip m at face coordinates (s, t) in [-1, 1]^2 of `face`.
+fn sample_face_bilinear(src: texture_2d_array<f32>, size0: u32, m: u32, face: u32, s: f32, t: f32) -> vec3<f32> {
     let n = f32(max(size0 >> m, 1u));
-    let x = (c.y + 1.0) * 0.5 * n - 0.5;
-    let y = (c.z + 1.0) * 0.5 * n - 0.5;
+    let x = (s + 1.0) * 0.5 * n - 0.5;
+    let y = (t + 1.0) * 0.5 * n - 0.5;
     let x0 = floor(x);
     let y0 = floor(y);
     let fx = x - x0;
@@ -36,12 +35,19 @@ fn sample_cube_bilinear(src: texture_2d_array<f32>, size0: u32, m: u32, d: vec3<
          + fetch_cube_texel(src, size0, m, face, xi + 1, yi + 1) * (fx * fy);
 }
 
+// Trilinear lookup at fractional lod (clamped to the chain); face coordinates are found
+// once, and an integral lod reads one level only.
 fn sample_cube_lod(src: texture_2d_array<f32>, size0: u32, levels: u32, d: vec3<f32>, lod_in: f32) -> vec3<f32> {
     let last = f32(levels - 1u);
     let lod = clamp(lod_in, 0.0, last);
     let l0 = floor(lod);
     let f = lod - l0;
-    let a = sample_cube_bilinear(src, size0, u32(l0), d);
-    let b = sample_cube_bilinear(src, size0, u32(min(l0 + 1.0, last)), d);
+    let c = cube_face_coords(d);
+    let face = u32(c.x);
+    let a = sample_face_bilinear(src, size0, u32(l0), face, c.y, c.z);
+    if (f == 0.0) {
+        return a;
+    }
+    let b = sample_face_bilinear(src, size0, u32(min(l0 + 1.0, last)), face, c.y, c.z);
     return a + f * (b - a);
 }

@@ -23,9 +23,8 @@ pub fn fetch_cube_texel(cube: &Cubemap, m: usize, face: u32, x: i32, y: i32) -> 
     [t[0], t[1], t[2]]
 }
 
-/// Seamless bilinear lookup of mip `m` in direction `d`.
-pub fn sample_cube_bilinear(cube: &Cubemap, m: usize, d: [f32; 3]) -> [f32; 3] {
-    let (face, s, t) = cube_face_coords(d);
+/// Seamless bilinear lookup of mip `m` at face coordinates (s, t) ∈ [−1, 1]² of `face`.
+pub fn sample_face_bilinear(cube: &Cubemap, m: usize, face: u32, s: f32, t: f32) -> [f32; 3] {
     let n = cube.level_size(m) as f32;
     let x = (s + 1.0) * 0.5 * n - 0.5;
     let y = (t + 1.0) * 0.5 * n - 0.5;
@@ -47,14 +46,19 @@ pub fn sample_cube_bilinear(cube: &Cubemap, m: usize, d: [f32; 3]) -> [f32; 3] {
     out
 }
 
-/// Trilinear lookup at fractional mip `lod` (clamped to the chain).
+/// Trilinear lookup at fractional mip `lod` (clamped to the chain). The face coordinates
+/// are found once for both levels, and an integral lod reads one level only.
 pub fn sample_cube_lod(cube: &Cubemap, d: [f32; 3], lod: f32) -> [f32; 3] {
     let last = (cube.levels.len() - 1) as f32;
     let lod = lod.clamp(0.0, last);
     let l0 = lod.floor();
     let f = lod - l0;
-    let a = sample_cube_bilinear(cube, l0 as usize, d);
-    let b = sample_cube_bilinear(cube, (l0 + 1.0).min(last) as usize, d);
+    let (face, s, t) = cube_face_coords(d);
+    let a = sample_face_bilinear(cube, l0 as usize, face, s, t);
+    if f == 0.0 {
+        return a;
+    }
+    let b = sample_face_bilinear(cube, (l0 + 1.0).min(last) as usize, face, s, t);
     [0, 1, 2].map(|c| a[c] + f * (b[c] - a[c]))
 }
 
