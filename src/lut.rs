@@ -117,6 +117,15 @@ pub struct LutQuadrature {
 
 impl Default for LutQuadrature {
     fn default() -> Self {
+        Self::with_rules(FULL_PANEL_NODES, PARTIAL_PANEL_NODES, PHI_NODES, PANEL_GROWTH)
+    }
+}
+
+impl LutQuadrature {
+    /// Tables with `full` and `partial` Gauss-Legendre nodes in q, `phi` nodes in φ and
+    /// partial panels growing by `growth` (the default uses the constants above; other
+    /// values are for accuracy-versus-cost studies).
+    pub fn with_rules(full: usize, partial: usize, phi: usize, growth: f32) -> Self {
         let mut nodes = Vec::new();
         let mut push = |rule: Vec<Node>| {
             let offset = nodes.len() as u32;
@@ -124,21 +133,19 @@ impl Default for LutQuadrature {
             nodes.extend(rule.into_iter().map(|q| [q.x as f32, q.w as f32]));
             RuleRange { offset, count }
         };
-        let full = push(gauss_legendre_unit(FULL_PANEL_NODES));
-        let partial = push(gauss_legendre_unit(PARTIAL_PANEL_NODES));
-        let phi = push(gauss_legendre_even_half(PHI_NODES));
+        let full = push(gauss_legendre_unit(full));
+        let partial = push(gauss_legendre_unit(partial));
+        let phi = push(gauss_legendre_even_half(phi));
         LutQuadrature {
             nodes,
             full,
             partial,
             phi,
-            panel_growth: PANEL_GROWTH,
+            panel_growth: growth,
             max_panels: MAX_PARTIAL_PANELS,
         }
     }
-}
 
-impl LutQuadrature {
     /// The (x, w) pairs of one rule.
     pub fn rule(&self, r: RuleRange) -> &[[f32; 2]] {
         &self.nodes[r.offset as usize..(r.offset + r.count) as usize]

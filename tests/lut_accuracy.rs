@@ -43,3 +43,35 @@ fn dense_scan_512() {
     );
     assert!(worst.0 <= LUT_TOLERANCE);
 }
+
+/// Accuracy against cost of smaller rules (run on demand:
+/// `cargo test --release --test lut_accuracy quadrature_scan -- --ignored --nocapture`):
+/// worst |error| over the check texels of 512² and the CPU time of a 512² table.
+#[test]
+#[ignore]
+fn quadrature_scan() {
+    let (w, h) = (512u32, 512u32);
+    for (full, partial, phi, growth) in [
+        (12, 8, 6, 2.5f32),
+        (12, 8, 4, 2.5),
+        (8, 8, 6, 2.5),
+        (12, 6, 6, 2.5),
+        (12, 8, 6, 3.5),
+        (8, 6, 4, 2.5),
+        (8, 6, 4, 3.5),
+        (10, 6, 5, 3.0),
+    ] {
+        let quad = LutQuadrature::with_rules(full, partial, phi, growth);
+        let worst = common::worst_lut_error(w, h, &common::check_texels(w, h), |nv, r| {
+            brdf_lut_texel(nv, r, &quad)
+        });
+        let t = std::time::Instant::now();
+        splitsum::cpu::brdf_lut::brdf_lut(w, h, &quad);
+        println!(
+            "full {full:2} partial {partial} phi {phi} growth {growth}: worst {:.2e} at {:?}, 512² in {:.3} s",
+            worst.0,
+            worst.1,
+            t.elapsed().as_secs_f64()
+        );
+    }
+}
