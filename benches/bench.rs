@@ -1,6 +1,6 @@
 //! `cargo bench`: peak memory, bake and cubemap timings, and the BRDF LUT's timings and
 //! accuracy on both backends, printed as tables. `cargo bench --bench bench -- memory`
-//! (or bake, cubemap, lut) runs only those sections.
+//! (or bake, cubemap, specular, lut) runs only those sections.
 //!
 //! CPU seconds come from /proc/self/stat (user + system, all threads), wall seconds from a
 //! monotonic clock. GPU times are measured around the whole kernel call (upload, dispatch,
@@ -133,6 +133,42 @@ fn cubemap_benchmarks() {
             });
             println!("| {name} | convert (pyramid, level 0, 9 mips, readback) | {label} | {wall:.3} | {cpu:.3} |");
         }
+    }
+}
+
+/// Where the CPU backend's specular time goes: each level of venice_sunset_1k's default
+/// 256 chain with its method.
+fn specular_benchmarks() {
+    use splitsum::cpu::prefilter_specular::{
+        level_method, mip_roughness, prefilter_level, split_hot_texels, DEFAULT_SAMPLES,
+    };
+    use splitsum::Cubemap;
+    println!("\n## CPU specular chain of venice_sunset_1k.hdr (256, 9 levels), per level\n");
+    println!("| level | size | roughness | method | wall s | CPU s |");
+    println!("|---|---|---|---|---|---|");
+    let loaded = splitsum::io::input::load_environment(
+        std::path::Path::new("../shared/data/env/venice_sunset_1k.hdr"),
+        &Default::default(),
+    )
+    .unwrap();
+    let env =
+        splitsum::convert::environment_to_cube(&splitsum::CpuBackend, &loaded.env, 256, true, 0.0)
+            .unwrap();
+    let levels = Cubemap::full_mip_count(env.size);
+    let (wall, cpu) = measure(1, || {
+        split_hot_texels(&env);
+    });
+    println!("| - | - | - | split hot texels | {wall:.3} | {cpu:.2} |");
+    let sampled = split_hot_texels(&env);
+    println!("| - | - | - | {} hot texels | - | - |", sampled.hot.len());
+    for m in 1..levels {
+        let r = mip_roughness(m, levels);
+        let method = level_method(env.size, m, levels, DEFAULT_SAMPLES);
+        let size = env.level_size(m as usize);
+        let (wall, cpu) = measure(1, || {
+            prefilter_level(&env, &sampled, size, r, method);
+        });
+        println!("| {m} | {size} | {r:.3} | {method:?} | {wall:.3} | {cpu:.2} |");
     }
 }
 
@@ -277,6 +313,9 @@ fn main() {
     }
     if run("cubemap") {
         cubemap_benchmarks();
+    }
+    if run("specular") {
+        specular_benchmarks();
     }
     if run("lut") {
         lut_benchmarks();

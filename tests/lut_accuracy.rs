@@ -53,13 +53,12 @@ fn quadrature_scan() {
     let (w, h) = (512u32, 512u32);
     for (full, partial, phi, growth) in [
         (12, 8, 6, 2.5f32),
-        (12, 8, 4, 2.5),
-        (8, 8, 6, 2.5),
-        (12, 6, 6, 2.5),
-        (12, 8, 6, 3.5),
-        (8, 6, 4, 2.5),
-        (8, 6, 4, 3.5),
+        (12, 6, 5, 2.5),
+        (10, 6, 5, 2.5),
         (10, 6, 5, 3.0),
+        (12, 6, 5, 3.0),
+        (10, 6, 6, 3.0),
+        (10, 5, 5, 3.0),
     ] {
         let quad = LutQuadrature::with_rules(full, partial, phi, growth);
         let worst = common::worst_lut_error(w, h, &common::check_texels(w, h), |nv, r| {

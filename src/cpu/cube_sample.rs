@@ -24,20 +24,40 @@ pub fn fetch_cube_texel(cube: &Cubemap, m: usize, face: u32, x: i32, y: i32) -> 
 }
 
 /// Seamless bilinear lookup of mip `m` at face coordinates (s, t) ∈ [−1, 1]² of `face`.
+/// When the 2×2 footprint lies inside the face (nearly always at large mips) the four
+/// texels are read directly; otherwise each tap goes through [`fetch_cube_texel`]. Both
+/// paths sum the taps in the same order, so the result does not depend on the path.
 pub fn sample_face_bilinear(cube: &Cubemap, m: usize, face: u32, s: f32, t: f32) -> [f32; 3] {
-    let n = cube.level_size(m) as f32;
-    let x = (s + 1.0) * 0.5 * n - 0.5;
-    let y = (t + 1.0) * 0.5 * n - 0.5;
+    let n = cube.level_size(m);
+    let x = (s + 1.0) * 0.5 * n as f32 - 0.5;
+    let y = (t + 1.0) * 0.5 * n as f32 - 0.5;
     let (x0, y0) = (x.floor(), y.floor());
     let (fx, fy) = (x - x0, y - y0);
     let (xi, yi) = (x0 as i32, y0 as i32);
+    let weights = [
+        (1.0 - fx) * (1.0 - fy),
+        fx * (1.0 - fy),
+        (1.0 - fx) * fy,
+        fx * fy,
+    ];
     let mut out = [0.0f32; 3];
-    for (dx, dy, w) in [
-        (0, 0, (1.0 - fx) * (1.0 - fy)),
-        (1, 0, fx * (1.0 - fy)),
-        (0, 1, (1.0 - fx) * fy),
-        (1, 1, fx * fy),
-    ] {
+    let inside = xi >= 0 && yi >= 0 && xi + 1 < n as i32 && yi + 1 < n as i32;
+    if inside {
+        let level = &cube.levels[m];
+        let base = ((face * n + yi as u32) * n + xi as u32) as usize;
+        let n = n as usize;
+        for (k, w) in [base, base + 1, base + n, base + n + 1]
+            .into_iter()
+            .zip(weights)
+        {
+            let v = level[k];
+            for c in 0..3 {
+                out[c] += w * v[c];
+            }
+        }
+        return out;
+    }
+    for ((dx, dy), w) in [(0, 0), (1, 0), (0, 1), (1, 1)].into_iter().zip(weights) {
         let v = fetch_cube_texel(cube, m, face, xi + dx, yi + dy);
         for c in 0..3 {
             out[c] += w * v[c];
@@ -68,4 +88,62 @@ pub fn cube_texel_solid_angle_at(cube: &Cubemap, d: [f32; 3]) -> f32 {
     let (_, s, t) = cube_face_coords(d);
     let n = cube.size as f32;
     (2.0 / n) * (2.0 / n) * cube_face_jacobian(s, t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The direct read of an inside footprint gives exactly what four `fetch_cube_texel`
+    /// taps give, and edge footprints still reach the neighbouring faces.
+    #[test]
+    fn fast_path_equals_per_tap_fetches() {
+        let size = 16u32;
+        let mut cube = Cubemap {
+            size,
+            levels: vec![(0..Cubemap::level_len(size))
+                .map(|i| {
+                    [
+                        (i % 17) as f32 * 0.37,
+                        (i % 5) as f32,
+                        1.0 + (i % 3) as f32,
+                        1.0,
+                    ]
+                })
+                .collect()],
+        };
+        crate::cpu::cube_downsample::build_mips(&mut cube, 5);
+        let mut checked = 0;
+        for m in 0..5usize {
+            let n = cube.level_size(m) as f32;
+            for face in 0..6u32 {
+                for k in 0..97 {
+                    let s = -1.0 + 2.0 * ((k * 37 % 97) as f32 + 0.5) / 97.0;
+                    let t = -1.0 + 2.0 * ((k * 59 % 97) as f32 + 0.5) / 97.0;
+                    let x = (s + 1.0) * 0.5 * n - 0.5;
+                    let y = (t + 1.0) * 0.5 * n - 0.5;
+                    let (fx, fy) = (x - x.floor(), y - y.floor());
+                    let (xi, yi) = (x.floor() as i32, y.floor() as i32);
+                    let mut want = [0.0f32; 3];
+                    for (dx, dy, w) in [
+                        (0, 0, (1.0 - fx) * (1.0 - fy)),
+                        (1, 0, fx * (1.0 - fy)),
+                        (0, 1, (1.0 - fx) * fy),
+                        (1, 1, fx * fy),
+                    ] {
+                        let v = fetch_cube_texel(&cube, m, face, xi + dx, yi + dy);
+                        (0..3).for_each(|c| want[c] += w * v[c]);
+                    }
+                    let got = sample_face_bilinear(&cube, m, face, s, t);
+                    assert_eq!(
+                        got.map(f32::to_bits),
+                        want.map(f32::to_bits),
+                        "m {m} face {face} ({s}, {t})"
+                    );
+                    checked += 1;
+                }
+            }
+        }
+        assert_eq!(checked, 5 * 6 * 97);
+    }
 }

@@ -133,7 +133,10 @@ fn check_dwa_chunks(
         let Some(header) = headers.get(chunk.layer_index) else {
             continue;
         };
-        if !matches!(header.compression, Compression::DWAA(_) | Compression::DWAB(_)) {
+        if !matches!(
+            header.compression,
+            Compression::DWAA(_) | Compression::DWAB(_)
+        ) {
             continue;
         }
         let bytes = match &chunk.compressed_block {
