@@ -105,7 +105,7 @@ pub struct BakeArgs {
     pub no_lut: bool,
 
     /// GGX samples per texel for the importance-sampled (low-roughness) specular levels.
-    #[arg(long, default_value_t = 128)]
+    #[arg(long, default_value_t = splitsum::cpu::prefilter_specular::DEFAULT_SAMPLES)]
     pub samples: u32,
 
     /// No progress bars.

@@ -292,23 +292,36 @@ fn brute_force_ggx(env: &Cubemap, n: [f32; 3], roughness: f32) -> [f64; 3] {
 }
 
 /// Every level of a 128² quarry chain at the default settings against brute force
-/// (slow: `cargo test --release --test specular -- --ignored --nocapture`). Reports the
-/// importance-sampled low-roughness levels too, which the 3 % bar does not cover.
+/// (slow: `cargo test --release --test specular -- --ignored --nocapture`; set
+/// `SPLITSUM_SCAN_SAMPLES` to try another sample count). Reports the importance-sampled
+/// low-roughness levels too, which the 3 % bar does not cover.
 #[test]
 #[ignore]
 fn prefilter_accuracy_scan() {
-    let env = quarry_cube(128);
-    let levels = env.levels.len() as u32;
-    let spec = splitsum::cpu::prefilter_specular::prefilter_specular(&env, 128);
-    for m in 1..levels {
-        let r = mip_roughness(m, levels);
-        let (err, worst) = brute_force_errors(&env, &spec, m as usize, r);
-        let method = splitsum::cpu::prefilter_specular::level_method(128, m, levels, 128);
-        println!(
-            "mip {m} r {r:.2} {method:?}: energy-weighted {:.2} %, worst texel {:.1} %",
-            100.0 * err,
-            100.0 * worst
-        );
+    for name in ["quarry_01_1k.hdr", "studio_small_03_1k.hdr"] {
+        let loaded = load_environment(
+            &std::path::Path::new("../shared/data/env").join(name),
+            &InputOptions::default(),
+        )
+        .unwrap();
+        let env = environment_to_cube(&CpuBackend, &loaded.env, 128, true, 0.0).unwrap();
+        let levels = env.levels.len() as u32;
+        let samples: u32 = std::env::var("SPLITSUM_SCAN_SAMPLES")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(splitsum::cpu::prefilter_specular::DEFAULT_SAMPLES);
+        let spec = splitsum::cpu::prefilter_specular::prefilter_specular(&env, samples);
+        println!("{name}, {samples} samples");
+        for m in 1..levels {
+            let r = mip_roughness(m, levels);
+            let (err, worst) = brute_force_errors(&env, &spec, m as usize, r);
+            let method = splitsum::cpu::prefilter_specular::level_method(128, m, levels, samples);
+            println!(
+                "mip {m} r {r:.2} {method:?}: energy-weighted {:.2} %, worst texel {:.1} %",
+                100.0 * err,
+                100.0 * worst
+            );
+        }
     }
 }
 

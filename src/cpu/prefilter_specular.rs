@@ -27,8 +27,12 @@ use crate::math::sampling::{hammersley, importance_sample_ggx};
 /// gives 4.7 % with no visible structure (tests/specular.rs checks for fireflies), so 0.
 pub const LOD_BIAS: f32 = 0.0;
 
-/// Default GGX samples per texel and level.
-pub const DEFAULT_SAMPLES: u32 = 128;
+/// Default GGX samples per texel and level. Measured by `prefilter_accuracy_scan`
+/// (tests/specular.rs) on the sampled r = 1/7 level of a 128² chain, energy-weighted error
+/// against brute force: 32 samples 0.51 % (quarry), 64: 0.39 % (quarry) and 0.99 %
+/// (studio_small_03), 128: 0.30 % and 0.90 %. 64 halves the time of the sampled levels
+/// (the bulk of a default bake) for about 0.1 point.
+pub const DEFAULT_SAMPLES: u32 = 64;
 
 /// Roughness of mip `m` of a chain of `levels` (DESIGN.md: r = m / (M − 1)).
 pub fn mip_roughness(m: u32, levels: u32) -> f32 {
