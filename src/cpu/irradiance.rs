@@ -299,9 +299,9 @@ impl MomentRuns {
                         .fold(0.0f32, f32::max);
                     let mut sum = [[0.0f64; 3]; 3];
                     for t in texels {
-                        for c in 0..3 {
-                            for a in 0..3 {
-                                sum[c][a] += t.moments[c][a] as f64;
+                        for (sc, mc) in sum.iter_mut().zip(&t.moments) {
+                            for (s, m) in sc.iter_mut().zip(mc) {
+                                *s += *m as f64;
                             }
                         }
                     }
