@@ -12,7 +12,7 @@ use crate::cpu::sh_project::{sh_project, ShCoefficients};
 use crate::environment::Cubemap;
 use crate::io::atomic::write_all_atomic;
 use crate::io::cubemap::{encode_texture, to_cross};
-use crate::io::input::{load_environment, InputOptions, LoadedEnvironment};
+use crate::io::input::{load_input, InputOptions, LoadedEnvironment};
 use crate::io::lut::{encode_lut, LutWriteOptions};
 use crate::io::{dds, exr, ktx2, PixelFormat};
 use crate::lut::BrdfLut;
@@ -269,11 +269,7 @@ impl Staging {
 
 /// The output folder of `input` under `out_root`: `<out_root>/<stem>`.
 pub fn output_dir(out_root: &Path, input: &Path) -> PathBuf {
-    let stem = input
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "environment".into());
-    out_root.join(stem)
+    out_root.join(crate::io::input::input_stem(input))
 }
 
 /// Bakes one input into `output_dir(out_root, input)`. `lut`, when given, is written as
@@ -313,7 +309,7 @@ pub fn bake(
     let LoadedEnvironment {
         env: source,
         warnings,
-    } = load_environment(
+    } = load_input(
         input,
         &InputOptions {
             exposure_ev: opts.exposure_ev,

@@ -65,25 +65,14 @@ fn open_backend(common: &CommonArgs) -> anyhow::Result<Box<dyn splitsum::Backend
 
 fn run_cubemap(args: CubemapArgs) -> anyhow::Result<()> {
     use splitsum::io::cubemap::{check_cube_path, write_cubemap, CubeWriteOptions};
-    use splitsum::io::input::{load_environment, load_faces, InputOptions};
+    use splitsum::io::input::{load_faces, load_input, InputOptions};
     let first_input = args
         .input
         .clone()
         .or_else(|| args.faces.first().cloned())
         .unwrap_or_default();
     let output = args.output.clone().unwrap_or_else(|| {
-        let stem = first_input
-            .to_string_lossy()
-            .replace(splitsum::io::input::FACE_PLACEHOLDER, "")
-            .parse::<std::path::PathBuf>()
-            .unwrap_or_default()
-            .file_stem()
-            .map(|s| {
-                s.to_string_lossy()
-                    .trim_end_matches(['_', '-', '.'])
-                    .to_owned()
-            })
-            .unwrap_or_default();
+        let stem = splitsum::io::input::input_stem(&first_input);
         std::path::PathBuf::from("out").join(format!("{stem}_cubemap.ktx2"))
     });
     check_cube_path(&output)?;
@@ -96,10 +85,7 @@ fn run_cubemap(args: CubemapArgs) -> anyhow::Result<()> {
     };
     let start = Instant::now();
     let loaded = match &args.input {
-        Some(path) => match splitsum::io::input::expand_face_pattern(path) {
-            Some(faces) => load_faces(&faces, &opts)?,
-            None => load_environment(path, &opts)?,
-        },
+        Some(path) => load_input(path, &opts)?,
         None => load_faces(&args.faces, &opts)?,
     };
     for w in &loaded.warnings {
@@ -204,26 +190,34 @@ fn run_bake(args: BakeArgs) -> anyhow::Result<()> {
             bar.set_message(stage.name());
             bar.set_position(Stage::ALL.iter().position(|s| *s == stage).unwrap_or(0) as u64);
         };
-        let result = match splitsum::io::input::expand_face_pattern(input) {
-            Some(_) => Err(splitsum::Error::InvalidParameter {
-                name: "INPUT",
-                message: "face patterns are not supported by bake yet; convert them with `splitsum cubemap` to a .ktx2 first".into(),
-            }),
-            None => match bake(backend.as_ref(), input, &args.output, &opts, lut.as_ref(), &mut progress) {
-                Err(e) if fall_back(&e, &mut backend) => {
-                    // Redo everything on the CPU, the LUT included, so the outputs are
-                    // exactly a CPU bake's, as the manifest says.
-                    let relut = match lut {
-                        Some(_) => backend.brdf_lut(lut_size, lut_size).map(Some),
-                        None => Ok(None),
-                    };
-                    relut.and_then(|l| {
-                        lut = l;
-                        bake(backend.as_ref(), input, &args.output, &opts, lut.as_ref(), &mut progress)
-                    })
-                }
-                r => r,
-            },
+        let result = match bake(
+            backend.as_ref(),
+            input,
+            &args.output,
+            &opts,
+            lut.as_ref(),
+            &mut progress,
+        ) {
+            Err(e) if fall_back(&e, &mut backend) => {
+                // Redo everything on the CPU, the LUT included, so the outputs are
+                // exactly a CPU bake's, as the manifest says.
+                let relut = match lut {
+                    Some(_) => backend.brdf_lut(lut_size, lut_size).map(Some),
+                    None => Ok(None),
+                };
+                relut.and_then(|l| {
+                    lut = l;
+                    bake(
+                        backend.as_ref(),
+                        input,
+                        &args.output,
+                        &opts,
+                        lut.as_ref(),
+                        &mut progress,
+                    )
+                })
+            }
+            r => r,
         };
         bar.finish_and_clear();
         match result {

@@ -222,3 +222,62 @@ fn gpu_less_fallback() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("no GPU adapter"));
     assert!(!dir.join("gpu").exists());
 }
+
+/// Six face files given as a pattern (`sky_{face}.hdr`) bake like any other input, into
+/// `<out>/sky/`, and give the same outputs as the same cube in a KTX2 container.
+#[test]
+fn a_face_pattern_bakes() {
+    use splitsum::io::cubemap::{write_cubemap, CubeLayout, CubeWriteOptions};
+    let dir = common::output_dir("bake-faces");
+    // A 32² cube whose faces differ, written as faces (RGBE) and as an rgba32f KTX2.
+    let mut cube = splitsum::Cubemap {
+        size: 32,
+        levels: vec![(0..splitsum::Cubemap::level_len(32))
+            .map(|k| {
+                let face = k / (32 * 32);
+                [1.0 + face as f32, 0.5, 0.25 * (k % 7) as f32, 1.0]
+            })
+            .collect()],
+    };
+    splitsum::cpu::cube_downsample::build_mips(&mut cube, 1);
+    let faces = CubeWriteOptions {
+        layout: CubeLayout::Faces,
+        ..Default::default()
+    };
+    write_cubemap(&dir.join("sky.hdr"), &cube, &faces).unwrap();
+    let pattern = dir.join("sky_{face}.hdr");
+    let (code, err) = bake(&[&pattern], &dir.join("out"), &["--backend", "cpu"]);
+    assert_eq!(code, Some(0), "{err}");
+    let out = dir.join("out/sky");
+    for file in [
+        "specular.ktx2",
+        "irradiance.ktx2",
+        "sh.json",
+        "manifest.json",
+    ] {
+        assert!(out.join(file).exists(), "{file}");
+    }
+    let manifest = std::fs::read_to_string(out.join("manifest.json")).unwrap();
+    assert!(manifest.contains("sky_{face}.hdr"), "{manifest}");
+    // The same cube from one file: identical SH (the faces are RGBE, so re-read them).
+    let loaded = splitsum::io::input::load_input(&pattern, &Default::default()).unwrap();
+    let splitsum::Environment::Cube(read_back) = loaded.env else {
+        panic!("faces load as a cube");
+    };
+    let ktx = dir.join("same.ktx2");
+    write_cubemap(
+        &ktx,
+        &read_back,
+        &CubeWriteOptions {
+            format: splitsum::io::PixelFormat::Rgba32f,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let (code, err) = bake(&[&ktx], &dir.join("out"), &["--backend", "cpu"]);
+    assert_eq!(code, Some(0), "{err}");
+    assert_eq!(
+        std::fs::read(out.join("sh.json")).unwrap(),
+        std::fs::read(dir.join("out/same/sh.json")).unwrap()
+    );
+}

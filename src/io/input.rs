@@ -388,6 +388,34 @@ pub fn expand_face_pattern(path: &Path) -> Option<Vec<PathBuf>> {
     })
 }
 
+/// The name an input's outputs are called by: its file stem, with a face pattern's
+/// placeholder removed and trailing separators trimmed (`sky_{face}.hdr` → `sky`).
+pub fn input_stem(path: &Path) -> String {
+    let text = path.to_string_lossy().replace(FACE_PLACEHOLDER, "");
+    let stem = Path::new(&text)
+        .file_stem()
+        .map(|s| {
+            s.to_string_lossy()
+                .trim_end_matches(['_', '-', '.'])
+                .to_owned()
+        })
+        .unwrap_or_default();
+    if stem.is_empty() {
+        "environment".into()
+    } else {
+        stem
+    }
+}
+
+/// Loads an input named on the command line: a face pattern (`sky_{face}.hdr`, see
+/// [`expand_face_pattern`]) or one environment file.
+pub fn load_input(path: &Path, opts: &InputOptions) -> Result<LoadedEnvironment> {
+    match expand_face_pattern(path) {
+        Some(faces) => load_faces(&faces, opts),
+        None => load_environment(path, opts),
+    }
+}
+
 /// Loads six square face images in the order +X, −X, +Y, −Y, +Z, −Z.
 pub fn load_faces(paths: &[PathBuf], opts: &InputOptions) -> Result<LoadedEnvironment> {
     if paths.len() != FACES {
