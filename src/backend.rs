@@ -25,6 +25,13 @@ pub trait Backend {
     /// A human-readable description ("cpu (rayon, 2 threads)", "gpu: NVIDIA ... (Vulkan)").
     fn description(&self) -> String;
 
+    /// What determines the outputs, for manifests: the adapter of a GPU backend, but not
+    /// the CPU backend's thread count (every texel is computed the same way however the
+    /// work is split), so equal bakes on different machines give equal manifests.
+    fn identity(&self) -> String {
+        self.description()
+    }
+
     /// The split-sum BRDF LUT (see [`crate::lut`]).
     fn brdf_lut(&self, width: u32, height: u32) -> Result<BrdfLut>;
 
@@ -52,6 +59,10 @@ pub struct CpuBackend;
 impl Backend for CpuBackend {
     fn description(&self) -> String {
         format!("cpu (rayon, {} threads)", rayon::current_num_threads())
+    }
+
+    fn identity(&self) -> String {
+        "cpu".into()
     }
 
     fn brdf_lut(&self, width: u32, height: u32) -> Result<BrdfLut> {
@@ -153,6 +164,13 @@ impl Backend for SoftwareAdapterBackend {
             "{} for the LUT, {} for conversion, prefilter and irradiance (software adapter)",
             self.gpu.description(),
             CpuBackend.description()
+        )
+    }
+
+    fn identity(&self) -> String {
+        format!(
+            "{} for the LUT, cpu for conversion, prefilter and irradiance",
+            self.gpu.identity()
         )
     }
 

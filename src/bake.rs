@@ -418,7 +418,7 @@ fn manifest_json(
         "{{\n  \"tool\": \"splitsum\",\n  \"version\": {},\n  \"input\": {},\n  \"backend\": {},\n  \"parameters\": {{\n    \"specular_size\": {},\n    \"specular_levels\": {},\n    \"roughness_per_mip\": \"m / (levels - 1)\",\n    \"irradiance_size\": {},\n    \"irradiance\": \"E / pi\",\n    \"container\": {},\n    \"pixel_format\": {},\n    \"zstd\": {},\n    \"samples\": {},\n    \"rotate_degrees\": {},\n    \"exposure_ev\": {},\n    \"lut_size\": {}\n  }},\n  \"outputs\": [\n{}\n  ]\n}}\n",
         json_string(env!("CARGO_PKG_VERSION")),
         json_string(&input.to_string_lossy()),
-        json_string(&backend.description()),
+        json_string(&backend.identity()),
         opts.specular_size,
         Cubemap::full_mip_count(opts.specular_size),
         opts.irradiance_size,
