@@ -18,7 +18,7 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
     long_about,
     propagate_version = true
 )]
-#[command(after_help = "Exit codes: 0 success, 1 a job failed, 2 usage error.")]
+#[command(after_help = "Exit codes: 0 success, 1 a job failed, 2 usage error, 130 interrupted.")]
 pub struct Cli {
     /// What to bake.
     #[command(subcommand)]
@@ -68,7 +68,7 @@ pub enum Command {
 /// `splitsum bake`.
 #[derive(Debug, Args)]
 #[command(
-    after_help = "Exit codes: 0 every input baked, 1 an input failed (the others are still baked), 2 usage error."
+    after_help = "Exit codes: 0 every input baked, 1 an input failed (the others are still baked), 2 usage error, 130 interrupted (Ctrl-C or SIGTERM: files being written are removed, finished inputs stay)."
 )]
 pub struct BakeArgs {
     /// Input environments (equirects, crosses, KTX2/DDS cubemaps, face patterns).

@@ -1,5 +1,6 @@
 //! The `splitsum` binary: parse, call the library, print errors with their chain, map
-//! them to exit codes (0 ok, 1 a job failed, 2 usage error; clap exits 2 by itself).
+//! them to exit codes (0 ok, 1 a job failed, 2 usage error, clap exits 2 by itself;
+//! 130 interrupted).
 
 mod cli;
 
@@ -12,9 +13,19 @@ use clap::Parser;
 use cli::{BakeArgs, Cli, Command, CommonArgs, CubemapArgs, LutArgs, VerifyArgs};
 use splitsum::io::lut::{check_lut_path, write_lut, LutWriteOptions};
 
+/// Exit code after Ctrl-C or SIGTERM (128 + SIGINT, the shell convention).
+const INTERRUPTED: i32 = 130;
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     quiet_vulkan_loader();
+    // Interrupted mid-write: remove the temporaries being written (the destinations keep
+    // their previous contents) and exit.
+    let _ = ctrlc::set_handler(|| {
+        splitsum::io::atomic::remove_in_flight_temporaries();
+        eprintln!("interrupted");
+        std::process::exit(INTERRUPTED);
+    });
     let result = match cli.command {
         Command::Lut(args) => run_lut(args),
         Command::Cubemap(args) => run_cubemap(args),

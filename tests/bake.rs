@@ -300,3 +300,34 @@ fn a_face_pattern_bakes() {
         std::fs::read(dir.join("out/same/sh.json")).unwrap()
     );
 }
+
+/// Ctrl-C (SIGINT) in the middle of a bake: exit code 130, and nothing half-written in the
+/// output folder (the handler removes the temporaries of a write in progress; an input
+/// not yet written leaves nothing).
+#[cfg(unix)]
+#[test]
+fn an_interrupted_bake_exits_130_and_leaves_no_partial_files() {
+    let dir = common::output_dir("bake-interrupt");
+    let mut child = splitsum()
+        .args(["bake", "--backend", "cpu", "--specular-size", "1024", "-o"])
+        .arg(&dir)
+        .arg("tests/data/venice_sunset_1k.hdr")
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(700));
+    let killed = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(130), "{status}");
+    let leftovers: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .flatten()
+        .flat_map(|e| std::fs::read_dir(e.path()).into_iter().flatten().flatten())
+        .map(|e| e.file_name())
+        .collect();
+    assert!(leftovers.is_empty(), "{leftovers:?}");
+}
