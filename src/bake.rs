@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use sha2::{Digest, Sha256};
 
-use crate::convert::environment_to_cube;
+use crate::convert::environment_into_cube;
 use crate::cpu::sh_project::{sh_project, ShCoefficients};
 use crate::environment::Cubemap;
 use crate::io::atomic::write_all_atomic;
@@ -319,14 +319,13 @@ pub fn bake(
     done(&mut timings);
 
     let done = timed(Stage::Cubemap, progress);
-    let env = environment_to_cube(
+    let env = environment_into_cube(
         backend,
-        &source,
+        source,
         opts.specular_size,
         true,
         opts.rotate_degrees,
     )?;
-    drop(source);
     done(&mut timings);
 
     let done = timed(Stage::Specular, progress);

@@ -1,5 +1,7 @@
 //! HDRI → cubemap conversion: the step shared by `splitsum cubemap` and the bake.
 
+use std::borrow::Cow;
+
 use crate::cpu::cube_downsample::build_mips;
 use crate::cpu::cube_resample::cube_resample;
 use crate::cpu::equirect_to_cube::EquirectToCubeParams;
@@ -32,12 +34,35 @@ pub fn validate_cube_size(size: u32) -> Result<()> {
     Ok(())
 }
 
-/// Converts `env` to a `size` cube rotated by `rotate_degrees` about +Y, with the full mip
+/// Converts `env` to a `size` cube rotated by `rotate_degrees`, with the full mip
 /// chain when `mips` is set. Equirects run on `backend`; cube inputs are resampled on the
 /// CPU (see `cpu::cube_resample`), or kept as they are when size and rotation allow.
 pub fn environment_to_cube(
     backend: &dyn Backend,
     env: &Environment,
+    size: u32,
+    mips: bool,
+    rotate_degrees: f32,
+) -> Result<Cubemap> {
+    convert(backend, Cow::Borrowed(env), size, mips, rotate_degrees)
+}
+
+/// As [`environment_to_cube`], consuming `env`: an equirect's finest kept level or a
+/// cube's level 0 is used in place instead of copied (what a bake does, to keep its peak
+/// memory down).
+pub fn environment_into_cube(
+    backend: &dyn Backend,
+    env: Environment,
+    size: u32,
+    mips: bool,
+    rotate_degrees: f32,
+) -> Result<Cubemap> {
+    convert(backend, Cow::Owned(env), size, mips, rotate_degrees)
+}
+
+fn convert(
+    backend: &dyn Backend,
+    env: Cow<'_, Environment>,
     size: u32,
     mips: bool,
     rotate_degrees: f32,
@@ -54,20 +79,36 @@ pub fn environment_to_cube(
     } else {
         1
     };
+    let keep = |c: &Cubemap| c.size == size && rotate_degrees.rem_euclid(360.0) == 0.0;
     match env {
-        Environment::Equirect(e) => {
+        Cow::Borrowed(Environment::Equirect(e)) => {
             let params = EquirectToCubeParams::new(size, e.height, rotate_degrees);
             let pyramid = EquirectPyramid::new(e, params.base_level);
             backend.equirect_to_cube(&pyramid, &params, levels)
         }
-        Environment::Cube(c) => {
-            let mut cube = if c.size == size && rotate_degrees.rem_euclid(360.0) == 0.0 {
+        Cow::Owned(Environment::Equirect(e)) => {
+            let params = EquirectToCubeParams::new(size, e.height, rotate_degrees);
+            let pyramid = EquirectPyramid::from_image(e, params.base_level);
+            backend.equirect_to_cube(&pyramid, &params, levels)
+        }
+        Cow::Borrowed(Environment::Cube(c)) => {
+            let mut cube = if keep(c) {
                 Cubemap {
                     size,
                     levels: vec![c.levels[0].clone()],
                 }
             } else {
                 cube_resample(c, size, rotate_degrees)
+            };
+            build_mips(&mut cube, levels);
+            Ok(cube)
+        }
+        Cow::Owned(Environment::Cube(mut c)) => {
+            let mut cube = if keep(&c) {
+                c.levels.truncate(1);
+                c
+            } else {
+                cube_resample(&c, size, rotate_degrees)
             };
             build_mips(&mut cube, levels);
             Ok(cube)

@@ -367,3 +367,31 @@ fn reducing_on_load_gives_the_same_cube() {
         }
     }
 }
+
+/// Converting an owned environment (no copy of the finest level) gives exactly what
+/// converting a borrowed one gives, for an equirect read whole or reduced and for a cube
+/// kept as it is or resampled.
+#[test]
+fn owned_and_borrowed_conversions_agree() {
+    use splitsum::convert::environment_into_cube;
+    let path = std::path::Path::new("tests/data/venice_sunset_1k.hdr");
+    for cube_size in [None, Some(16)] {
+        let opts = InputOptions {
+            cube_size,
+            ..Default::default()
+        };
+        let env = load_environment(path, &opts).unwrap().env;
+        let a = environment_to_cube(&CpuBackend, &env, 16, true, 0.0).unwrap();
+        let b = environment_into_cube(&CpuBackend, env, 16, true, 0.0).unwrap();
+        assert_eq!(a, b, "equirect, reduced on load: {cube_size:?}");
+    }
+    let env = load_environment(path, &InputOptions::default())
+        .unwrap()
+        .env;
+    let cube = Environment::Cube(environment_to_cube(&CpuBackend, &env, 32, true, 0.0).unwrap());
+    for (size, rotate) in [(32, 0.0), (16, 0.0), (32, 90.0)] {
+        let a = environment_to_cube(&CpuBackend, &cube, size, true, rotate).unwrap();
+        let b = environment_into_cube(&CpuBackend, cube.clone(), size, true, rotate).unwrap();
+        assert_eq!(a, b, "cube {size} rotated {rotate}");
+    }
+}

@@ -318,12 +318,25 @@ impl EquirectPyramid {
     /// `first_level` (no finer level is held whole), and levels from `first_level` on are
     /// latitude-prefiltered and kept.
     pub fn new(base: &Equirect, first_level: u32) -> Self {
-        let (width, height) = (base.width, base.height);
-        let count = pyramid_level_count(height);
-        let first_level = first_level.min(count - 1);
-        let mut reducer = EquirectReducer::new(width, height, first_level);
+        let first_level = first_level.min(pyramid_level_count(base.height) - 1);
+        let mut reducer = EquirectReducer::new(base.width, base.height, first_level);
         reducer.push_all(&base.data);
-        let mut current = reducer.finish();
+        Self::from_first_level(base.width, base.height, first_level, reducer.finish())
+    }
+
+    /// As [`EquirectPyramid::new`], taking the image: when level 0 itself is kept it
+    /// becomes the first level in place, without a copy.
+    pub fn from_image(base: Equirect, first_level: u32) -> Self {
+        if first_level.min(pyramid_level_count(base.height) - 1) > 0 {
+            return Self::new(&base, first_level);
+        }
+        Self::from_first_level(base.width, base.height, 0, base)
+    }
+
+    /// The pyramid of a `width`×`height` image whose level `first_level` is `level`.
+    fn from_first_level(width: u32, height: u32, first_level: u32, level: Equirect) -> Self {
+        let count = pyramid_level_count(height);
+        let mut current = level;
         let mut stored = Vec::new();
         for level in first_level..count {
             let next = (level + 1 < count).then(|| current.downsample());
