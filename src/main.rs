@@ -114,9 +114,10 @@ fn run_cubemap(args: CubemapArgs) -> anyhow::Result<()> {
         .unwrap_or_else(|| splitsum::convert::default_cube_size(&loaded.env));
     let backend = open_backend(&args.common)?;
     let start = Instant::now();
-    let cube = splitsum::convert::environment_to_cube(
+    // By value: the input's finest level becomes the pyramid's without a copy.
+    let cube = splitsum::convert::environment_into_cube(
         backend.as_ref(),
-        &loaded.env,
+        loaded.env,
         size,
         args.mips,
         args.input_opts.rotate,
