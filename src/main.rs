@@ -176,11 +176,12 @@ fn run_bake(args: BakeArgs) -> anyhow::Result<()> {
         }
     };
     let lut_size = 512;
+    let compute_lut = |backend: &dyn splitsum::Backend| backend.brdf_lut(lut_size, lut_size);
     let mut lut = if args.no_lut {
         None
     } else {
-        let lut = match backend.brdf_lut(lut_size, lut_size) {
-            Err(e) if fall_back(&e, &mut backend) => backend.brdf_lut(lut_size, lut_size),
+        let lut = match compute_lut(backend.as_ref()) {
+            Err(e) if fall_back(&e, &mut backend) => compute_lut(backend.as_ref()),
             r => r,
         };
         Some(lut.context("computing the BRDF LUT")?)
@@ -202,31 +203,20 @@ fn run_bake(args: BakeArgs) -> anyhow::Result<()> {
             bar.set_message(stage.name());
             bar.set_position(Stage::ALL.iter().position(|s| *s == stage).unwrap_or(0) as u64);
         };
-        let result = match bake(
-            backend.as_ref(),
-            input,
-            &args.output,
-            &opts,
-            lut.as_ref(),
-            &mut progress,
-        ) {
+        let mut run = |backend: &dyn splitsum::Backend, lut: Option<&splitsum::BrdfLut>| {
+            bake(backend, input, &args.output, &opts, lut, &mut progress)
+        };
+        let result = match run(backend.as_ref(), lut.as_ref()) {
             Err(e) if fall_back(&e, &mut backend) => {
                 // Redo everything on the CPU, the LUT included, so the outputs are
                 // exactly a CPU bake's, as the manifest says.
                 let relut = match lut {
-                    Some(_) => backend.brdf_lut(lut_size, lut_size).map(Some),
+                    Some(_) => compute_lut(backend.as_ref()).map(Some),
                     None => Ok(None),
                 };
                 relut.and_then(|l| {
                     lut = l;
-                    bake(
-                        backend.as_ref(),
-                        input,
-                        &args.output,
-                        &opts,
-                        lut.as_ref(),
-                        &mut progress,
-                    )
+                    run(backend.as_ref(), lut.as_ref())
                 })
             }
             r => r,
