@@ -16,9 +16,10 @@ fn sha256_hex(bytes: &[u8]) -> String {
         .collect()
 }
 
-fn bake(inputs: &[&Path], out: &Path, extra: &[&str]) -> (Option<i32>, String) {
-    let o = splitsum()
-        .arg("bake")
+/// `splitsum bake` of `inputs` into `out` with small sizes, no LUT and `extra` options.
+fn bake_command(inputs: &[&Path], out: &Path, extra: &[&str]) -> Command {
+    let mut cmd = splitsum();
+    cmd.arg("bake")
         .args(inputs)
         .arg("-o")
         .arg(out)
@@ -29,9 +30,12 @@ fn bake(inputs: &[&Path], out: &Path, extra: &[&str]) -> (Option<i32>, String) {
             "8",
             "--no-lut",
         ])
-        .args(extra)
-        .output()
-        .unwrap();
+        .args(extra);
+    cmd
+}
+
+fn bake(inputs: &[&Path], out: &Path, extra: &[&str]) -> (Option<i32>, String) {
+    let o = bake_command(inputs, out, extra).output().unwrap();
     (
         o.status.code(),
         String::from_utf8_lossy(&o.stderr).into_owned(),
@@ -127,19 +131,7 @@ fn two_bakes_are_byte_identical() {
             common::output_dir(&format!("bake-det-b-{backend}")),
         );
         assert_eq!(bake(&[input], &a, &["--backend", backend]).0, Some(0));
-        let one_thread = splitsum()
-            .arg("bake")
-            .arg(input)
-            .arg("-o")
-            .arg(&b)
-            .args([
-                "--specular-size",
-                "32",
-                "--irradiance-size",
-                "8",
-                "--no-lut",
-            ])
-            .args(["--backend", backend])
+        let one_thread = bake_command(&[input], &b, &["--backend", backend])
             .env("RAYON_NUM_THREADS", "1")
             .status()
             .unwrap();

@@ -27,14 +27,7 @@ fn max_error(width: u32, height: u32, data: &[[f32; 2]]) -> f64 {
 
 fn read_exr_rg(path: &Path) -> (u32, u32, Vec<[f32; 2]>) {
     use exr::prelude::*;
-    let image = read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .all_channels()
-        .first_valid_layer()
-        .all_attributes()
-        .from_file(path)
-        .unwrap();
+    let image = read_first_flat_layer_from_file(path).unwrap();
     let layer = image.layer_data;
     let channel = |name: &str| -> Vec<f32> {
         let c = layer

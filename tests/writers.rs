@@ -47,14 +47,7 @@ fn exr_has_float32_r_and_g() {
     let lut = small_lut();
     let p = path("lut.exr");
     write_lut(&p, &lut, LutWriteOptions::default()).unwrap();
-    let image = read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .all_channels()
-        .first_valid_layer()
-        .all_attributes()
-        .from_file(&p)
-        .unwrap();
+    let image = read_first_flat_layer_from_file(&p).unwrap();
     let layer = &image.layer_data;
     assert_eq!(layer.size, Vec2(24, 10));
     let names: Vec<String> = layer
