@@ -33,7 +33,7 @@ unsafe impl GlobalAlloc for Tracking {
 #[global_allocator]
 static ALLOCATOR: Tracking = Tracking;
 
-fn check(name: &str, decode: impl Fn(&Path, &[u8]) -> splitsum::Result<splitsum::Cubemap>) {
+fn check<T>(name: &str, decode: impl Fn(&Path, &[u8]) -> splitsum::Result<T>) {
     let path = Path::new("tests/fuzz_regressions").join(name);
     let bytes = std::fs::read(&path).unwrap();
     let start = Instant::now();
@@ -45,6 +45,12 @@ fn check(name: &str, decode: impl Fn(&Path, &[u8]) -> splitsum::Result<splitsum:
     assert!(result.is_err(), "{name}: expected an error");
     assert!(elapsed < Duration::from_secs(2), "{name}: took {elapsed:?}");
     println!("{name}: {} in {elapsed:?}", result.unwrap_err());
+}
+
+/// No single allocation in this test binary so far exceeded 64 MiB.
+fn assert_no_allocation_over_64_mib() {
+    let largest = LARGEST.load(Ordering::Relaxed);
+    assert!(largest < 64 << 20, "largest allocation {largest} bytes");
 }
 
 #[test]
@@ -78,14 +84,8 @@ fn exr_claiming_a_huge_size_allocates_little() {
         exr::meta::MetaData::read_from_buffered(std::io::Cursor::new(&bytes), false).unwrap();
     let size = meta.headers[0].layer_size;
     assert!(size.0 as u64 * size.1 as u64 * 12 > 1 << 30, "{size:?}");
-    check("exr-huge-claimed-size.exr", |p, b| {
-        splitsum::io::exr::decode(p, b).map(|_| splitsum::Cubemap {
-            size: 1,
-            levels: Vec::new(),
-        })
-    });
-    let largest = LARGEST.load(Ordering::Relaxed);
-    assert!(largest < 64 << 20, "largest allocation {largest} bytes");
+    check("exr-huge-claimed-size.exr", splitsum::io::exr::decode);
+    assert_no_allocation_over_64_mib();
 }
 
 /// A DWA chunk whose leader claims 2⁶¹ AC coefficients: the `exr` crate asked the
@@ -93,12 +93,6 @@ fn exr_claiming_a_huge_size_allocates_little() {
 /// catch_unwind could save it). splitsum checks every DWA chunk's counters first.
 #[test]
 fn exr_dwa_chunk_claiming_a_huge_count() {
-    check("exr-dwa-huge-count.exr", |p, b| {
-        splitsum::io::exr::decode(p, b).map(|_| splitsum::Cubemap {
-            size: 1,
-            levels: Vec::new(),
-        })
-    });
-    let largest = LARGEST.load(Ordering::Relaxed);
-    assert!(largest < 64 << 20, "largest allocation {largest} bytes");
+    check("exr-dwa-huge-count.exr", splitsum::io::exr::decode);
+    assert_no_allocation_over_64_mib();
 }
