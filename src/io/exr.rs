@@ -216,17 +216,6 @@ impl LazyBands {
         Self::ROWS.min(self.height - band * Self::ROWS)
     }
 
-    fn set(&mut self, pos: Vec2<usize>, texel: [f32; 3]) {
-        let (x, y) = (pos.x(), pos.y());
-        if x >= self.width || y >= self.height {
-            return;
-        }
-        let b = y / Self::ROWS;
-        let len = self.rows_in(b) * self.width;
-        let band = self.bands[b].get_or_insert_with(|| vec![[0.0; 3]; len]);
-        band[(y - b * Self::ROWS) * self.width + x] = texel;
-    }
-
     /// The whole image, row-major; bands never written are black. Each band is freed as
     /// it is copied, so the peak stays about one image.
     fn into_data(self) -> Vec<[f32; 3]> {
@@ -242,29 +231,70 @@ impl LazyBands {
     }
 }
 
-/// Reads the first layer's R, G and B channels (half, float or uint) at full resolution.
-/// The header is read first, so the size is checked before any pixel is allocated and an
-/// unsupported compression is named in the error.
-pub fn decode(path: &std::path::Path, bytes: &[u8]) -> crate::Result<crate::environment::Equirect> {
-    let (w, h, compression, _) = check_header(path, Cursor::new(bytes))?;
+/// Where a decode puts the pixels the `exr` crate delivers, one at a time.
+trait PixelStore {
+    fn set(&mut self, pos: Vec2<usize>, texel: [f32; 3]);
+}
+
+impl PixelStore for LazyBands {
+    fn set(&mut self, pos: Vec2<usize>, texel: [f32; 3]) {
+        let (x, y) = (pos.x(), pos.y());
+        if x >= self.width || y >= self.height {
+            return;
+        }
+        let b = y / Self::ROWS;
+        let len = self.rows_in(b) * self.width;
+        let band = self.bands[b].get_or_insert_with(|| vec![[0.0; 3]; len]);
+        band[(y - b * Self::ROWS) * self.width + x] = texel;
+    }
+}
+
+/// Decodes the first layer's R, G and B channels (half, float or uint, largest resolution
+/// level, blocks one at a time in file order) into `store`.
+fn read_rgb<T: PixelStore>(
+    path: &std::path::Path,
+    compression: Compression,
+    reader: impl std::io::Read + std::io::Seek,
+    store: T,
+) -> crate::Result<T> {
+    let slot = std::cell::Cell::new(Some(store));
     let image = read()
         .no_deep_data()
         .largest_resolution_level()
         .rgb_channels(
-            |_, _| LazyBands::new(w, h),
-            |data: &mut LazyBands, pos: Vec2<usize>, (r, g, b): (f32, f32, f32)| {
-                data.set(pos, [r, g, b])
+            |_, _| slot.take(),
+            |store: &mut Option<T>, pos: Vec2<usize>, (r, g, b): (f32, f32, f32)| {
+                if let Some(store) = store {
+                    store.set(pos, [r, g, b]);
+                }
             },
         )
         .first_valid_layer()
         .all_attributes()
         .non_parallel()
-        .from_buffered(Cursor::new(bytes))
+        .from_buffered(reader)
         .map_err(|e| read_error(path, compression, e))?;
+    image
+        .layer_data
+        .channel_data
+        .pixels
+        .ok_or_else(|| crate::Error::Decode {
+            path: path.to_path_buf(),
+            format: "OpenEXR",
+            message: "no layer with R, G and B channels".into(),
+        })
+}
+
+/// Reads the first layer's R, G and B channels (half, float or uint) at full resolution.
+/// The header is read first, so the size is checked before any pixel is allocated and an
+/// unsupported compression is named in the error.
+pub fn decode(path: &std::path::Path, bytes: &[u8]) -> crate::Result<crate::environment::Equirect> {
+    let (w, h, compression, _) = check_header(path, Cursor::new(bytes))?;
+    let bands = read_rgb(path, compression, Cursor::new(bytes), LazyBands::new(w, h))?;
     Ok(crate::environment::Equirect {
         width: w as u32,
         height: h as u32,
-        data: image.layer_data.channel_data.pixels.into_data(),
+        data: bands.into_data(),
     })
 }
 
@@ -273,7 +303,7 @@ pub fn decode(path: &std::path::Path, bytes: &[u8]) -> crate::Result<crate::envi
 /// order within the band (tiles of one tile row); a pixel outside the current band means
 /// the file is not stored top to bottom, and streaming stops.
 struct RowBatcher<S> {
-    sink: Option<S>,
+    sink: S,
     width: usize,
     height: usize,
     band: Vec<[f32; 3]>,
@@ -287,7 +317,9 @@ impl<S: RowSink> RowBatcher<S> {
     fn rows_in_band(&self) -> usize {
         self.band_rows.min(self.height - self.band_start)
     }
+}
 
+impl<S: RowSink> PixelStore for RowBatcher<S> {
     fn set(&mut self, pos: Vec2<usize>, texel: [f32; 3]) {
         let (x, y) = (pos.x(), pos.y());
         if !self.in_order || x >= self.width {
@@ -302,10 +334,8 @@ impl<S: RowSink> RowBatcher<S> {
         self.filled += 1;
         if self.filled == self.rows_in_band() * self.width {
             let n = self.filled;
-            if let Some(sink) = &mut self.sink {
-                if !sink.rows(&mut self.band[..n]) {
-                    self.in_order = false;
-                }
+            if !self.sink.rows(&mut self.band[..n]) {
+                self.in_order = false;
             }
             self.band[..n].fill([0.0; 3]);
             self.band_start += self.rows_in_band();
@@ -354,33 +384,19 @@ pub fn decode_streaming<S: RowSink>(
 ) -> crate::Result<Option<S>> {
     let (w, h) = (info.width as usize, info.height as usize);
     let band_rows = (batch_texels / (w * info.block_rows)).max(1) * info.block_rows;
-    let slot = std::cell::Cell::new(Some(sink));
-    let image = read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .rgb_channels(
-            |_, _| RowBatcher {
-                sink: slot.take(),
-                width: w,
-                height: h,
-                band: vec![[0.0; 3]; band_rows.min(h) * w],
-                band_rows,
-                band_start: 0,
-                filled: 0,
-                in_order: true,
-            },
-            |b: &mut RowBatcher<S>, pos: Vec2<usize>, (r, g, b_): (f32, f32, f32)| {
-                b.set(pos, [r, g, b_])
-            },
-        )
-        .first_valid_layer()
-        .all_attributes()
-        .non_parallel()
-        .from_buffered(reader)
-        .map_err(|e| read_error(path, info.compression, e))?;
-    let batcher = image.layer_data.channel_data.pixels;
+    let batcher = RowBatcher {
+        sink,
+        width: w,
+        height: h,
+        band: vec![[0.0; 3]; band_rows.min(h) * w],
+        band_rows,
+        band_start: 0,
+        filled: 0,
+        in_order: true,
+    };
+    let batcher = read_rgb(path, info.compression, reader, batcher)?;
     let complete = batcher.in_order && batcher.band_start == h;
-    Ok(batcher.sink.filter(|_| complete))
+    Ok(complete.then_some(batcher.sink))
 }
 
 #[cfg(test)]
@@ -399,7 +415,7 @@ mod tests {
 
     fn batcher(width: usize, height: usize, band_rows: usize) -> RowBatcher<Firsts> {
         RowBatcher {
-            sink: Some(Firsts(Vec::new())),
+            sink: Firsts(Vec::new()),
             width,
             height,
             band: vec![[0.0; 3]; band_rows.min(height) * width],
@@ -427,7 +443,7 @@ mod tests {
         }
         assert!(b.in_order);
         assert_eq!(b.band_start, 5);
-        assert_eq!(b.sink.unwrap().0, vec![[0.0; 3], [8.0; 3], [16.0; 3]]);
+        assert_eq!(b.sink.0, vec![[0.0; 3], [8.0; 3], [16.0; 3]]);
     }
 
     /// A block from a later band before the current band is full (bottom-up lines,
