@@ -5,6 +5,19 @@ use std::io::Cursor;
 
 use exr::prelude::*;
 
+/// The bytes of an OpenEXR file holding `image`.
+fn image_bytes<'img, L: exr::image::write::layers::WritableLayers<'img>>(
+    image: &'img Image<L>,
+) -> std::result::Result<Vec<u8>, String> {
+    let mut out = Cursor::new(Vec::new());
+    image
+        .write()
+        .non_parallel()
+        .to_buffered(&mut out)
+        .map_err(|e| e.to_string())?;
+    Ok(out.into_inner())
+}
+
 /// Encodes a width×height image with two float32 channels "R" and "G".
 pub fn encode_rg32(
     width: u32,
@@ -19,14 +32,10 @@ pub fn encode_rg32(
             let t = rg[pos.y() * w + pos.x()];
             (t[0], t[1])
         });
-    let image = Image::from_channels((width as usize, height as usize), channels);
-    let mut out = Cursor::new(Vec::new());
-    image
-        .write()
-        .non_parallel()
-        .to_buffered(&mut out)
-        .map_err(|e| e.to_string())?;
-    Ok(out.into_inner())
+    image_bytes(&Image::from_channels(
+        (width as usize, height as usize),
+        channels,
+    ))
 }
 
 /// Encodes a width×height RGB float32 image (channels R, G, B), rows top to bottom.
@@ -40,14 +49,10 @@ pub fn encode_rgb32(
         let t = rgb[pos.y() * w + pos.x()];
         (t[0], t[1], t[2])
     });
-    let image = Image::from_channels((width as usize, height as usize), channels);
-    let mut out = Cursor::new(Vec::new());
-    image
-        .write()
-        .non_parallel()
-        .to_buffered(&mut out)
-        .map_err(|e| e.to_string())?;
-    Ok(out.into_inner())
+    image_bytes(&Image::from_channels(
+        (width as usize, height as usize),
+        channels,
+    ))
 }
 
 /// Receives an image's rows, top to bottom, in batches of whole rows.
