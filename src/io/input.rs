@@ -96,11 +96,19 @@ impl exr::RowSink for ReducingSink {
         let (nan, negative, _) = sanitize(rows);
         self.nan += nan;
         self.negative += negative;
+        self.push_clean(rows);
+        true
+    }
+}
+
+impl ReducingSink {
+    /// Scales by the exposure and reduces rows already free of NaN, negative and infinite
+    /// values.
+    fn push_clean(&mut self, rows: &mut [[f32; 3]]) {
         if let Some(k) = self.exposure {
             scale_values(rows, k);
         }
         self.reducer.push(rows);
-        true
     }
 }
 
@@ -127,14 +135,13 @@ fn open_input(path: &Path) -> Result<std::io::BufReader<std::fs::File>> {
 }
 
 /// Reads a `.hdr` row by row into a [`ReducingSink`] (RGBE holds only finite,
-/// non-negative values, so the sink never gives up), reducing an equirect by
-/// [`levels_on_load`]; anything else is returned whole.
+/// non-negative values, so the rows skip the sink's scan and sanitising), reducing an
+/// equirect by [`levels_on_load`]; anything else is returned whole.
 fn read_hdr_streaming(
     path: &Path,
     opts: &InputOptions,
     warnings: &mut Vec<String>,
 ) -> Result<Equirect> {
-    use exr::RowSink;
     let mut reader = hdr::HdrReader::new(path, open_input(path)?)?;
     let (w, h) = (reader.width(), reader.height());
     let mut sink = ReducingSink::new(w, h, levels_on_load(w, h, opts), opts)?;
@@ -145,7 +152,7 @@ fn read_hdr_streaming(
         let n = (rows_per_batch as u32).min(h - y);
         let rows = &mut batch[..(n * w) as usize];
         reader.read_rows(rows)?;
-        sink.rows(rows);
+        sink.push_clean(rows);
         y += n;
     }
     Ok(sink.finish(path, warnings))
