@@ -90,12 +90,12 @@ fn synthetic_equirect(width: u32) -> splitsum::Equirect {
 
 fn cubemap_benchmarks() {
     use splitsum::convert::environment_to_cube;
-    use splitsum::environment::{Environment, EquirectPyramid};
+    use splitsum::environment::{Environment, EquirectIntegral};
     println!("\n## HDRI → cubemap 512 with mips\n");
     println!("| input | stage | backend | wall s | CPU s |");
     println!("|---|---|---|---|---|");
     let venice = splitsum::io::input::load_environment(
-        std::path::Path::new("../shared/data/env/venice_sunset_1k.hdr"),
+        std::path::Path::new("tests/data/venice_sunset_1k.hdr"),
         &Default::default(),
     )
     .map(|l| l.env);
@@ -117,10 +117,10 @@ fn cubemap_benchmarks() {
             continue;
         };
         let (wall, cpu) = measure(1, || {
-            EquirectPyramid::new(e, 0);
+            EquirectIntegral::new(e.clone());
         });
         println!(
-            "| {name} | pyramid (part of each conversion below) | cpu | {wall:.3} | {cpu:.3} |"
+            "| {name} | cumulative tables (part of each conversion below) | cpu | {wall:.3} | {cpu:.3} |"
         );
         let mut backends: Vec<(&str, &dyn splitsum::Backend)> =
             vec![("cpu", &splitsum::CpuBackend)];
@@ -147,7 +147,7 @@ fn specular_benchmarks() {
     println!("| level | size | roughness | method | wall s | CPU s |");
     println!("|---|---|---|---|---|---|");
     let loaded = splitsum::io::input::load_environment(
-        std::path::Path::new("../shared/data/env/venice_sunset_1k.hdr"),
+        std::path::Path::new("tests/data/venice_sunset_1k.hdr"),
         &Default::default(),
     )
     .unwrap();
@@ -179,7 +179,7 @@ fn bake_benchmarks() {
     println!("\n## Full default bake of venice_sunset_1k.hdr, per stage\n");
     println!("| backend | stage | wall s | CPU s |");
     println!("|---|---|---|---|");
-    let input = std::path::Path::new("../shared/data/env/venice_sunset_1k.hdr");
+    let input = std::path::Path::new("tests/data/venice_sunset_1k.hdr");
     let out = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench-bake");
     let mut backends: Vec<(&str, Box<dyn splitsum::Backend>)> =
         vec![("cpu", Box::new(splitsum::CpuBackend))];

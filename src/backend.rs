@@ -2,7 +2,7 @@
 //! without a GPU) and a GPU one (wgpu). Tests run every kernel through both.
 
 use crate::cpu::equirect_to_cube::EquirectToCubeParams;
-use crate::environment::{Cubemap, EquirectPyramid};
+use crate::environment::{Cubemap, EquirectIntegral};
 use crate::gpu::GpuContext;
 use crate::lut::{validate_lut_size, BrdfLut, LutQuadrature};
 use crate::{cpu, gpu, Error, Result};
@@ -35,18 +35,19 @@ pub trait Backend {
     /// The split-sum BRDF LUT (see [`crate::lut`]).
     fn brdf_lut(&self, width: u32, height: u32) -> Result<BrdfLut>;
 
-    /// An equirect (as its pyramid) to a cube of `params.face_size` with `mips` levels
-    /// (level 0 by footprint averaging, the rest by the 2×2 solid-angle reduction).
+    /// An equirect (one pyramid level, prepared for exact integrals) to a cube of
+    /// `params.face_size` with `mips` levels (level 0: each texel the exact footprint mean,
+    /// see [`crate::cpu::equirect_to_cube`]; the rest by the 2×2 solid-angle reduction).
     fn equirect_to_cube(
         &self,
-        pyramid: &EquirectPyramid,
+        source: &EquirectIntegral,
         params: &EquirectToCubeParams,
         mips: u32,
     ) -> Result<Cubemap>;
 
-    /// The prefiltered specular chain of `env` (which has every mip): level m at
-    /// roughness m/(M − 1), see [`crate::cpu::prefilter_specular`].
-    fn prefilter_specular(&self, env: &Cubemap, samples: u32) -> Result<Cubemap>;
+    /// The prefiltered specular chain of `env` (which has every mip) with `levels` levels:
+    /// level m at roughness m/(M − 1), see [`crate::cpu::prefilter_specular`].
+    fn prefilter_specular(&self, env: &Cubemap, levels: u32, samples: u32) -> Result<Cubemap>;
 
     /// The irradiance cube (E/π) of edge `size`, see [`crate::cpu::irradiance`].
     fn irradiance(&self, env: &Cubemap, size: u32) -> Result<Cubemap>;
@@ -76,17 +77,19 @@ impl Backend for CpuBackend {
 
     fn equirect_to_cube(
         &self,
-        pyramid: &EquirectPyramid,
+        source: &EquirectIntegral,
         params: &EquirectToCubeParams,
         mips: u32,
     ) -> Result<Cubemap> {
-        let mut cube = cpu::equirect_to_cube::equirect_to_cube(pyramid, params);
+        let mut cube = cpu::equirect_to_cube::equirect_to_cube(source, params);
         cpu::cube_downsample::build_mips(&mut cube, mips);
         Ok(cube)
     }
 
-    fn prefilter_specular(&self, env: &Cubemap, samples: u32) -> Result<Cubemap> {
-        Ok(cpu::prefilter_specular::prefilter_specular(env, samples))
+    fn prefilter_specular(&self, env: &Cubemap, levels: u32, samples: u32) -> Result<Cubemap> {
+        Ok(cpu::prefilter_specular::prefilter_specular(
+            env, levels, samples,
+        ))
     }
 
     fn irradiance(&self, env: &Cubemap, size: u32) -> Result<Cubemap> {
@@ -124,18 +127,18 @@ impl Backend for GpuBackend {
 
     fn equirect_to_cube(
         &self,
-        pyramid: &EquirectPyramid,
+        source: &EquirectIntegral,
         params: &EquirectToCubeParams,
         mips: u32,
     ) -> Result<Cubemap> {
         self.ctx.run_kernel("equirect_to_cube", |device, queue| {
-            gpu::equirect_to_cube::equirect_to_cube(device, queue, pyramid, params, mips)
+            gpu::equirect_to_cube::equirect_to_cube(device, queue, source, params, mips)
         })
     }
 
-    fn prefilter_specular(&self, env: &Cubemap, samples: u32) -> Result<Cubemap> {
+    fn prefilter_specular(&self, env: &Cubemap, levels: u32, samples: u32) -> Result<Cubemap> {
         self.ctx.run_kernel("prefilter_specular", |device, queue| {
-            gpu::prefilter::prefilter_specular(device, queue, env, samples)
+            gpu::prefilter::prefilter_specular(device, queue, env, levels, samples)
         })
     }
 
@@ -180,15 +183,15 @@ impl Backend for SoftwareAdapterBackend {
 
     fn equirect_to_cube(
         &self,
-        pyramid: &EquirectPyramid,
+        source: &EquirectIntegral,
         params: &EquirectToCubeParams,
         mips: u32,
     ) -> Result<Cubemap> {
-        CpuBackend.equirect_to_cube(pyramid, params, mips)
+        CpuBackend.equirect_to_cube(source, params, mips)
     }
 
-    fn prefilter_specular(&self, env: &Cubemap, samples: u32) -> Result<Cubemap> {
-        CpuBackend.prefilter_specular(env, samples)
+    fn prefilter_specular(&self, env: &Cubemap, levels: u32, samples: u32) -> Result<Cubemap> {
+        CpuBackend.prefilter_specular(env, levels, samples)
     }
 
     fn irradiance(&self, env: &Cubemap, size: u32) -> Result<Cubemap> {

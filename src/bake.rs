@@ -8,6 +8,7 @@ use std::time::Instant;
 use sha2::{Digest, Sha256};
 
 use crate::convert::environment_into_cube;
+use crate::cpu::prefilter_specular::chain_levels;
 use crate::cpu::sh_project::{sh_project, ShCoefficients};
 use crate::environment::Cubemap;
 use crate::io::atomic::write_all_atomic;
@@ -44,8 +45,12 @@ impl Container {
 /// Everything a bake can be asked for.
 #[derive(Clone, Debug)]
 pub struct BakeOptions {
-    /// Specular cube edge (a power of two); the chain goes down to 1×1.
+    /// Specular cube edge (a power of two).
     pub specular_size: u32,
+    /// Edge of the smallest specular mip (a power of two; 1 gives the full chain): the
+    /// chain has log2(specular_size / min_mip_size) + 1 levels (one when the specular size
+    /// is not larger).
+    pub min_mip_size: u32,
     /// Irradiance cube edge (a power of two).
     pub irradiance_size: u32,
     /// Output container.
@@ -66,6 +71,7 @@ impl Default for BakeOptions {
     fn default() -> Self {
         BakeOptions {
             specular_size: 256,
+            min_mip_size: crate::cpu::prefilter_specular::DEFAULT_MIN_MIP_SIZE,
             irradiance_size: 32,
             container: Container::Ktx2,
             pixel_format: PixelFormat::Rgba16f,
@@ -292,6 +298,12 @@ pub fn bake(
             ),
         }
     })?;
+    if !opts.min_mip_size.is_power_of_two() {
+        return Err(Error::InvalidParameter {
+            name: "--min-mip-size",
+            message: format!("{} is not a power of two", opts.min_mip_size),
+        });
+    }
     if opts.samples == 0 || opts.samples > 65536 {
         return Err(Error::InvalidParameter {
             name: "--samples",
@@ -329,7 +341,8 @@ pub fn bake(
     done(&mut timings);
 
     let done = timed(Stage::Specular, progress);
-    let specular = backend.prefilter_specular(&env, opts.samples)?;
+    let levels = chain_levels(opts.specular_size, opts.min_mip_size);
+    let specular = backend.prefilter_specular(&env, levels, opts.samples)?;
     done(&mut timings);
 
     let done = timed(Stage::Irradiance, progress);
@@ -414,12 +427,13 @@ fn manifest_json(
         })
         .collect();
     format!(
-        "{{\n  \"tool\": \"splitsum\",\n  \"version\": {},\n  \"input\": {},\n  \"backend\": {},\n  \"parameters\": {{\n    \"specular_size\": {},\n    \"specular_levels\": {},\n    \"roughness_per_mip\": \"m / (levels - 1)\",\n    \"irradiance_size\": {},\n    \"irradiance\": \"E / pi\",\n    \"container\": {},\n    \"pixel_format\": {},\n    \"zstd\": {},\n    \"samples\": {},\n    \"rotate_degrees\": {},\n    \"exposure_ev\": {},\n    \"lut_size\": {}\n  }},\n  \"outputs\": [\n{}\n  ]\n}}\n",
+        "{{\n  \"tool\": \"splitsum\",\n  \"version\": {},\n  \"input\": {},\n  \"backend\": {},\n  \"parameters\": {{\n    \"specular_size\": {},\n    \"specular_levels\": {},\n    \"min_mip_size\": {},\n    \"roughness_per_mip\": \"m / (levels - 1)\",\n    \"irradiance_size\": {},\n    \"irradiance\": \"E / pi\",\n    \"container\": {},\n    \"pixel_format\": {},\n    \"zstd\": {},\n    \"samples\": {},\n    \"rotate_degrees\": {},\n    \"exposure_ev\": {},\n    \"lut_size\": {}\n  }},\n  \"outputs\": [\n{}\n  ]\n}}\n",
         json_string(env!("CARGO_PKG_VERSION")),
         json_string(&input.to_string_lossy()),
         json_string(&backend.identity()),
         opts.specular_size,
-        Cubemap::full_mip_count(opts.specular_size),
+        chain_levels(opts.specular_size, opts.min_mip_size),
+        opts.min_mip_size,
         opts.irradiance_size,
         json_string(opts.container.extension()),
         json_string(opts.pixel_format.name()),

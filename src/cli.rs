@@ -83,6 +83,11 @@ pub struct BakeArgs {
     #[arg(long, default_value_t = 256)]
     pub specular_size: u32,
 
+    /// Edge of the smallest specular mip (power of two; 1 for the full chain to 1×1): the
+    /// chain has log2(specular-size / min-mip-size) + 1 levels, roughness m / (levels − 1).
+    #[arg(long, default_value_t = splitsum::cpu::prefilter_specular::DEFAULT_MIN_MIP_SIZE)]
+    pub min_mip_size: u32,
+
     /// Irradiance cube edge (power of two).
     #[arg(long, default_value_t = 32)]
     pub irradiance_size: u32,

@@ -5,7 +5,7 @@ use std::borrow::Cow;
 use crate::cpu::cube_downsample::build_mips;
 use crate::cpu::cube_resample::cube_resample;
 use crate::cpu::equirect_to_cube::EquirectToCubeParams;
-use crate::environment::{Cubemap, Environment, EquirectPyramid};
+use crate::environment::{Cubemap, Environment, Equirect, EquirectIntegral, EquirectReducer};
 use crate::{Backend, Error, Result};
 
 /// Largest cube face edge accepted.
@@ -82,14 +82,22 @@ fn convert(
     let keep = |c: &Cubemap| c.size == size && rotate_degrees.rem_euclid(360.0) == 0.0;
     match env {
         Cow::Borrowed(Environment::Equirect(e)) => {
-            let params = EquirectToCubeParams::new(size, e.height, rotate_degrees);
-            let pyramid = EquirectPyramid::new(e, params.base_level);
-            backend.equirect_to_cube(&pyramid, &params, levels)
+            let params = EquirectToCubeParams::new(size, e.width, e.height, rotate_degrees);
+            let level = if params.base_level == 0 {
+                e.clone()
+            } else {
+                reduce(e, params.base_level)
+            };
+            backend.equirect_to_cube(&EquirectIntegral::new(level), &params, levels)
         }
         Cow::Owned(Environment::Equirect(e)) => {
-            let params = EquirectToCubeParams::new(size, e.height, rotate_degrees);
-            let pyramid = EquirectPyramid::from_image(e, params.base_level);
-            backend.equirect_to_cube(&pyramid, &params, levels)
+            let params = EquirectToCubeParams::new(size, e.width, e.height, rotate_degrees);
+            let level = if params.base_level == 0 {
+                e
+            } else {
+                reduce(&e, params.base_level)
+            };
+            backend.equirect_to_cube(&EquirectIntegral::new(level), &params, levels)
         }
         Cow::Borrowed(Environment::Cube(c)) => {
             let mut cube = if keep(c) {
@@ -114,4 +122,11 @@ fn convert(
             Ok(cube)
         }
     }
+}
+
+/// `image` reduced by `levels` exact area halvings.
+fn reduce(image: &Equirect, levels: u32) -> Equirect {
+    let mut reducer = EquirectReducer::new(image.width, image.height, levels);
+    reducer.push_all(&image.data);
+    reducer.finish()
 }

@@ -153,6 +153,7 @@ fn run_bake(args: BakeArgs) -> anyhow::Result<()> {
     use std::io::IsTerminal;
     let opts = BakeOptions {
         specular_size: args.specular_size,
+        min_mip_size: args.min_mip_size,
         irradiance_size: args.irradiance_size,
         container: args.container.into(),
         pixel_format: args.pixel_format.into(),

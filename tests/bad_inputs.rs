@@ -68,7 +68,7 @@ fn empty_file() {
 
 #[test]
 fn truncated_hdr() {
-    let real = std::fs::read("../shared/data/env/venice_sunset_1k.hdr").unwrap();
+    let real = std::fs::read("tests/data/venice_sunset_1k.hdr").unwrap();
     check(
         "truncated.hdr",
         Some(&real[..real.len() / 2]),

@@ -62,23 +62,43 @@ fn lut_params_layout_matches_rust() {
     assert_eq!(size_of::<LutParams>() % 16, 0);
 }
 
+/// The value of the WGSL `const` named `name`, an f32 literal.
+fn wgsl_f32_constant(module: &naga::Module, name: &str) -> f32 {
+    let (_, c) = module
+        .constants
+        .iter()
+        .find(|(_, c)| c.name.as_deref() == Some(name))
+        .unwrap_or_else(|| panic!("{name} missing"));
+    match module.global_expressions[c.init] {
+        naga::Expression::Literal(naga::Literal::F32(v)) => v,
+        ref other => panic!("{name}: {other:?}"),
+    }
+}
+
 /// The WGSL atan coefficients are the Rust ones (one source of truth, checked).
 #[test]
 fn atan_coefficients_match_rust() {
     let module = parse("equirect_to_cube", splitsum::gpu::shaders::EQUIRECT_TO_CUBE);
     for (k, expected) in splitsum::math::trig::ATAN_COEFFS.iter().enumerate() {
         let name = format!("ATAN_C{k}");
-        let (_, c) = module
-            .constants
-            .iter()
-            .find(|(_, c)| c.name.as_deref() == Some(name.as_str()))
-            .unwrap_or_else(|| panic!("{name} missing"));
-        let value = match module.global_expressions[c.init] {
-            naga::Expression::Literal(naga::Literal::F32(v)) => v,
-            ref other => panic!("{name}: {other:?}"),
-        };
-        assert_eq!(value, *expected, "{name}");
+        assert_eq!(wgsl_f32_constant(&module, &name), *expected, "{name}");
     }
+}
+
+/// The conversion's Gauss-Legendre rule is the same on both sides.
+#[test]
+fn conversion_quadrature_matches_rust() {
+    use splitsum::cpu::equirect_to_cube::{GAUSS_NODE, GAUSS_WEIGHTS};
+    let module = parse("equirect_to_cube", splitsum::gpu::shaders::EQUIRECT_TO_CUBE);
+    assert_eq!(wgsl_f32_constant(&module, "GAUSS_NODE"), GAUSS_NODE);
+    assert_eq!(
+        wgsl_f32_constant(&module, "GAUSS_WEIGHT_OUTER"),
+        GAUSS_WEIGHTS[0]
+    );
+    assert_eq!(
+        wgsl_f32_constant(&module, "GAUSS_WEIGHT_CENTRE"),
+        GAUSS_WEIGHTS[1]
+    );
 }
 
 /// Checks a WGSL struct's member names and offsets against a Rust `#[repr(C)]` struct.
@@ -105,14 +125,7 @@ fn kernel_uniforms_match_rust() {
         EQUIRECT_TO_CUBE,
         "EquirectToCubeParams",
         EquirectToCubeUniform,
-        [
-            face_size,
-            samples_per_axis,
-            base_level,
-            level_count,
-            source_size,
-            rotation
-        ]
+        [face_size, pad, source_size, rotation, pad2]
     );
     assert_layout!(
         PREFILTER_SAMPLED,

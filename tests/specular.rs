@@ -33,7 +33,7 @@ fn analytic_cube(size: u32, f: impl Fn([f32; 3]) -> [f32; 3]) -> Cubemap {
 
 fn quarry_cube(size: u32) -> Cubemap {
     let loaded = load_environment(
-        std::path::Path::new("../shared/data/env/quarry_01_1k.hdr"),
+        std::path::Path::new("tests/data/quarry_01_1k.hdr"),
         &InputOptions::default(),
     )
     .unwrap();
@@ -48,7 +48,9 @@ fn white_furnace() {
     let c = [1.7f32, 0.4, 2.5];
     let env = analytic_cube(128, |_| c);
     for backend in common::backends() {
-        let spec = backend.prefilter_specular(&env, 64).unwrap();
+        let spec = backend
+            .prefilter_specular(&env, env.levels.len() as u32, 64)
+            .unwrap();
         assert_eq!(spec.levels.len(), 8);
         let irr = backend.irradiance(&env, 16).unwrap();
         for (what, cube) in [("specular", &spec), ("irradiance", &irr)] {
@@ -113,7 +115,9 @@ fn specular_matches_brute_force_on_quarry() {
     let env = quarry_cube(64);
     let levels = env.levels.len() as u32;
     for backend in common::backends() {
-        let spec = backend.prefilter_specular(&env, 128).unwrap();
+        let spec = backend
+            .prefilter_specular(&env, env.levels.len() as u32, 128)
+            .unwrap();
         for m in 1..levels {
             let r = mip_roughness(m, levels);
             if r < 1.0 / 3.0 {
@@ -156,7 +160,7 @@ fn irradiance_matches_brute_force_on_real_hdris() {
         "venice_sunset_1k_f32_piz.exr",
     ] {
         let loaded = load_environment(
-            &std::path::Path::new("../shared/data/env").join(name),
+            &std::path::Path::new("tests/data").join(name),
             &InputOptions::default(),
         )
         .unwrap();
@@ -205,8 +209,12 @@ fn gpu_prefilter_and_irradiance_match_cpu() {
     let Some(ctx) = common::gpu() else { return };
     let gpu = GpuBackend { ctx };
     let env = quarry_cube(128);
-    let a = gpu.prefilter_specular(&env, 32).unwrap();
-    let b = CpuBackend.prefilter_specular(&env, 32).unwrap();
+    let a = gpu
+        .prefilter_specular(&env, env.levels.len() as u32, 32)
+        .unwrap();
+    let b = CpuBackend
+        .prefilter_specular(&env, env.levels.len() as u32, 32)
+        .unwrap();
     let ia = gpu.irradiance(&env, 16).unwrap();
     let ib = CpuBackend.irradiance(&env, 16).unwrap();
     for (what, x, y) in [("specular", &a, &b), ("irradiance", &ia, &ib)] {
@@ -300,7 +308,7 @@ fn brute_force_ggx(env: &Cubemap, n: [f32; 3], roughness: f32) -> [f64; 3] {
 fn prefilter_accuracy_scan() {
     for name in ["quarry_01_1k.hdr", "studio_small_03_1k.hdr"] {
         let loaded = load_environment(
-            &std::path::Path::new("../shared/data/env").join(name),
+            &std::path::Path::new("tests/data").join(name),
             &InputOptions::default(),
         )
         .unwrap();
@@ -310,7 +318,7 @@ fn prefilter_accuracy_scan() {
             .ok()
             .and_then(|s| s.parse().ok())
             .unwrap_or(splitsum::cpu::prefilter_specular::DEFAULT_SAMPLES);
-        let spec = splitsum::cpu::prefilter_specular::prefilter_specular(&env, samples);
+        let spec = splitsum::cpu::prefilter_specular::prefilter_specular(&env, levels, samples);
         println!("{name}, {samples} samples");
         for m in 1..levels {
             let r = mip_roughness(m, levels);
@@ -333,7 +341,9 @@ fn prefilter_accuracy_scan() {
 #[test]
 fn no_fireflies_on_quarry() {
     let env = quarry_cube(128);
-    let spec = CpuBackend.prefilter_specular(&env, 128).unwrap();
+    let spec = CpuBackend
+        .prefilter_specular(&env, env.levels.len() as u32, 128)
+        .unwrap();
     let l = |t: [f32; 4]| 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2];
     for m in 1..spec.levels.len() {
         let n = spec.level_size(m);

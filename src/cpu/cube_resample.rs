@@ -1,13 +1,49 @@
 //! Cube → cube resampling (size change and rotation of cubemap inputs), CPU only: cube
 //! inputs are already cubemaps, so this is a one-off preparation step, not a bake kernel.
-//! Same footprint estimator as `equirect_to_cube`, reading the source cube's
+//! Estimator: 2×2 footprint samples per texel (weighted by the face's solid-angle density),
+//! reading the source cube's
 //! solid-angle-correct mip chain trilinearly (seamlessly) at the level matching each sample.
 
 use crate::cpu::cube_downsample::build_mips;
 use crate::cpu::cube_sample::{cube_texel_solid_angle_at, sample_cube_lod};
-use crate::cpu::equirect_to_cube::{fill_cube_level, footprint_mean, SAMPLES_PER_AXIS};
+use crate::cpu::equirect_to_cube::fill_cube_level;
 use crate::environment::Cubemap;
-use crate::math::cubemap::rotate_y;
+use crate::math::cubemap::{
+    cube_face_direction, cube_face_jacobian, cube_texel_solid_angle, normalize, rotate_y,
+};
+
+/// Sub-texel samples per axis (S); S² samples per texel.
+pub const SAMPLES_PER_AXIS: u32 = 2;
+
+/// The solid-angle-weighted mean of `radiance` over texel (i, j) of `face` of an n×n cube:
+/// S×S stratified samples, each weighted by the face's solid-angle density. `radiance`
+/// receives the unit direction (before rotation) and the sample's solid angle Ω_texel/S².
+pub fn footprint_mean(
+    face: u32,
+    i: u32,
+    j: u32,
+    n: u32,
+    samples_per_axis: u32,
+    mut radiance: impl FnMut([f32; 3], f32) -> [f32; 3],
+) -> [f32; 4] {
+    let s_count = samples_per_axis;
+    let omega_sample = cube_texel_solid_angle(i, j, n) / (s_count * s_count) as f32;
+    let mut sum = [0.0f32; 3];
+    let mut weight = 0.0f32;
+    for sy in 0..s_count {
+        for sx in 0..s_count {
+            let s = (i as f32 + (sx as f32 + 0.5) / s_count as f32) * 2.0 / n as f32 - 1.0;
+            let t = (j as f32 + (sy as f32 + 0.5) / s_count as f32) * 2.0 / n as f32 - 1.0;
+            let w = cube_face_jacobian(s, t);
+            let v = radiance(normalize(cube_face_direction(face, s, t)), omega_sample);
+            for c in 0..3 {
+                sum[c] += w * v[c];
+            }
+            weight += w;
+        }
+    }
+    [sum[0] / weight, sum[1] / weight, sum[2] / weight, 1.0]
+}
 
 /// Trilinear lookup of a cube with mips in direction `d` whose footprint is `omega`
 /// steradians (0 for the finest level), seamless across faces.

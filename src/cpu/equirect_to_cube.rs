@@ -1,164 +1,268 @@
-//! CPU reference for `shaders/equirect_to_cube.wgsl`: each cube texel is the solid-angle
-//! weighted mean of the environment over the texel's footprint.
+//! CPU reference for `shaders/equirect_to_cube.wgsl`: every cube texel is the exact
+//! solid-angle mean of the piecewise-constant equirect over the texel's footprint, so each
+//! channel's ∫ L dω is kept at every cube size and a lamp's energy lands in the texels that
+//! its source texel overlaps, in proportion to the overlap.
 //!
-//! Estimator: S×S stratified sub-texel samples per texel, each weighted by the face's
-//! solid-angle density 1/(1+s²+t²)^{3/2}; each sample reads the equirect pyramid
-//! trilinearly at the level whose texel solid angle matches the sample's (Ω_texel / S²),
-//! so the pyramid's exact area filter does the prefiltering and downsizing a 4k/8k HDRI to
-//! a small cube does not alias (the idea of filtered importance sampling, Colbert &
-//! Křivánek 2007, applied to a deterministic footprint).
-
-use std::f32::consts::PI;
+//! Estimator (Green's theorem on the sphere). In (φ, y = cos θ), dω = dφ dy. With Φ(φ, y)
+//! the radiance integrated along the meridian from a pole (∂Φ/∂y = L; kept per texel by
+//! [`EquirectIntegral`]), the integral over a texel T is a boundary integral,
+//! ∫_T L dω = −∮_∂T Φ dφ (counter-clockwise in the (φ, y) plane; the orientation cancels
+//! in the ratio below). A texel's edges are great-circle arcs; each arc is split where it
+//! crosses a source column's meridian, since Φ jumps between columns, and each piece is
+//! integrated with a 3-point Gauss–Legendre rule in the arc parameter λ (d = a + λ(b − a),
+//! dφ = (a_x b_z − a_z b_x)/(x² + z²) dλ). Φ is continuous in λ (only its slope changes
+//! where the arc crosses a row), so the rule is accurate and, above all, the edge a texel
+//! shares with its neighbour is computed bit for bit the same on both sides (edges are
+//! integrated in one canonical direction): the texels partition each source texel's
+//! energy exactly. Texels in the north use Φ from the north pole, those in the south from
+//! the south pole (small numbers near either pole, so polar texels stay accurate in f32;
+//! a pole at a texel's corner then adds no term). The value is ∫ L dω / ∫ dω with both
+//! integrals taken by the same rule, so a constant environment is reproduced exactly.
 
 use rayon::prelude::*;
 
-use crate::environment::{pyramid_level_count, Cubemap, Equirect, EquirectPyramid};
-use crate::math::cubemap::{
-    cube_face_direction, cube_face_jacobian, cube_texel_solid_angle, equirect_uv, normalize,
-    rotate_y,
-};
+use crate::environment::{pyramid_level_count, Cubemap, EquirectIntegral};
+use crate::math::cubemap::{cube_face_direction, cube_texel_solid_angle, rotate_y};
+use crate::math::trig::atan2_precise;
 
-/// Sub-texel samples per axis (S); S² samples per texel.
-pub const SAMPLES_PER_AXIS: u32 = 2;
+/// Gauss–Legendre nodes on [−1, 1] used along each piece of an edge (the WGSL twin
+/// `GAUSS_NODE` in `shaders/equirect_to_cube.wgsl` must equal it; tests/shaders.rs checks).
+pub const GAUSS_NODE: f32 = 0.774_596_7;
+/// Weights of the outer and centre Gauss–Legendre nodes (5/9 and 8/9).
+pub const GAUSS_WEIGHTS: [f32; 2] = [0.555_555_6, 0.888_888_9];
+
+/// The converted level's rows are at most this fraction of the smallest target texel
+/// (a face corner's), so a lamp's energy is placed to 1/64 of a texel. The cost of the
+/// integral grows with the cube's perimeter times the source's resolution, so a small cube
+/// reads a fine level cheaply: a 1k input is read at full resolution for cubes of 4² and up.
+pub const SOURCE_ROWS_PER_TEXEL: f32 = 32.0;
+
+/// Largest source level the conversion reads (texels): a 4096×2048 level. Inputs larger
+/// than that are reduced on load (exact area filter) whatever the cube size, which bounds
+/// memory; at the default 256² the corner texels still span about two such rows.
+pub const MAX_SOURCE_TEXELS: u64 = 1 << 23;
 
 /// Parameters shared by both backends.
 #[derive(Clone, Copy, Debug)]
 pub struct EquirectToCubeParams {
     /// Edge of the output cube face.
     pub face_size: u32,
-    /// Sub-texel samples per axis.
-    pub samples_per_axis: u32,
-    /// Finest pyramid level any sample can use (coarser levels only below it).
+    /// The equirect pyramid level the conversion reads (see [`source_level`]).
     pub base_level: u32,
     /// cos and sin of the environment's rotation about +Y.
     pub rotation: [f32; 2],
 }
 
 impl EquirectToCubeParams {
-    /// Parameters for a `face_size` cube from an equirect `source_height` texels high,
-    /// rotated by `rotate_degrees`. Build the pyramid with `first_level = base_level`.
-    pub fn new(face_size: u32, source_height: u32, rotate_degrees: f32) -> Self {
+    /// Parameters for a `face_size` cube from a `source_width`×`source_height` equirect,
+    /// rotated by `rotate_degrees`.
+    pub fn new(face_size: u32, source_width: u32, source_height: u32, rotate_degrees: f32) -> Self {
         let r = rotate_degrees.to_radians();
         EquirectToCubeParams {
             face_size,
-            samples_per_axis: SAMPLES_PER_AXIS,
-            base_level: finest_needed_level(
-                face_size,
-                SAMPLES_PER_AXIS,
-                source_height,
-                pyramid_level_count(source_height),
-            ),
+            base_level: source_level(face_size, source_width, source_height),
             rotation: [r.cos(), r.sin()],
         }
     }
 }
 
-/// The finest pyramid level any sample of a `face_size` cube can select (the smallest
-/// sample footprint is at the face corners).
-/// Levels finer than this need not be uploaded to the GPU.
-pub fn finest_needed_level(face_size: u32, samples: u32, height: u32, levels: u32) -> u32 {
-    let omega_sample = cube_texel_solid_angle(0, 0, face_size) / (samples * samples) as f32;
-    let lod = equirect_lod(omega_sample, height);
-    (lod.floor().max(0.0) as u32).min(levels - 1)
-}
-
-/// Pyramid level (fractional, relative to level 0) whose texels, as prefiltered by
-/// `prefilter_latitude` (a patch (π/H) tall and as wide in arc at every latitude), have
-/// the solid angle `omega_sample`: level-0 patches subtend (π/H)², each level 4× more.
-pub fn equirect_lod(omega_sample: f32, height: u32) -> f32 {
-    let texel = PI / height as f32;
-    0.5 * (omega_sample / (texel * texel)).log2()
-}
-
-/// Bilinear lookup of one pyramid level at (u, v): columns wrap, rows clamp.
-pub fn sample_equirect_bilinear(level: &Equirect, u: f32, v: f32) -> [f32; 3] {
-    let (w, h) = (level.width as i32, level.height as i32);
-    let x = u * w as f32 - 0.5;
-    let y = v * h as f32 - 0.5;
-    let (x0, y0) = (x.floor(), y.floor());
-    let (fx, fy) = (x - x0, y - y0);
-    let xi = |dx: i32| ((x0 as i32 + dx).rem_euclid(w)) as u32;
-    let yi = |dy: i32| ((y0 as i32 + dy).clamp(0, h - 1)) as u32;
-    let mut out = [0.0f32; 3];
-    for (dx, dy, wgt) in [
-        (0, 0, (1.0 - fx) * (1.0 - fy)),
-        (1, 0, fx * (1.0 - fy)),
-        (0, 1, (1.0 - fx) * fy),
-        (1, 1, fx * fy),
-    ] {
-        let t = level.get(xi(dx), yi(dy));
-        for c in 0..3 {
-            out[c] += wgt * t[c];
-        }
+/// The pyramid level a `face_size` cube is integrated from: the coarsest whose rows are
+/// at most 1/[`SOURCE_ROWS_PER_TEXEL`] of the smallest target texel's angular size, and
+/// no finer than [`MAX_SOURCE_TEXELS`] allows. Levels halve with floor, as the pyramid's.
+pub fn source_level(face_size: u32, width: u32, height: u32) -> u32 {
+    let texel = cube_texel_solid_angle(0, 0, face_size.max(1)).sqrt();
+    let levels = pyramid_level_count(height);
+    let rows = |l: u32| (height >> l).max(1);
+    let texels = |l: u32| (width >> l).max(1) as u64 * rows(l) as u64;
+    let mut l = 0;
+    while l + 1 < levels
+        && std::f32::consts::PI / rows(l + 1) as f32 <= texel / SOURCE_ROWS_PER_TEXEL
+    {
+        l += 1;
     }
-    out
+    while l + 1 < levels && texels(l) > MAX_SOURCE_TEXELS {
+        l += 1;
+    }
+    l
 }
 
-/// Trilinear lookup of the pyramid in direction `d` at fractional level `lod`
-/// (clamped to [first kept level, last level]).
-pub fn sample_equirect_lod(pyramid: &EquirectPyramid, d: [f32; 3], lod: f32) -> [f32; 3] {
-    let last = pyramid.level_count() - 1;
-    let lod = lod.clamp(pyramid.first_level as f32, last as f32);
-    let l0 = lod.floor();
-    let f = lod - l0;
-    let (u, v) = equirect_uv(d);
-    let a = sample_equirect_bilinear(pyramid.level(l0 as u32), u, v);
-    let b = sample_equirect_bilinear(pyramid.level((l0 as u32 + 1).min(last)), u, v);
-    [0, 1, 2].map(|c| a[c] + f * (b[c] - a[c]))
+/// ca − cb for two angles given by their cosines and sines, without the cancellation of
+/// the plain difference near a pole: (sb² − sa²)/(ca + cb) when ca + cb is not small.
+pub fn cos_difference(ca: f32, sa: f32, cb: f32, sb: f32) -> f32 {
+    let sum = ca + cb;
+    if sum.abs() >= 0.5 {
+        (sb - sa) * (sb + sa) / sum
+    } else {
+        ca - cb
+    }
 }
 
-/// The solid-angle-weighted mean of `radiance` over texel (i, j) of `face` of an n×n cube:
-/// S×S stratified samples, each weighted by the face's solid-angle density. `radiance`
-/// receives the unit direction (before rotation) and the sample's solid angle Ω_texel/S².
-pub fn footprint_mean(
-    face: u32,
-    i: u32,
-    j: u32,
-    n: u32,
-    samples_per_axis: u32,
-    mut radiance: impl FnMut([f32; 3], f32) -> [f32; 3],
-) -> [f32; 4] {
-    let s_count = samples_per_axis;
-    let omega_sample = cube_texel_solid_angle(i, j, n) / (s_count * s_count) as f32;
-    let mut sum = [0.0f32; 3];
-    let mut weight = 0.0f32;
-    for sy in 0..s_count {
-        for sx in 0..s_count {
-            let s = (i as f32 + (sx as f32 + 0.5) / s_count as f32) * 2.0 / n as f32 - 1.0;
-            let t = (j as f32 + (sy as f32 + 0.5) / s_count as f32) * 2.0 / n as f32 - 1.0;
-            let w = cube_face_jacobian(s, t);
-            let v = radiance(normalize(cube_face_direction(face, s, t)), omega_sample);
-            for c in 0..3 {
-                sum[c] += w * v[c];
+/// Column of the (unnormalised) direction `d` in a `width`-column equirect.
+pub fn column_of(width: u32, d: [f32; 3]) -> u32 {
+    let u = 0.5 + atan2_precise(d[2], d[0]) / (2.0 * std::f32::consts::PI);
+    ((u * width as f32).floor().max(0.0) as u32).min(width - 1)
+}
+
+/// Φ at the (unnormalised) direction `d`, which lies in column `col`: the radiance
+/// integrated along the meridian from the north pole (negated, so that ∂Φ/∂y = L) or from
+/// the south pole, and the same for a radiance of 1 (the solid-angle integrand).
+pub fn meridian_cumulative(
+    src: &EquirectIntegral,
+    col: u32,
+    d: [f32; 3],
+    north: bool,
+) -> ([f32; 3], f32) {
+    let h2 = d[0] * d[0] + d[2] * d[2];
+    let h = h2.sqrt();
+    let rho = (h2 + d[1] * d[1]).sqrt();
+    let (c, s) = (d[1] / rho, h / rho);
+    let theta = atan2_precise(h, d[1]);
+    let row = ((theta * src.height as f32 / std::f32::consts::PI) as u32).min(src.height - 1);
+    let i = src.index(col, row);
+    let l = src.radiance[i];
+    if north {
+        let [cr, sr, one_minus_cr, _] = src.rows[row as usize];
+        let dc = cos_difference(cr, sr, c, s);
+        let n = src.from_north[i];
+        ([0, 1, 2].map(|k| -(n[k] + l[k] * dc)), -(one_minus_cr + dc))
+    } else {
+        let [cr, sr, _, one_plus_cr] = src.rows[row as usize + 1];
+        let dc = cos_difference(c, s, cr, sr);
+        let n = src.from_south[i];
+        ([0, 1, 2].map(|k| n[k] + l[k] * dc), one_plus_cr + dc)
+    }
+}
+
+/// ∫ Φ dφ along the great-circle arc from `a` to `b` (unnormalised directions less than
+/// a half-turn apart in φ): radiance and solid-angle parts.
+pub fn edge_integral(src: &EquirectIntegral, a: [f32; 3], b: [f32; 3], north: bool) -> [f32; 4] {
+    let mut acc = [0.0f32; 4];
+    let cross = a[0] * b[2] - a[2] * b[0];
+    if cross == 0.0 {
+        return acc; // a meridian (or a point): dφ = 0 along it
+    }
+    let dir = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let w = src.width;
+    let (ka, kb) = (column_of(w, a), column_of(w, b));
+    let up = cross > 0.0;
+    let mut count = if up {
+        (kb + w - ka) % w
+    } else {
+        (ka + w - kb) % w
+    };
+    if count > w / 2 {
+        count = 0; // a and b in one column, rounded onto either side of its boundary
+    }
+    let mut lam0 = 0.0f32;
+    let mut col = ka;
+    for step in 0..=count {
+        let (lam1, next) = if step < count {
+            let m = src.columns[(if up { col + 1 } else { col }) as usize];
+            let am = a[0] * m[0] + a[2] * m[1];
+            let dm = dir[0] * m[0] + dir[2] * m[1];
+            let lam = if dm != 0.0 {
+                (-am / dm).clamp(lam0, 1.0)
+            } else {
+                lam0
+            };
+            (lam, if up { (col + 1) % w } else { (col + w - 1) % w })
+        } else {
+            (1.0, col)
+        };
+        let half = 0.5 * (lam1 - lam0);
+        if half > 0.0 {
+            let mid = lam0 + half;
+            for (offset, weight) in [
+                (-GAUSS_NODE, GAUSS_WEIGHTS[0]),
+                (0.0, GAUSS_WEIGHTS[1]),
+                (GAUSS_NODE, GAUSS_WEIGHTS[0]),
+            ] {
+                let lam = mid + offset * half;
+                let d = [
+                    a[0] + lam * dir[0],
+                    a[1] + lam * dir[1],
+                    a[2] + lam * dir[2],
+                ];
+                let dphi = cross / (d[0] * d[0] + d[2] * d[2]);
+                let (phi, area) = meridian_cumulative(src, col, d, north);
+                let wgt = weight * half * dphi;
+                for k in 0..3 {
+                    acc[k] += wgt * phi[k];
+                }
+                acc[3] += wgt * area;
             }
-            weight += w;
         }
+        lam0 = lam1;
+        col = next;
     }
-    [sum[0] / weight, sum[1] / weight, sum[2] / weight, 1.0]
+    acc
 }
 
-/// One output texel: the footprint mean of the environment.
+/// [`edge_integral`] computed in one canonical direction (from the lexicographically
+/// smaller end), so the two texels sharing an edge get the same numbers, negated.
+pub fn oriented_edge_integral(
+    src: &EquirectIntegral,
+    a: [f32; 3],
+    b: [f32; 3],
+    north: bool,
+) -> [f32; 4] {
+    let less = a[0] < b[0] || (a[0] == b[0] && (a[1] < b[1] || (a[1] == b[1] && a[2] < b[2])));
+    if less {
+        edge_integral(src, a, b, north)
+    } else {
+        edge_integral(src, b, a, north).map(|v| -v)
+    }
+}
+
+/// Corner (i, j) of the texel grid of `face` (i, j ∈ 0..=n), unnormalised, in the
+/// source's frame: the environment rotated by +angle shows, in direction d, what the
+/// source shows in direction R(−angle)·d.
+fn texel_corner(p: &EquirectToCubeParams, face: u32, i: u32, j: u32) -> [f32; 3] {
+    let inv = 2.0 / p.face_size as f32;
+    let (s, t) = (i as f32 * inv - 1.0, j as f32 * inv - 1.0);
+    rotate_y(
+        cube_face_direction(face, s, t),
+        p.rotation[0],
+        -p.rotation[1],
+    )
+}
+
+/// Whether texel row `j` of `face` integrates Φ from the north pole: its centre is in the
+/// northern hemisphere (on every face y depends on the row alone).
+fn row_is_north(p: &EquirectToCubeParams, face: u32, j: u32) -> bool {
+    let inv = 2.0 / p.face_size as f32;
+    let t = (j as f32 + 0.5) * inv - 1.0;
+    cube_face_direction(face, 0.0, t)[1] >= 0.0
+}
+
+/// A texel's value from its four oriented edge integrals (top, right, bottom, left, each
+/// in the direction of the texel's boundary v00 → v10 → v11 → v01 → v00): ∫ L dω / ∫ dω.
+fn texel_from_edges(edges: [[f32; 4]; 4]) -> [f32; 4] {
+    let mut sum = [0.0f32; 4];
+    for e in edges {
+        for c in 0..4 {
+            sum[c] += e[c];
+        }
+    }
+    [sum[0] / sum[3], sum[1] / sum[3], sum[2] / sum[3], 1.0]
+}
+
+/// One output texel: the exact footprint mean of the source.
 pub fn equirect_to_cube_texel(
-    pyramid: &EquirectPyramid,
+    src: &EquirectIntegral,
     p: &EquirectToCubeParams,
     face: u32,
     i: u32,
     j: u32,
 ) -> [f32; 4] {
-    footprint_mean(
-        face,
-        i,
-        j,
-        p.face_size,
-        p.samples_per_axis,
-        |d, omega_sample| {
-            // The environment rotated by +angle shows, in direction d, what the source shows
-            // in direction R(−angle)·d.
-            let d = rotate_y(d, p.rotation[0], -p.rotation[1]);
-            let lod = equirect_lod(omega_sample, pyramid.height);
-            sample_equirect_lod(pyramid, d, lod)
-        },
-    )
+    let v = [
+        texel_corner(p, face, i, j),
+        texel_corner(p, face, i + 1, j),
+        texel_corner(p, face, i + 1, j + 1),
+        texel_corner(p, face, i, j + 1),
+    ];
+    let north = row_is_north(p, face, j);
+    texel_from_edges([0, 1, 2, 3].map(|k| oriented_edge_integral(src, v[k], v[(k + 1) % 4], north)))
 }
 
 /// Fills level 0 of an n×n cube with `texel(face, i, j)`, in parallel over rows.
@@ -177,11 +281,48 @@ pub fn fill_cube_level(n: u32, texel: impl Fn(u32, u32, u32) -> [f32; 4] + Sync)
     level
 }
 
-/// Level 0 of the cube (one level; see `cube_downsample` for the chain).
-pub fn equirect_to_cube(pyramid: &EquirectPyramid, p: &EquirectToCubeParams) -> Cubemap {
-    let level = fill_cube_level(p.face_size, |face, i, j| {
-        equirect_to_cube_texel(pyramid, p, face, i, j)
-    });
+/// Level 0 of the cube (one level; see `cube_downsample` for the chain). Equal, bit for
+/// bit, to [`equirect_to_cube_texel`] at every texel (what the GPU kernel computes), but
+/// each edge is integrated once for the two texel rows or columns that share it.
+pub fn equirect_to_cube(src: &EquirectIntegral, p: &EquirectToCubeParams) -> Cubemap {
+    let n = p.face_size;
+    let band = n.min(8) as usize; // texel rows per task (a power of two dividing n)
+    let mut level = vec![[0.0f32; 4]; Cubemap::level_len(n)];
+    level
+        .par_chunks_mut(band * n as usize)
+        .enumerate()
+        .for_each(|(chunk, out)| {
+            let first = (chunk * band) as u32;
+            let (face, j0) = (first / n, first % n);
+            let corner = |i: u32, j: u32| texel_corner(p, face, i, j);
+            let row_edges = |j: u32, north: bool| -> Vec<[f32; 4]> {
+                (0..n)
+                    .map(|i| oriented_edge_integral(src, corner(i, j), corner(i + 1, j), north))
+                    .collect()
+            };
+            let mut top: Option<(bool, Vec<[f32; 4]>)> = None;
+            for (r, row) in out.chunks_mut(n as usize).enumerate() {
+                let j = j0 + r as u32;
+                let north = row_is_north(p, face, j);
+                let upper = match top.take() {
+                    Some((variant, edges)) if variant == north => edges,
+                    _ => row_edges(j, north),
+                };
+                let lower = row_edges(j + 1, north);
+                let sides: Vec<[f32; 4]> = (0..=n)
+                    .map(|i| oriented_edge_integral(src, corner(i, j), corner(i, j + 1), north))
+                    .collect();
+                for (i, t) in row.iter_mut().enumerate() {
+                    *t = texel_from_edges([
+                        upper[i],
+                        sides[i + 1],
+                        lower[i].map(|v| -v),
+                        sides[i].map(|v| -v),
+                    ]);
+                }
+                top = Some((north, lower));
+            }
+        });
     Cubemap {
         size: p.face_size,
         levels: vec![level],

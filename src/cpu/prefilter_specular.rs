@@ -310,10 +310,22 @@ pub fn prefilter_level(
     }
 }
 
-/// The full prefiltered chain of `env` (which must have every mip): level 0 is the
-/// environment itself (r = 0), level m is prefiltered at r = m/(M − 1).
-pub fn prefilter_specular(env: &Cubemap, samples: u32) -> Cubemap {
-    let levels = Cubemap::full_mip_count(env.size);
+/// Default edge of the smallest specular mip: the chain stops there instead of at 1×1
+/// (see [`chain_levels`]; the choice is measured in `tests/lookup.rs`).
+pub const DEFAULT_MIN_MIP_SIZE: u32 = 16;
+
+/// Number of levels M of a specular chain from `size` down to `min_mip_size` (both powers
+/// of two; a minimum above the size gives one level): log2(size / min) + 1.
+pub fn chain_levels(size: u32, min_mip_size: u32) -> u32 {
+    let min = min_mip_size.clamp(1, size.max(1));
+    Cubemap::full_mip_count(size) - Cubemap::full_mip_count(min) + 1
+}
+
+/// The prefiltered chain of `env` (which must have every mip) with `levels` levels
+/// (clamped to the full chain): level 0 is the environment itself (r = 0), level m is
+/// prefiltered at r = m/(M − 1).
+pub fn prefilter_specular(env: &Cubemap, levels: u32, samples: u32) -> Cubemap {
+    let levels = levels.clamp(1, Cubemap::full_mip_count(env.size));
     let mut out = Cubemap {
         size: env.size,
         levels: vec![env.levels[0].clone()],

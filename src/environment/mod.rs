@@ -1,11 +1,11 @@
 //! In-memory environments: equirectangular images (with an energy-preserving mip pyramid,
-//! see [`pyramid`]) and cubemaps (with mip chains), both linear RGB radiance.
+//! see [`pyramid`], and the cumulative sums a conversion integrates, see [`integral`]) and cubemaps (with mip chains), both linear RGB radiance.
 
+mod integral;
 mod pyramid;
 
-pub use pyramid::{
-    prefilter_latitude, pyramid_level_count, EquirectPyramid, EquirectReducer, RowDownsampler,
-};
+pub use integral::EquirectIntegral;
+pub use pyramid::{pyramid_level_count, EquirectReducer, RowDownsampler};
 
 use crate::math::cubemap::FACES;
 

@@ -1,7 +1,6 @@
 //! The equirect mip pyramid: exact area-filtered halvings ([`RowDownsampler`], which works
 //! on rows as they arrive so a large input never needs a second full-size copy, and
-//! [`EquirectReducer`], a chain of them), the latitude prefilter that makes a level's texel
-//! as wide in arc as it is tall, and [`EquirectPyramid`], the levels a conversion samples.
+//! [`EquirectReducer`], a chain of them). A conversion reads one level of it.
 
 use rayon::prelude::*;
 
@@ -211,47 +210,6 @@ impl EquirectReducer {
     }
 }
 
-/// Box-filters each row along φ over the arc that one row spans in θ, so a texel holds
-/// the mean over a patch as wide as it is tall: (π/H) in θ by (π/H) of arc in φ, i.e.
-/// 1/sin θ · W/(2H) columns (fractional ends weighted by coverage, wrapping around).
-/// Near the poles the equirect is oversampled in φ; after this filter a lookup at the
-/// level whose row height matches a footprint averages the whole footprint, in φ too.
-/// Row sums are unchanged (the box is circular), so energy is kept.
-pub fn prefilter_latitude(img: &mut Equirect) {
-    let (w, h) = (img.width as usize, img.height as usize);
-    let pi = std::f64::consts::PI;
-    img.data.par_chunks_mut(w).enumerate().for_each(|(y, row)| {
-        let sin_theta = (pi * (y as f64 + 0.5) / h as f64).sin();
-        let width = (w as f64 / (2.0 * h as f64) / sin_theta).min(w as f64);
-        if width <= 1.0 {
-            return;
-        }
-        // Prefix sums over three periods, so every window [c − W/2, c + W/2] with c shifted
-        // by one period lies inside without wrapping arithmetic (W ≤ w).
-        let mut prefix = vec![[0.0f64; 3]; 3 * w + 1];
-        for x in 0..3 * w {
-            let t = row[x % w];
-            for c in 0..3 {
-                prefix[x + 1][c] = prefix[x][c] + t[c] as f64;
-            }
-        }
-        let at = |a: f64| -> [f64; 3] {
-            let i = (a.floor() as usize).min(3 * w - 1);
-            let f = a - i as f64;
-            [0, 1, 2].map(|c| prefix[i][c] + f * (prefix[i + 1][c] - prefix[i][c]))
-        };
-        let half = 0.5 * width;
-        let out: Vec<[f32; 3]> = (0..w)
-            .map(|x| {
-                let centre = x as f64 + 0.5 + w as f64;
-                let (lo, hi) = (at(centre - half), at(centre + half));
-                [0, 1, 2].map(|c| ((hi[c] - lo[c]) / width) as f32)
-            })
-            .collect();
-        row.copy_from_slice(&out);
-    });
-}
-
 /// For each of `n1` target cells covering `n0` source cells, the (source index, weight)
 /// pairs of the overlap, with weights from `measure(a, b)` of the overlapping interval in
 /// source units, normalised to sum 1.
@@ -296,79 +254,6 @@ fn weighted_sum(taps: &[(usize, f32)], texel: impl Fn(usize) -> [f32; 3]) -> [f3
 /// halve (floor, at least 1) down to a height of 1.
 pub fn pyramid_level_count(height: u32) -> u32 {
     32 - height.max(1).leading_zeros()
-}
-
-/// An equirect image's successive half-size levels, down to a height of 1, each
-/// prefiltered along φ by [`prefilter_latitude`] for lookups. Levels finer than
-/// `first_level` (which no lookup needs) are not kept, to bound memory.
-#[derive(Clone, Debug)]
-pub struct EquirectPyramid {
-    /// Width of level 0 (the input).
-    pub width: u32,
-    /// Height of level 0.
-    pub height: u32,
-    /// The finest level kept.
-    pub first_level: u32,
-    stored: Vec<Equirect>,
-}
-
-impl EquirectPyramid {
-    /// Builds levels down to 1 texel high from `base`: each level is the exact area
-    /// downsample of the unfiltered level above; `base` is streamed straight to
-    /// `first_level` (no finer level is held whole), and levels from `first_level` on are
-    /// latitude-prefiltered and kept.
-    pub fn new(base: &Equirect, first_level: u32) -> Self {
-        let first_level = first_level.min(pyramid_level_count(base.height) - 1);
-        let mut reducer = EquirectReducer::new(base.width, base.height, first_level);
-        reducer.push_all(&base.data);
-        Self::from_first_level(base.width, base.height, first_level, reducer.finish())
-    }
-
-    /// As [`EquirectPyramid::new`], taking the image: when level 0 itself is kept it
-    /// becomes the first level in place, without a copy.
-    pub fn from_image(base: Equirect, first_level: u32) -> Self {
-        if first_level.min(pyramid_level_count(base.height) - 1) > 0 {
-            return Self::new(&base, first_level);
-        }
-        Self::from_first_level(base.width, base.height, 0, base)
-    }
-
-    /// The pyramid of a `width`×`height` image whose level `first_level` is `level`.
-    fn from_first_level(width: u32, height: u32, first_level: u32, level: Equirect) -> Self {
-        let count = pyramid_level_count(height);
-        let mut current = level;
-        let mut stored = Vec::new();
-        for level in first_level..count {
-            let next = (level + 1 < count).then(|| current.downsample());
-            prefilter_latitude(&mut current);
-            stored.push(current);
-            match next {
-                Some(n) => current = n,
-                None => break,
-            }
-        }
-        EquirectPyramid {
-            width,
-            height,
-            first_level,
-            stored,
-        }
-    }
-
-    /// Total number of levels (including the ones not kept).
-    pub fn level_count(&self) -> u32 {
-        self.first_level + self.stored.len() as u32
-    }
-
-    /// Level `l` (≥ `first_level`).
-    pub fn level(&self, l: u32) -> &Equirect {
-        &self.stored[(l - self.first_level) as usize]
-    }
-
-    /// The kept levels, finest first.
-    pub fn stored(&self) -> &[Equirect] {
-        &self.stored
-    }
 }
 
 #[cfg(test)]

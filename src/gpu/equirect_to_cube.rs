@@ -2,12 +2,10 @@
 //! `shaders/cube_downsample.wgsl` for each further level (CPU mirrors in `cpu/`).
 
 use crate::cpu::equirect_to_cube::EquirectToCubeParams;
-use crate::environment::{Cubemap, EquirectPyramid};
+use crate::environment::{Cubemap, Equirect, EquirectIntegral};
 use crate::gpu::compute::{buffer_with_data, with_error_scope, ComputeKernel};
 use crate::gpu::shaders;
-use crate::gpu::texture::{
-    create_cube_texture, cube_mip_view, read_cubemap, upload_equirect_pyramid,
-};
+use crate::gpu::texture::{create_cube_texture, cube_mip_view, read_cubemap, upload_rgb_texture};
 use crate::Result;
 
 /// Workgroup of both kernels (x, y over the face, z = face).
@@ -19,16 +17,14 @@ pub const WORKGROUP: [u32; 3] = [8, 8, 1];
 pub struct EquirectToCubeUniform {
     /// Output face edge.
     pub face_size: u32,
-    /// Sub-texel samples per axis.
-    pub samples_per_axis: u32,
-    /// Pyramid level held in mip 0 of the source texture.
-    pub base_level: u32,
-    /// Pyramid levels in all.
-    pub level_count: u32,
-    /// Size of pyramid level 0.
+    /// Padding (WGSL aligns the vec2s that follow to 8 bytes).
+    pub pad: u32,
+    /// Width and height of the source level.
     pub source_size: [u32; 2],
     /// cos, sin of the rotation about +Y.
     pub rotation: [f32; 2],
+    /// Padding to a whole 16-byte block.
+    pub pad2: [u32; 2],
 }
 
 /// Records the mip chain of `texture` (levels 1..) with the 2×2 solid-angle reduction.
@@ -60,11 +56,11 @@ pub fn record_cube_mips(
     Ok(())
 }
 
-/// Converts the pyramid to a cube of `params.face_size` with `mips` levels.
+/// Converts the source level to a cube of `params.face_size` with `mips` levels.
 pub fn equirect_to_cube(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
-    pyramid: &EquirectPyramid,
+    source: &EquirectIntegral,
     params: &EquirectToCubeParams,
     mips: u32,
 ) -> Result<Cubemap> {
@@ -74,7 +70,30 @@ pub fn equirect_to_cube(
         shaders::EQUIRECT_TO_CUBE,
         WORKGROUP,
     )?;
-    let (source, base_level) = upload_equirect_pyramid(device, queue, pyramid)?;
+    // A level wider than the device's 2D texture limit is read one halving coarser per
+    // step until it fits (the same exact area filter as the pyramid's).
+    let limit = device.limits().max_texture_dimension_2d;
+    let reduced;
+    let source = if source.width > limit || source.height > limit {
+        let mut image = Equirect {
+            width: source.width,
+            height: source.height,
+            data: source.radiance.clone(),
+        };
+        while image.width > limit || image.height > limit {
+            image = image.downsample();
+        }
+        reduced = EquirectIntegral::new(image);
+        &reduced
+    } else {
+        source
+    };
+    let (w, h) = (source.width, source.height);
+    let textures = [
+        upload_rgb_texture(device, queue, "radiance", w, h, &source.radiance)?,
+        upload_rgb_texture(device, queue, "from north", w, h, &source.from_north)?,
+        upload_rgb_texture(device, queue, "from south", w, h, &source.from_south)?,
+    ];
     let n = params.face_size;
     let mips = mips.clamp(1, Cubemap::full_mip_count(n));
     let cube = with_error_scope(
@@ -83,11 +102,10 @@ pub fn equirect_to_cube(
         || -> Result<wgpu::Texture> {
             let uniform = EquirectToCubeUniform {
                 face_size: n,
-                samples_per_axis: params.samples_per_axis,
-                base_level,
-                level_count: pyramid.level_count(),
-                source_size: [pyramid.width, pyramid.height],
+                pad: 0,
+                source_size: [w, h],
                 rotation: params.rotation,
+                pad2: [0; 2],
             };
             let ubuf = buffer_with_data(
                 device,
@@ -96,7 +114,21 @@ pub fn equirect_to_cube(
                 wgpu::BufferUsages::UNIFORM,
             );
             let cube = create_cube_texture(device, "environment cube", n, mips);
-            let source_view = source.create_view(&Default::default());
+            let rows = buffer_with_data(
+                device,
+                "row boundaries",
+                bytemuck::cast_slice(&source.rows),
+                wgpu::BufferUsages::STORAGE,
+            );
+            let columns = buffer_with_data(
+                device,
+                "column boundaries",
+                bytemuck::cast_slice(&source.columns),
+                wgpu::BufferUsages::STORAGE,
+            );
+            let views = textures
+                .each_ref()
+                .map(|t| t.create_view(&Default::default()));
             let out = cube_mip_view(&cube, 0);
             let mut encoder = device.create_command_encoder(&Default::default());
             kernel.dispatch(
@@ -104,7 +136,11 @@ pub fn equirect_to_cube(
                 &mut encoder,
                 &[
                     ubuf.as_entire_binding(),
-                    wgpu::BindingResource::TextureView(&source_view),
+                    wgpu::BindingResource::TextureView(&views[0]),
+                    wgpu::BindingResource::TextureView(&views[1]),
+                    wgpu::BindingResource::TextureView(&views[2]),
+                    rows.as_entire_binding(),
+                    columns.as_entire_binding(),
                     wgpu::BindingResource::TextureView(&out),
                 ],
                 [n, n, 6],

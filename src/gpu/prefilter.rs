@@ -142,6 +142,7 @@ pub fn prefilter_specular(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     env: &Cubemap,
+    levels: u32,
     samples: u32,
 ) -> Result<Cubemap> {
     let sampled = ComputeKernel::new(
@@ -151,7 +152,7 @@ pub fn prefilter_specular(
         WORKGROUP,
     )?;
     let exact = ComputeKernel::new(device, "convolve_exact", shaders::CONVOLVE_EXACT, WORKGROUP)?;
-    let levels = Cubemap::full_mip_count(env.size);
+    let levels = levels.clamp(1, Cubemap::full_mip_count(env.size));
     let split = split_hot_texels(env);
     let out = with_error_scope(device, "prefilter_specular dispatch", || {
         let source = upload_cube(device, queue, &split.rest, env.levels.len() as u32);

@@ -1,67 +1,54 @@
 //! Texture helpers shared by the kernels: uploads, cube textures with per-mip array views,
 //! and reading a whole cubemap back.
 
-use crate::environment::{Cubemap, EquirectPyramid};
+use crate::environment::Cubemap;
 use crate::gpu::compute::{read_texture_level, with_error_scope};
 use crate::Result;
 
-/// Uploads the pyramid's kept levels as the mips of one `Rgba32Float` 2D texture, skipping
-/// levels wider than the device's `max_texture_dimension_2d` (a 32k input on a 16k-limit
-/// device reads its 16k level instead of failing). Returns the texture and the pyramid
-/// level held in its mip 0.
-pub fn upload_equirect_pyramid(
+/// Uploads a `width`×`height` RGB image as an `Rgba32Float` 2D texture (A = 1), read with
+/// `textureLoad`.
+pub fn upload_rgb_texture(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
-    pyramid: &EquirectPyramid,
-) -> Result<(wgpu::Texture, u32)> {
-    let limit = device.limits().max_texture_dimension_2d;
-    let skip = pyramid
-        .stored()
-        .iter()
-        .take_while(|l| l.width > limit || l.height > limit)
-        .count()
-        .min(pyramid.stored().len() - 1);
-    let levels = &pyramid.stored()[skip..];
+    label: &str,
+    width: u32,
+    height: u32,
+    data: &[[f32; 3]],
+) -> Result<wgpu::Texture> {
     with_error_scope(device, "uploading the environment", || {
+        let size = wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        };
         let texture = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("equirect pyramid"),
-            size: wgpu::Extent3d {
-                width: levels[0].width,
-                height: levels[0].height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: levels.len() as u32,
+            label: Some(label),
+            size,
+            mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
             format: wgpu::TextureFormat::Rgba32Float,
             usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
             view_formats: &[],
         });
-        for (mip, level) in levels.iter().enumerate() {
-            let rgba: Vec<[f32; 4]> = level.data.iter().map(|t| [t[0], t[1], t[2], 1.0]).collect();
-            queue.write_texture(
-                wgpu::TexelCopyTextureInfo {
-                    texture: &texture,
-                    mip_level: mip as u32,
-                    origin: wgpu::Origin3d::ZERO,
-                    aspect: wgpu::TextureAspect::All,
-                },
-                bytemuck::cast_slice(&rgba),
-                wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(level.width * 16),
-                    rows_per_image: Some(level.height),
-                },
-                wgpu::Extent3d {
-                    width: level.width,
-                    height: level.height,
-                    depth_or_array_layers: 1,
-                },
-            );
-        }
+        let rgba: Vec<[f32; 4]> = data.iter().map(|t| [t[0], t[1], t[2], 1.0]).collect();
+        queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &texture,
+                mip_level: 0,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            bytemuck::cast_slice(&rgba),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(width * 16),
+                rows_per_image: Some(height),
+            },
+            size,
+        );
         texture
     })
-    .map(|t| (t, pyramid.first_level + skip as u32))
 }
 
 /// An `Rgba32Float` cube texture (6 array layers) with `mips` levels, usable as a storage
