@@ -88,8 +88,8 @@ fn bake_writes_every_output_with_a_manifest() {
             r.header().level_count,
             r.header().pixel_width
         ),
-        // 64² down to the default smallest mip, 16²: three levels.
-        (6, 3, 64)
+        // 64² down to the default smallest mip, 4²: five levels.
+        (6, 5, 64)
     );
     assert_eq!(
         r.header().supercompression_scheme,

@@ -311,8 +311,13 @@ pub fn prefilter_level(
 }
 
 /// Default edge of the smallest specular mip: the chain stops there instead of at 1×1
-/// (see [`chain_levels`]; the choice is measured in `tests/lookup.rs`).
-pub const DEFAULT_MIN_MIP_SIZE: u32 = 16;
+/// (see [`chain_levels`]). A 256 chain then has 7 levels, r = m/6. Chosen by the lookup
+/// error a shader sees (seamless trilinear at lod = r·(M − 1), `tests/lookup.rs`
+/// `layout_scan`): a 1×1 or 2×2 level cannot hold the r = 1 lobe (quarry_01: 30 % and
+/// 11 % at r = 1), while fewer levels blend lobes farther apart (16² and 32² minima:
+/// 16 % and 4 % at r = 0.35); 4² keeps every r ≥ 0.3 within 3.2 % on quarry_01 and
+/// 4.2 % on royal_esplanade.
+pub const DEFAULT_MIN_MIP_SIZE: u32 = 4;
 
 /// Number of levels M of a specular chain from `size` down to `min_mip_size` (both powers
 /// of two; a minimum above the size gives one level): log2(size / min) + 1.

@@ -1,0 +1,249 @@
+//! What a shader sees: the specular chain of a bake sampled the way an engine samples it
+//! (seamless trilinear at lod = r·(M − 1)) at random directions and at roughnesses between
+//! mips, against a brute-force GGX convolution at that exact roughness over every texel of
+//! the source equirect at full resolution.
+//!
+//! Metric (the issue's): energy-weighted relative error, Σ |Y(lookup) − Y(truth)| / Σ Y(truth)
+//! over 600 uniformly random directions, Y the luminance.
+mod common;
+
+use splitsum::convert::environment_to_cube;
+use splitsum::cpu::cube_sample::sample_cube_lod;
+use splitsum::cpu::prefilter_specular::{chain_levels, DEFAULT_MIN_MIP_SIZE, DEFAULT_SAMPLES};
+use splitsum::environment::{Environment, Equirect};
+use splitsum::io::input::{load_environment, InputOptions};
+use splitsum::{Backend, CpuBackend};
+
+/// Roughnesses of the table (between mips of every layout tried).
+const ROUGHNESS: [f64; 6] = [0.35, 0.5, 0.65, 0.8, 0.9, 1.0];
+
+/// Random directions per HDRI.
+const DIRECTIONS: usize = 600;
+
+fn luminance(c: [f64; 3]) -> f64 {
+    0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
+}
+
+/// 600 directions uniform on the sphere (a fixed LCG, so every run uses the same ones).
+fn directions() -> Vec<[f64; 3]> {
+    let mut state = 0x5eed_u64;
+    let mut next = || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    (0..DIRECTIONS)
+        .map(|_| {
+            let y = 1.0 - 2.0 * next();
+            let phi = 2.0 * std::f64::consts::PI * next();
+            let r = (1.0 - y * y).sqrt();
+            [r * phi.cos(), y, r * phi.sin()]
+        })
+        .collect()
+}
+
+/// One source texel of the brute-force sum: centre direction, solid angle Ω and Y·Ω.
+struct Term {
+    d: [f64; 3],
+    omega: f64,
+    y_omega: f64,
+}
+
+/// Every texel of the source equirect at full resolution.
+fn source_terms(e: &Equirect) -> Vec<Term> {
+    use std::f64::consts::PI;
+    let (w, h) = (e.width as f64, e.height as f64);
+    let mut out = Vec::with_capacity(e.data.len());
+    for y in 0..e.height {
+        let (t0, t1) = (PI * y as f64 / h, PI * (y + 1) as f64 / h);
+        let omega = 2.0 * PI / w * (t0.cos() - t1.cos());
+        let theta = 0.5 * (t0 + t1);
+        for x in 0..e.width {
+            let phi = 2.0 * PI * ((x as f64 + 0.5) / w - 0.5);
+            let l = e.get(x, y);
+            out.push(Term {
+                d: [
+                    theta.sin() * phi.cos(),
+                    theta.cos(),
+                    theta.sin() * phi.sin(),
+                ],
+                omega,
+                y_omega: luminance([0, 1, 2].map(|c| l[c] as f64)) * omega,
+            });
+        }
+    }
+    out
+}
+
+/// The split-sum prefiltered luminance at `n` for each roughness (n = v = r):
+/// Σ Y Ω D(n·h) (n·l) / Σ Ω D(n·h) (n·l), GGX D with α = r², h = normalize(n + l), in f64.
+fn truth(terms: &[Term], n: [f64; 3], roughness: &[f64]) -> Vec<f64> {
+    let a2: Vec<f64> = roughness.iter().map(|r| r.powi(4)).collect();
+    let mut num = vec![0.0; roughness.len()];
+    let mut den = vec![0.0; roughness.len()];
+    for t in terms {
+        let nl = n[0] * t.d[0] + n[1] * t.d[1] + n[2] * t.d[2];
+        if nl <= 0.0 {
+            continue;
+        }
+        let nh2 = 0.5 * (1.0 + nl); // (n·h)², as |n + l|² = 2 + 2 n·l
+        for k in 0..roughness.len() {
+            let q = nh2 * (a2[k] - 1.0) + 1.0;
+            let w = a2[k] / (q * q) * nl; // D·(n·l) up to the 1/π that cancels
+            num[k] += w * t.y_omega;
+            den[k] += w * t.omega;
+        }
+    }
+    num.iter().zip(&den).map(|(a, b)| a / b).collect()
+}
+
+/// An HDRI from tests/data as an equirect.
+fn equirect(name: &str) -> Equirect {
+    let path = std::path::Path::new("tests/data").join(name);
+    match load_environment(&path, &InputOptions::default())
+        .unwrap()
+        .env
+    {
+        Environment::Equirect(e) => e,
+        Environment::Cube(_) => panic!("{name} is not an equirect"),
+    }
+}
+
+/// The truth at every direction of [`directions`] for `roughness`, per direction.
+fn truths(e: &Equirect, roughness: &[f64]) -> Vec<Vec<f64>> {
+    use rayon::prelude::*;
+    let terms = source_terms(e);
+    directions()
+        .par_iter()
+        .map(|&n| truth(&terms, n, roughness))
+        .collect()
+}
+
+/// Energy-weighted lookup error of a `size` chain with `min_mip_size`, per roughness,
+/// against `truth` (from [`truths`]).
+fn lookup_errors(
+    backend: &dyn Backend,
+    e: &Equirect,
+    size: u32,
+    min_mip_size: u32,
+    roughness: &[f64],
+    truth: &[Vec<f64>],
+) -> Vec<f64> {
+    let env =
+        environment_to_cube(backend, &Environment::Equirect(e.clone()), size, true, 0.0).unwrap();
+    let levels = chain_levels(size, min_mip_size);
+    let chain = backend
+        .prefilter_specular(&env, levels, DEFAULT_SAMPLES)
+        .unwrap();
+    let dirs = directions();
+    (0..roughness.len())
+        .map(|k| {
+            let lod = (roughness[k] * (levels - 1) as f64) as f32;
+            let (mut err, mut total) = (0.0, 0.0);
+            for (n, t) in dirs.iter().zip(truth) {
+                let got = sample_cube_lod(&chain, n.map(|v| v as f32), lod);
+                err += (luminance(got.map(|v| v as f64)) - t[k]).abs();
+                total += t[k];
+            }
+            err / total
+        })
+        .collect()
+}
+
+/// The default bake's lookup error at the roughnesses, for two low-contrast HDRIs
+/// (bar 2 % at every r) and two with a bright sun (bar: below the better of cmgen and
+/// glTF-IBL-Sampler at their defaults on the same metric, measured by the author;
+/// one exception, royal_esplanade at r = 1, where cmgen's 16² last level gives 3.9 % and
+/// the default's 4² level 4.2 %: the bar there is 4.5 %, and `--specular-size 512
+/// --min-mip-size 8` gives 1.0 %).
+#[test]
+fn default_bake_lookup_error() {
+    let peers: [(&str, [f64; 6]); 4] = [
+        ("venice_sunset_1k.hdr", [0.02; 6]),
+        ("pedestrian_overpass_1k.hdr", [0.02; 6]),
+        (
+            "quarry_01_1k.hdr",
+            [0.103, 0.097, 0.082, 0.055, 0.084, 0.105],
+        ),
+        (
+            "royal_esplanade_1k.hdr",
+            [0.098, 0.056, 0.076, 0.066, 0.05, 0.045],
+        ),
+    ];
+    for (name, bar) in peers {
+        let e = equirect(name);
+        let truth = truths(&e, &ROUGHNESS);
+        let errors = lookup_errors(
+            &CpuBackend,
+            &e,
+            256,
+            DEFAULT_MIN_MIP_SIZE,
+            &ROUGHNESS,
+            &truth,
+        );
+        println!(
+            "{name}: {}",
+            errors
+                .iter()
+                .map(|v| format!("{:.2}", v * 100.0))
+                .collect::<Vec<_>>()
+                .join(" / ")
+        );
+        for k in 0..ROUGHNESS.len() {
+            assert!(
+                errors[k] <= bar[k],
+                "{name} at r = {}: {:.2} % (bar {:.1} %)",
+                ROUGHNESS[k],
+                errors[k] * 100.0,
+                bar[k] * 100.0
+            );
+        }
+    }
+}
+
+/// The layout scan behind [`DEFAULT_MIN_MIP_SIZE`]: lookup error per roughness for each
+/// minimum mip size of a 256 chain (`cargo test --release --test lookup -- --ignored
+/// --nocapture`), or for the layouts in `SPLITSUM_LAYOUTS` ("512/8,256/4": size/min).
+#[test]
+#[ignore]
+fn layout_scan() {
+    let r: Vec<f64> = (1..=20).map(|k| k as f64 * 0.05).collect();
+    for name in [
+        "quarry_01_1k.hdr",
+        "royal_esplanade_1k.hdr",
+        "venice_sunset_1k.hdr",
+        "pedestrian_overpass_1k.hdr",
+    ] {
+        let e = equirect(name);
+        let truth = truths(&e, &r);
+        println!(
+            "\n{name}: r = {}",
+            r.iter()
+                .map(|v| format!("{v:.2}"))
+                .collect::<Vec<_>>()
+                .join(" ")
+        );
+        let layouts: Vec<(u32, u32)> = match std::env::var("SPLITSUM_LAYOUTS") {
+            Ok(v) => v
+                .split(',')
+                .map(|p| {
+                    let (a, b) = p.split_once('/').expect("SIZE/MIN,...");
+                    (a.parse().unwrap(), b.parse().unwrap())
+                })
+                .collect(),
+            Err(_) => [1, 2, 4, 8, 16, 32].map(|m| (256, m)).to_vec(),
+        };
+        for (size, min) in layouts {
+            let errors = lookup_errors(&CpuBackend, &e, size, min, &r, &truth);
+            println!(
+                "{size} to {min:>2}: {}",
+                errors
+                    .iter()
+                    .map(|v| format!("{:.2}", v * 100.0))
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            );
+        }
+    }
+}
