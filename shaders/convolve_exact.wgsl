@@ -10,6 +10,10 @@ struct ConvolveParams {
     count: u32,       // source texels
     mode: u32,        // 0 specular, 1 irradiance
     roughness: f32,
+    hot_count: u32,   // mode 1: hot cells (src/environment/hot.rs), after the source texels
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
 }
 
 // Mode 0: two vec4 per texel (dir_omega, radiance); mode 1: five (moments of R, G, B,
@@ -17,6 +21,9 @@ struct ConvolveParams {
 @group(0) @binding(0) var<uniform> params: ConvolveParams;
 @group(0) @binding(1) var<storage, read> source: array<vec4<f32>>;
 @group(0) @binding(2) var output: texture_storage_2d_array<rgba32float, write>;
+// Mode 1: the hot cells, five vec4 each like the source texels (a separate binding keeps
+// each under the 2 MiB that lavapipe reads of a storage binding; one dummy in mode 0).
+@group(0) @binding(3) var<storage, read> hot: array<vec4<f32>>;
 
 fn prefilter_exact_texel(n: vec3<f32>, roughness: f32) -> vec4<f32> {
     let alpha = alpha_from_roughness(roughness);
@@ -38,9 +45,30 @@ fn prefilter_exact_texel(n: vec3<f32>, roughness: f32) -> vec4<f32> {
 
 // Mean clamped cosine over a cap of half-angle sigma at cos theta from n (Snyder 1996;
 // Lagarde & de Rousiers 2014).
+// Below this sin^2 sigma the cap is a flat disk (SMALL_CAP_SIN2 in src/cpu/irradiance.rs,
+// checked by tests/shaders.rs): n.l linear across it, mean of its positive part in closed form.
+const SMALL_CAP_SIN2: f32 = 1e-3;
+
 fn clipped_cap_cosine(cos_theta: f32, sin2_sigma: f32) -> f32 {
     if (sin2_sigma < 1e-12) {
         return max(cos_theta, 0.0);
+    }
+    if (sin2_sigma < SMALL_CAP_SIN2) {
+        let sigma = sqrt(sin2_sigma);
+        let g = sqrt(max(1.0 - cos_theta * cos_theta, 0.0));
+        let reach = g * sigma;
+        if (cos_theta >= reach) {
+            return cos_theta;
+        }
+        if (cos_theta <= -reach) {
+            return 0.0;
+        }
+        let t = cos_theta / reach;
+        let r = sqrt(max(1.0 - t * t, 0.0));
+        let asin_t = atan_precise(t / max(r, 1e-9));
+        let a = (0.5 * PI + t * r + asin_t) / PI;
+        let b = 2.0 * r * r * r / (3.0 * PI);
+        return reach * (t * a + b);
     }
     let cap = 2.0 * PI * (1.0 - sqrt(max(1.0 - sin2_sigma, 0.0)));
     var e = 0.0;
@@ -58,16 +86,26 @@ fn clipped_cap_cosine(cos_theta: f32, sin2_sigma: f32) -> f32 {
 
 fn irradiance_texel(n: vec3<f32>) -> vec4<f32> {
     var e = vec3<f32>(0.0);
-    for (var k = 0u; k < params.count; k++) {
-        let d = source[5u * k + 3u];
+    // The source texels, then the hot cells, in one loop (one copy of the cap code).
+    for (var k = 0u; k < params.count + params.hot_count; k++) {
+        var t: array<vec4<f32>, 5>;
+        if (k < params.count) {
+            t = array<vec4<f32>, 5>(source[5u * k], source[5u * k + 1u], source[5u * k + 2u],
+                                    source[5u * k + 3u], source[5u * k + 4u]);
+        } else {
+            let h = k - params.count;
+            t = array<vec4<f32>, 5>(hot[5u * h], hot[5u * h + 1u], hot[5u * h + 2u],
+                                    hot[5u * h + 3u], hot[5u * h + 4u]);
+        }
+        let d = t[3];
         let cos_theta = dot(n, d.xyz);
         if (cos_theta * cos_theta > d.w) {
             if (cos_theta > 0.0) {
-                e += max(vec3<f32>(dot(n, source[5u * k].xyz), dot(n, source[5u * k + 1u].xyz),
-                                   dot(n, source[5u * k + 2u].xyz)), vec3<f32>(0.0));
+                e += max(vec3<f32>(dot(n, t[0].xyz), dot(n, t[1].xyz), dot(n, t[2].xyz)),
+                         vec3<f32>(0.0));
             }
         } else {
-            e += clipped_cap_cosine(cos_theta, d.w) * source[5u * k + 4u].rgb;
+            e += clipped_cap_cosine(cos_theta, d.w) * t[4].rgb;
         }
     }
     return vec4<f32>(e / PI, 1.0);

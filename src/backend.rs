@@ -2,7 +2,7 @@
 //! without a GPU) and a GPU one (wgpu). Tests run every kernel through both.
 
 use crate::cpu::equirect_to_cube::EquirectToCubeParams;
-use crate::environment::{Cubemap, EquirectIntegral};
+use crate::environment::{Cubemap, EquirectIntegral, IrradianceSource};
 use crate::gpu::GpuContext;
 use crate::lut::{validate_lut_size, BrdfLut, LutQuadrature};
 use crate::{cpu, gpu, Error, Result};
@@ -49,8 +49,9 @@ pub trait Backend {
     /// level m at roughness m/(M − 1), see [`crate::cpu::prefilter_specular`].
     fn prefilter_specular(&self, env: &Cubemap, levels: u32, samples: u32) -> Result<Cubemap>;
 
-    /// The irradiance cube (E/π) of edge `size`, see [`crate::cpu::irradiance`].
-    fn irradiance(&self, env: &Cubemap, size: u32) -> Result<Cubemap>;
+    /// The irradiance cube (E/π) of edge `size` from the split source, see
+    /// [`crate::cpu::irradiance`] and [`crate::environment::hot`].
+    fn irradiance(&self, source: &IrradianceSource, size: u32) -> Result<Cubemap>;
 }
 
 /// The CPU reference backend.
@@ -92,8 +93,8 @@ impl Backend for CpuBackend {
         ))
     }
 
-    fn irradiance(&self, env: &Cubemap, size: u32) -> Result<Cubemap> {
-        Ok(cpu::irradiance::irradiance(env, size))
+    fn irradiance(&self, source: &IrradianceSource, size: u32) -> Result<Cubemap> {
+        Ok(cpu::irradiance::irradiance(source, size))
     }
 }
 
@@ -142,9 +143,9 @@ impl Backend for GpuBackend {
         })
     }
 
-    fn irradiance(&self, env: &Cubemap, size: u32) -> Result<Cubemap> {
+    fn irradiance(&self, source: &IrradianceSource, size: u32) -> Result<Cubemap> {
         self.ctx.run_kernel("irradiance", |device, queue| {
-            gpu::prefilter::irradiance(device, queue, env, size)
+            gpu::prefilter::irradiance(device, queue, source, size)
         })
     }
 }
@@ -194,8 +195,8 @@ impl Backend for SoftwareAdapterBackend {
         CpuBackend.prefilter_specular(env, levels, samples)
     }
 
-    fn irradiance(&self, env: &Cubemap, size: u32) -> Result<Cubemap> {
-        CpuBackend.irradiance(env, size)
+    fn irradiance(&self, source: &IrradianceSource, size: u32) -> Result<Cubemap> {
+        CpuBackend.irradiance(source, size)
     }
 }
 

@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use sha2::{Digest, Sha256};
 
-use crate::convert::environment_into_cube;
+use crate::convert::environment_into_cube_with_irradiance;
 use crate::cpu::prefilter_specular::chain_levels;
 use crate::cpu::sh_project::{sh_project, ShCoefficients};
 use crate::environment::Cubemap;
@@ -331,7 +331,7 @@ pub fn bake(
     done(&mut timings);
 
     let done = timed(Stage::Cubemap, progress);
-    let env = environment_into_cube(
+    let (env, irradiance_source) = environment_into_cube_with_irradiance(
         backend,
         source,
         opts.specular_size,
@@ -346,11 +346,11 @@ pub fn bake(
     done(&mut timings);
 
     let done = timed(Stage::Irradiance, progress);
-    let irradiance = backend.irradiance(&env, opts.irradiance_size)?;
+    let irradiance = backend.irradiance(&irradiance_source, opts.irradiance_size)?;
     done(&mut timings);
 
     let done = timed(Stage::Sh, progress);
-    let sh = sh_project(&env);
+    let sh = sh_project(&irradiance_source);
     done(&mut timings);
 
     let done = timed(Stage::Write, progress);

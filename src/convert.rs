@@ -5,7 +5,10 @@ use std::borrow::Cow;
 use crate::cpu::cube_downsample::build_mips;
 use crate::cpu::cube_resample::cube_resample;
 use crate::cpu::equirect_to_cube::EquirectToCubeParams;
-use crate::environment::{Cubemap, Environment, Equirect, EquirectIntegral, EquirectReducer};
+use crate::cpu::irradiance::IRRADIANCE_SOURCE_SIZE;
+use crate::environment::{
+    Cubemap, Environment, Equirect, EquirectIntegral, EquirectReducer, IrradianceSource,
+};
 use crate::{Backend, Error, Result};
 
 /// Largest cube face edge accepted.
@@ -60,6 +63,84 @@ pub fn environment_into_cube(
     convert(backend, Cow::Owned(env), size, mips, rotate_degrees)
 }
 
+/// As [`environment_into_cube`], with the source of the irradiance cube and the SH
+/// ([`IrradianceSource`], see [`crate::environment::hot`]): for an equirect, the hot
+/// texels of the level the conversion read, taken out, and the rest converted to an
+/// [`IRRADIANCE_SOURCE_SIZE`]² cube; for a cube input, the same split of the converted
+/// cube's level 0.
+pub fn environment_into_cube_with_irradiance(
+    backend: &dyn Backend,
+    env: Environment,
+    size: u32,
+    mips: bool,
+    rotate_degrees: f32,
+) -> Result<(Cubemap, IrradianceSource)> {
+    match env {
+        Environment::Equirect(e) => {
+            let (cube, integral, params) =
+                equirect_cube(backend, Cow::Owned(e), size, mips, rotate_degrees)?;
+            let mut cold = Equirect {
+                width: integral.width,
+                height: integral.height,
+                data: integral.radiance,
+            };
+            let hot = crate::environment::hot::split_equirect(&mut cold, params.rotation);
+            let (cold, _, _) = equirect_cube(
+                backend,
+                Cow::Owned(cold),
+                IRRADIANCE_SOURCE_SIZE,
+                false,
+                rotate_degrees,
+            )?;
+            Ok((cube, IrradianceSource { cold, hot }))
+        }
+        cube => {
+            let cube = convert(backend, Cow::Owned(cube), size, mips, rotate_degrees)?;
+            let source = IrradianceSource::from_cube(&cube);
+            Ok((cube, source))
+        }
+    }
+}
+
+fn check_rotation(rotate_degrees: f32) -> Result<()> {
+    if !rotate_degrees.is_finite() {
+        return Err(Error::InvalidParameter {
+            name: "--rotate",
+            message: format!("{rotate_degrees} is not a finite angle"),
+        });
+    }
+    Ok(())
+}
+
+fn level_count(size: u32, mips: bool) -> u32 {
+    if mips {
+        Cubemap::full_mip_count(size)
+    } else {
+        1
+    }
+}
+
+/// An equirect's cube, with the integral it was computed from (its radiance is the level
+/// the conversion read) and the conversion's parameters.
+fn equirect_cube(
+    backend: &dyn Backend,
+    e: Cow<'_, Equirect>,
+    size: u32,
+    mips: bool,
+    rotate_degrees: f32,
+) -> Result<(Cubemap, EquirectIntegral, EquirectToCubeParams)> {
+    validate_cube_size(size)?;
+    check_rotation(rotate_degrees)?;
+    let params = EquirectToCubeParams::new(size, e.width, e.height, rotate_degrees);
+    let level = match (params.base_level, e) {
+        (0, e) => e.into_owned(),
+        (levels, e) => reduce(&e, levels),
+    };
+    let integral = EquirectIntegral::new(level);
+    let cube = backend.equirect_to_cube(&integral, &params, level_count(size, mips))?;
+    Ok((cube, integral, params))
+}
+
 fn convert(
     backend: &dyn Backend,
     env: Cow<'_, Environment>,
@@ -68,36 +149,15 @@ fn convert(
     rotate_degrees: f32,
 ) -> Result<Cubemap> {
     validate_cube_size(size)?;
-    if !rotate_degrees.is_finite() {
-        return Err(Error::InvalidParameter {
-            name: "--rotate",
-            message: format!("{rotate_degrees} is not a finite angle"),
-        });
-    }
-    let levels = if mips {
-        Cubemap::full_mip_count(size)
-    } else {
-        1
-    };
+    check_rotation(rotate_degrees)?;
+    let levels = level_count(size, mips);
     let keep = |c: &Cubemap| c.size == size && rotate_degrees.rem_euclid(360.0) == 0.0;
     match env {
         Cow::Borrowed(Environment::Equirect(e)) => {
-            let params = EquirectToCubeParams::new(size, e.width, e.height, rotate_degrees);
-            let level = if params.base_level == 0 {
-                e.clone()
-            } else {
-                reduce(e, params.base_level)
-            };
-            backend.equirect_to_cube(&EquirectIntegral::new(level), &params, levels)
+            equirect_cube(backend, Cow::Borrowed(e), size, mips, rotate_degrees).map(|c| c.0)
         }
         Cow::Owned(Environment::Equirect(e)) => {
-            let params = EquirectToCubeParams::new(size, e.width, e.height, rotate_degrees);
-            let level = if params.base_level == 0 {
-                e
-            } else {
-                reduce(&e, params.base_level)
-            };
-            backend.equirect_to_cube(&EquirectIntegral::new(level), &params, levels)
+            equirect_cube(backend, Cow::Owned(e), size, mips, rotate_degrees).map(|c| c.0)
         }
         Cow::Borrowed(Environment::Cube(c)) => {
             let mut cube = if keep(c) {

@@ -2,7 +2,7 @@
 //! problem, with the tolerances the tests state (and their reasons, in `tests/`).
 
 use crate::convert::environment_to_cube;
-use crate::environment::{Cubemap, Environment};
+use crate::environment::{Cubemap, Environment, IrradianceSource};
 use crate::{Backend, CpuBackend, GpuBackend, Result};
 
 /// LUT: |gpu − cpu| ≤ 5e-5 (tests/gpu_vs_cpu.rs).
@@ -93,7 +93,8 @@ pub fn verify(gpu: &GpuBackend, env: &Environment) -> Result<Vec<VerifyRow>> {
         CONVOLUTION_TOLERANCE,
         1e-5,
     ));
-    let (ia, ib) = (gpu.irradiance(&gb, 16)?, cpu.irradiance(&gb, 16)?);
+    let source = IrradianceSource::from_cube(&gb);
+    let (ia, ib) = (gpu.irradiance(&source, 16)?, cpu.irradiance(&source, 16)?);
     rows.push(compare(
         "irradiance 16",
         &ia,

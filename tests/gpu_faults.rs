@@ -5,6 +5,8 @@
 //! binary) and wgpu's device-lost callback and error scopes report it.
 mod common;
 
+use splitsum::environment::IrradianceSource;
+
 use std::path::Path;
 use std::process::Command;
 
@@ -32,7 +34,9 @@ fn every_kernel_reports_a_lost_device() {
         ("prefilter_specular", |b, e| {
             b.prefilter_specular(e, e.levels.len() as u32, 16).map(drop)
         }),
-        ("irradiance", |b, e| b.irradiance(e, 4).map(drop)),
+        ("irradiance", |b, e| {
+            b.irradiance(&IrradianceSource::from_cube(e), 4).map(drop)
+        }),
     ];
     for (name, run) in kernels {
         let Some(ctx) = common::gpu() else { return };
@@ -125,4 +129,75 @@ fn bake_falls_back_to_the_cpu_when_the_device_is_lost() {
             "{kernel}: partial output"
         );
     }
+}
+
+/// On a machine whose only adapter is OpenGL (wgpu's GL backend, asked for alone with
+/// `WGPU_BACKEND=gl`; Mesa's llvmpipe through EGL here), `--backend gpu` and `verify`
+/// refuse the cube kernels in one line naming the adapter and what fails there, instead
+/// of a raw wgpu error or wrong numbers, and `--backend auto` bakes on the CPU. Skipped
+/// where no GL adapter can be opened.
+#[test]
+fn an_opengl_adapter_is_refused_clearly_for_the_cube_kernels() {
+    let run = |args: &[&str], out: &Path| {
+        Command::new(env!("CARGO_BIN_EXE_splitsum"))
+            .args(args)
+            .arg("-o")
+            .arg(out)
+            .arg("tests/data/venice_sunset_1k.hdr")
+            .env("WGPU_BACKEND", "gl")
+            .output()
+            .unwrap()
+    };
+    let dir = common::output_dir("gpu-gl");
+    let probe = Command::new(env!("CARGO_BIN_EXE_splitsum"))
+        .args(["lut", "--size", "16", "--backend", "gpu", "-v", "-o"])
+        .arg(dir.join("probe.png"))
+        .env("WGPU_BACKEND", "gl")
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&probe.stderr).to_string()
+        + &String::from_utf8_lossy(&probe.stdout);
+    if !probe.status.success() || !said.contains("Gl,") {
+        eprintln!("skipping: no OpenGL adapter ({said})");
+        return;
+    }
+    let gpu = run(
+        &[
+            "bake",
+            "--specular-size",
+            "16",
+            "--backend",
+            "gpu",
+            "--quiet",
+        ],
+        &dir.join("gpu"),
+    );
+    let err = String::from_utf8_lossy(&gpu.stderr);
+    assert_eq!(gpu.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("the OpenGL adapter") && err.contains("equirect_to_cube"),
+        "{err}"
+    );
+    assert!(
+        !err.contains("ComputePipeline") && !err.contains("panicked"),
+        "{err}"
+    );
+    assert!(!dir.join("gpu/venice_sunset_1k").exists(), "partial output");
+
+    let verify = Command::new(env!("CARGO_BIN_EXE_splitsum"))
+        .args(["verify", "tests/data/venice_sunset_1k.hdr"])
+        .env("WGPU_BACKEND", "gl")
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&verify.stderr);
+    assert_eq!(verify.status.code(), Some(1), "{err}");
+    assert!(err.contains("the OpenGL adapter"), "{err}");
+
+    let auto = run(
+        &["bake", "--specular-size", "16", "--quiet"],
+        &dir.join("auto"),
+    );
+    let err = String::from_utf8_lossy(&auto.stderr);
+    assert!(auto.status.success(), "{err}");
+    assert!(dir.join("auto/venice_sunset_1k/specular.ktx2").exists());
 }

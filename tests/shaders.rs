@@ -85,6 +85,16 @@ fn atan_coefficients_match_rust() {
     }
 }
 
+/// The small-cap threshold of the irradiance kernel is the same on both sides.
+#[test]
+fn small_cap_threshold_matches_rust() {
+    let module = parse("convolve_exact", splitsum::gpu::shaders::CONVOLVE_EXACT);
+    assert_eq!(
+        wgsl_f32_constant(&module, "SMALL_CAP_SIN2"),
+        splitsum::cpu::irradiance::SMALL_CAP_SIN2
+    );
+}
+
 /// The conversion's Gauss-Legendre rule is the same on both sides.
 #[test]
 fn conversion_quadrature_matches_rust() {
@@ -137,7 +147,7 @@ fn kernel_uniforms_match_rust() {
         CONVOLVE_EXACT,
         "ConvolveParams",
         ConvolveUniform,
-        [out_size, count, mode, roughness]
+        [out_size, count, mode, roughness, hot_count, pad0, pad1, pad2]
     );
 }
 

@@ -2,6 +2,8 @@
 //! analytic environment, brute-force convolutions of a real HDRI.
 mod common;
 
+use splitsum::environment::IrradianceSource;
+
 use splitsum::convert::environment_to_cube;
 use splitsum::cpu::prefilter_specular::mip_roughness;
 use splitsum::cpu::sh_project::sh_project;
@@ -52,7 +54,9 @@ fn white_furnace() {
             .prefilter_specular(&env, env.levels.len() as u32, 64)
             .unwrap();
         assert_eq!(spec.levels.len(), 8);
-        let irr = backend.irradiance(&env, 16).unwrap();
+        let irr = backend
+            .irradiance(&IrradianceSource::from_cube(&env), 16)
+            .unwrap();
         for (what, cube) in [("specular", &spec), ("irradiance", &irr)] {
             for (m, level) in cube.levels.iter().enumerate() {
                 for t in level {
@@ -67,7 +71,7 @@ fn white_furnace() {
             }
         }
     }
-    let sh = sh_project(&env);
+    let sh = sh_project(&IrradianceSource::from_cube(&env));
     for d in [[0.0f32, 1.0, 0.0], [0.6, 0.0, -0.8], [-0.48, -0.6, 0.64]] {
         let e = sh_eval(&sh.irradiance, d);
         let l = sh_eval(&sh.radiance, d);
@@ -89,9 +93,11 @@ fn analytic_irradiance() {
         [v, v, v]
     });
     let exact = |d: [f32; 3]| 1.0 + d[1] / 3.0 + 0.15 * d[0] * d[2];
-    let sh = sh_project(&env);
+    let sh = sh_project(&IrradianceSource::from_cube(&env));
     for backend in common::backends() {
-        let irr = backend.irradiance(&env, 32).unwrap();
+        let irr = backend
+            .irradiance(&IrradianceSource::from_cube(&env), 32)
+            .unwrap();
         let mut worst = 0.0f32;
         for face in 0..6 {
             for j in 0..32 {
@@ -174,7 +180,9 @@ fn irradiance_matches_brute_force_on_real_hdris() {
                 (texel_dir(f, i, j, 128), [t[0] * w, t[1] * w, t[2] * w])
             })
             .collect();
-        let irr = CpuBackend.irradiance(&env, 32).unwrap();
+        let irr = CpuBackend
+            .irradiance(&IrradianceSource::from_cube(&env), 32)
+            .unwrap();
         let mut worst = 0.0f32;
         for face in 0..6 {
             for j in 0..32 {
@@ -215,8 +223,12 @@ fn gpu_prefilter_and_irradiance_match_cpu() {
     let b = CpuBackend
         .prefilter_specular(&env, env.levels.len() as u32, 32)
         .unwrap();
-    let ia = gpu.irradiance(&env, 16).unwrap();
-    let ib = CpuBackend.irradiance(&env, 16).unwrap();
+    let ia = gpu
+        .irradiance(&IrradianceSource::from_cube(&env), 16)
+        .unwrap();
+    let ib = CpuBackend
+        .irradiance(&IrradianceSource::from_cube(&env), 16)
+        .unwrap();
     for (what, x, y) in [("specular", &a, &b), ("irradiance", &ia, &ib)] {
         for (m, (la, lb)) in x.levels.iter().zip(&y.levels).enumerate() {
             let max = lb
@@ -404,7 +416,7 @@ fn run_by_run_irradiance_equals_the_texel_sum() {
         .collect();
     let want: Vec<[f32; 4]> = normals
         .iter()
-        .map(|&n| irradiance_texel(&source, n))
+        .map(|&n| irradiance_texel(&source, &[], n))
         .collect();
     let peak = want
         .iter()
@@ -412,7 +424,7 @@ fn run_by_run_irradiance_equals_the_texel_sum() {
         .fold(0.0f32, |a, &b| a.max(b));
     let mut worst = 0.0f32;
     for (n, w) in normals.iter().zip(&want) {
-        let got = irradiance_texel_runs(&source, &runs, *n);
+        let got = irradiance_texel_runs(&source, &runs, &[], *n);
         for c in 0..3 {
             let err = (got[c] - w[c]).abs();
             assert!(err <= 1e-5 * w[c] + 1e-7 * peak, "{n:?}: {got:?} vs {w:?}");

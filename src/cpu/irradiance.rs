@@ -1,13 +1,15 @@
 //! CPU reference for the irradiance mode of `shaders/convolve_exact.wgsl`: the irradiance
-//! cube E(n)/π without noise, as a sum over every texel of a ≤ 64² mip of the environment
-//! of max(0, n · Mₖ), Mₖ = ∫ L l dω over the texel (from the level-0 texels it covers).
-//! The clamped cosine is linear in l above the horizon, so this equals the full-resolution
-//! integral except for texels straddling n's horizon; a sun keeps its exact direction.
+//! cube E(n)/π without noise, as a sum of max(0, n · Mₖ), Mₖ = ∫ L l dω, over every texel
+//! of the cold ≤ 64² cube and every cell of the hot texels split off at the source's
+//! resolution ([`crate::environment::hot`]). The clamped cosine is linear in l above the
+//! horizon, so this equals the full-resolution integral except for the texels and cells
+//! straddling n's horizon, which are modelled as caps (clipped in closed form); a sun keeps
+//! its exact direction and its terminator is resolved to a quarter of a source texel.
 
 use std::f32::consts::PI;
 
 use crate::cpu::equirect_to_cube::fill_cube_level;
-use crate::environment::Cubemap;
+use crate::environment::{Cubemap, IrradianceSource};
 use crate::math::cubemap::{
     cube_face_direction, cube_texel_direction, cube_texel_solid_angle, FACES,
 };
@@ -46,13 +48,39 @@ pub struct MomentTexel {
     pub radiance_omega: [f32; 4],
 }
 
+/// Below this sin²σ (σ ≈ 1.8°) [`clipped_cap_cosine`] treats the cap as a flat disk: the
+/// closed form's terms cancel to O(σ³) there, which f32 cannot resolve (at sin²σ = 1e-6
+/// it is ~10 % off), while the disk's error is O(σ²) relative (< 1e-3).
+pub const SMALL_CAP_SIN2: f32 = 1e-3;
+
 /// ∫ max(0, n·l) dω over a spherical cap of half-angle σ whose centre makes cos θ with n
 /// (the horizon-clipped sphere-light illuminance of Snyder 1996, in the form of Lagarde &
 /// de Rousiers, "Moving Frostbite to PBR", 2014), divided by the cap's solid angle
-/// 2π(1 − cos σ): the mean clamped cosine over the cap.
+/// 2π(1 − cos σ): the mean clamped cosine over the cap. For a small cap
+/// (sin²σ < [`SMALL_CAP_SIN2`]) n·l is linear across it, x₀ + g·w·σ with x₀ = cos θ,
+/// g = sin θ and w distributed as a disk's chord, (2/π)√(1 − w²) on [−1, 1]; with
+/// t = x₀/(gσ) the mean of its positive part is gσ (t A(t) + B(t)), A(t) =
+/// (π/2 + t√(1 − t²) + asin t)/π, B(t) = 2(1 − t²)^{3/2}/(3π).
 pub fn clipped_cap_cosine(cos_theta: f32, sin2_sigma: f32) -> f32 {
     if sin2_sigma < 1e-12 {
         return cos_theta.max(0.0);
+    }
+    if sin2_sigma < SMALL_CAP_SIN2 {
+        let sigma = sin2_sigma.sqrt(); // sin σ ≈ σ to O(σ³)
+        let g = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
+        let reach = g * sigma;
+        if cos_theta >= reach {
+            return cos_theta;
+        }
+        if cos_theta <= -reach {
+            return 0.0;
+        }
+        let t = cos_theta / reach;
+        let r = (1.0 - t * t).max(0.0).sqrt();
+        let asin_t = atan_precise(t / r.max(1e-9));
+        let a = (0.5 * PI + t * r + asin_t) / PI;
+        let b = 2.0 * r * r * r / (3.0 * PI);
+        return reach * (t * a + b);
     }
     let cap = 2.0 * PI * (1.0 - (1.0 - sin2_sigma).max(0.0).sqrt());
     let e = if cos_theta * cos_theta > sin2_sigma {
@@ -204,13 +232,13 @@ pub fn irradiance_source_level(env: &Cubemap) -> usize {
         .unwrap_or(env.levels.len() - 1)
 }
 
-/// E(n)/π for unit `n` over every source texel: (1/π) Σ n · moment for texels above the
-/// horizon, the clipped-cap estimate for texels straddling it. The mirror of the
-/// irradiance mode of `convolve_exact.wgsl`; [`irradiance`] computes the same sum faster
-/// with [`MomentRuns`].
-pub fn irradiance_texel(source: &[MomentTexel], n: [f32; 3]) -> [f32; 4] {
+/// E(n)/π for unit `n` over every cold source texel and then every hot cell (see
+/// [`crate::environment::hot`]): (1/π) Σ n · moment for texels above the horizon, the
+/// clipped-cap estimate for texels straddling it. The mirror of the irradiance mode of
+/// `convolve_exact.wgsl`; [`irradiance`] computes the same sum faster with [`MomentRuns`].
+pub fn irradiance_texel(source: &[MomentTexel], hot: &[MomentTexel], n: [f32; 3]) -> [f32; 4] {
     let mut e = [0.0f32; 3];
-    for t in source {
+    for t in source.iter().chain(hot) {
         add_moment_texel(&mut e, t, n);
     }
     [e[0] / PI, e[1] / PI, e[2] / PI, 1.0]
@@ -322,8 +350,14 @@ impl MomentRuns {
     }
 }
 
-/// E(n)/π for unit `n`, as [`irradiance_texel`] but run by run (see [`MomentRuns`]).
-pub fn irradiance_texel_runs(source: &[MomentTexel], runs: &MomentRuns, n: [f32; 3]) -> [f32; 4] {
+/// E(n)/π for unit `n`, as [`irradiance_texel`] but the cold texels run by run (see
+/// [`MomentRuns`]).
+pub fn irradiance_texel_runs(
+    source: &[MomentTexel],
+    runs: &MomentRuns,
+    hot: &[MomentTexel],
+    n: [f32; 3],
+) -> [f32; 4] {
     let sqrt3 = 3f32.sqrt();
     let mut e = [0.0f32; 3];
     for r in &runs.runs {
@@ -346,18 +380,23 @@ pub fn irradiance_texel_runs(source: &[MomentTexel], runs: &MomentRuns, n: [f32;
             add_moment_texel(&mut e, t, n);
         }
     }
+    for t in hot {
+        add_moment_texel(&mut e, t, n);
+    }
     [e[0] / PI, e[1] / PI, e[2] / PI, 1.0]
 }
 
 /// The irradiance cube of edge `size` (one level).
-pub fn irradiance(env: &Cubemap, size: u32) -> Cubemap {
-    let m = irradiance_source_level(env);
-    let source = moment_texels(env, m);
-    let runs = MomentRuns::new(&source, env.level_size(m));
+pub fn irradiance(src: &IrradianceSource, size: u32) -> Cubemap {
+    let cold = &src.cold;
+    let m = irradiance_source_level(cold);
+    let source = moment_texels(cold, m);
+    let runs = MomentRuns::new(&source, cold.level_size(m));
     let level = fill_cube_level(size, |face, i, j| {
         irradiance_texel_runs(
             &source,
             &runs,
+            &src.hot,
             cube_texel_direction(face, i as i32, j as i32, size),
         )
     });

@@ -1,9 +1,10 @@
 //! SH projection (a CPU pass on both backends: 9 × 6 × 64² multiply-adds): the radiance
-//! coefficients cₖ = Σ L(dᵢ) Yₖ(dᵢ) Ωᵢ over the texels of a ≤ 64² mip (exact solid angles,
-//! which sum to 4π, so a constant environment projects exactly), and the irradiance
+//! coefficients cₖ = Σ L(dᵢ) Yₖ(dᵢ) Ωᵢ over the texels of the cold ≤ 64² cube (exact solid
+//! angles, which sum to 4π, so a constant environment projects exactly) plus the hot cells
+//! at their mean directions (a lamp keeps its energy and direction), and the irradiance
 //! coefficients Â_l/π · cₖ that evaluate to E/π directly.
 
-use crate::environment::Cubemap;
+use crate::environment::IrradianceSource;
 use crate::math::cubemap::{cube_texel_direction, cube_texel_solid_angle, FACES};
 use crate::math::sh::{irradiance_band_factor, sh_band, sh_basis};
 
@@ -19,8 +20,10 @@ pub struct ShCoefficients {
     pub irradiance: [[f32; 3]; 9],
 }
 
-/// Projects `env` onto bands 0–2.
-pub fn sh_project(env: &Cubemap) -> ShCoefficients {
+/// Projects the irradiance source (the cold cube's texels and the hot cells at their exact
+/// mean directions) onto bands 0–2.
+pub fn sh_project(src: &IrradianceSource) -> ShCoefficients {
+    let env = &src.cold;
     let m = (0..env.levels.len())
         .find(|&m| env.level_size(m) <= SH_SOURCE_SIZE)
         .unwrap_or(env.levels.len() - 1);
@@ -37,6 +40,15 @@ pub fn sh_project(env: &Cubemap) -> ShCoefficients {
                         acc[k][c] += l[c] as f64 * y[k] as f64 * w;
                     }
                 }
+            }
+        }
+    }
+    for cell in &src.hot {
+        let d = cell.dir_sin2;
+        let y = sh_basis([d[0], d[1], d[2]]);
+        for (a, yk) in acc.iter_mut().zip(y) {
+            for (v, lo) in a.iter_mut().zip(&cell.radiance_omega) {
+                *v += *lo as f64 * yk as f64;
             }
         }
     }

@@ -1,9 +1,11 @@
 //! In-memory environments: equirectangular images (with an energy-preserving mip pyramid,
 //! see [`pyramid`], and the cumulative sums a conversion integrates, see [`integral`]) and cubemaps (with mip chains), both linear RGB radiance.
 
+pub mod hot;
 mod integral;
 mod pyramid;
 
+pub use hot::IrradianceSource;
 pub use integral::EquirectIntegral;
 pub use pyramid::{pyramid_level_count, EquirectReducer, RowDownsampler};
 

@@ -15,6 +15,12 @@ pub const HIDE_GPU_ENV: &str = "SPLITSUM_NO_GPU";
 /// (`--backend auto` must then finish on the CPU, `--backend gpu` fail cleanly).
 pub const LOSE_DEVICE_ENV: &str = "SPLITSUM_LOSE_DEVICE_AT";
 
+/// Kernels refused on wgpu's OpenGL backend (found by `splitsum verify` on Mesa llvmpipe
+/// through EGL: they validate and run, but the cube faces they write through per-mip
+/// 2D-array storage views come back wrong). The LUT, a plain 2D storage texture, runs.
+/// With `--backend auto` the refusal sends these kernels to the CPU backend.
+pub const GL_UNSUPPORTED: &[&str] = &["equirect_to_cube", "prefilter_specular", "irradiance"];
+
 /// A device and queue with the adapter they came from.
 pub struct GpuContext {
     /// The logical device.
@@ -121,6 +127,18 @@ impl GpuContext {
         kernel: &str,
         f: impl FnOnce(&wgpu::Device, &wgpu::Queue) -> Result<T>,
     ) -> Result<T> {
+        if self.adapter_info.backend == wgpu::Backend::Gl && GL_UNSUPPORTED.contains(&kernel) {
+            return Err(Error::Gpu {
+                stage: kernel.to_string(),
+                message: format!(
+                    "the OpenGL adapter {} cannot run it: on wgpu's GL backend the kernels \
+                     that write cube faces through 2D-array storage views return wrong \
+                     results; install a Vulkan driver (Linux: mesa-vulkan-drivers) or use \
+                     --backend cpu",
+                    self.adapter_description()
+                ),
+            });
+        }
         if std::env::var(LOSE_DEVICE_ENV).is_ok_and(|v| v == kernel) {
             self.device.destroy();
         }

@@ -8,7 +8,7 @@ use crate::cpu::irradiance::{
 use crate::cpu::prefilter_specular::{
     ggx_lobe_samples, level_method, mip_roughness, split_hot_texels, LevelMethod,
 };
-use crate::environment::Cubemap;
+use crate::environment::{Cubemap, IrradianceSource};
 use crate::gpu::compute::{buffer_with_data, with_error_scope, ComputeKernel};
 use crate::gpu::shaders;
 use crate::gpu::texture::{create_cube_texture, cube_mip_view, read_cubemap};
@@ -51,6 +51,14 @@ pub struct ConvolveUniform {
     pub mode: u32,
     /// Roughness (mode 0).
     pub roughness: f32,
+    /// Number of hot cells (mode 1).
+    pub hot_count: u32,
+    /// Padding to a whole 16-byte block.
+    pub pad0: u32,
+    /// Padding.
+    pub pad1: u32,
+    /// Padding.
+    pub pad2: u32,
 }
 
 /// Uploads every level of `cube` into a new cube texture with `cube.levels.len()` mips.
@@ -90,8 +98,8 @@ pub fn upload_cube(
 enum ExactSource {
     /// Mode 0: prefiltered specular at a roughness.
     Specular(Vec<SourceTexel>, f32),
-    /// Mode 1: irradiance.
-    Irradiance(Vec<MomentTexel>),
+    /// Mode 1: irradiance, from the cold texels and the hot cells.
+    Irradiance(Vec<MomentTexel>, Vec<MomentTexel>),
 }
 
 /// Records one exact convolution into `target` (a mip view).
@@ -103,16 +111,29 @@ fn record_exact(
     out_size: u32,
     target: &wgpu::TextureView,
 ) {
-    let (count, mode, roughness, bytes): (usize, u32, f32, &[u8]) = match source {
-        ExactSource::Specular(s, r) => (s.len(), 0, *r, bytemuck::cast_slice(s)),
-        ExactSource::Irradiance(m) => (m.len(), 1, 0.0, bytemuck::cast_slice(m)),
-    };
+    // A storage binding cannot be empty: one zero vec4 stands for no hot cells.
+    let none = [0.0f32; 4];
+    let (count, mode, roughness, bytes, hot): (usize, u32, f32, &[u8], &[MomentTexel]) =
+        match source {
+            ExactSource::Specular(s, r) => (s.len(), 0, *r, bytemuck::cast_slice(s), &[]),
+            ExactSource::Irradiance(m, h) => (m.len(), 1, 0.0, bytemuck::cast_slice(m), h),
+        };
     let uniform = ConvolveUniform {
         out_size,
         count: count as u32,
         mode,
         roughness,
+        hot_count: hot.len() as u32,
+        pad0: 0,
+        pad1: 0,
+        pad2: 0,
     };
+    let hot_bytes: &[u8] = if hot.is_empty() {
+        bytemuck::cast_slice(&none)
+    } else {
+        bytemuck::cast_slice(hot)
+    };
+    let hbuf = buffer_with_data(device, "hot cells", hot_bytes, wgpu::BufferUsages::STORAGE);
     let ubuf = buffer_with_data(
         device,
         "convolve params",
@@ -132,6 +153,7 @@ fn record_exact(
             ubuf.as_entire_binding(),
             sbuf.as_entire_binding(),
             wgpu::BindingResource::TextureView(target),
+            hbuf.as_entire_binding(),
         ],
         [out_size, out_size, 6],
     );
@@ -248,7 +270,7 @@ pub fn prefilter_specular(
 pub fn irradiance(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
-    env: &Cubemap,
+    src: &IrradianceSource,
     size: u32,
 ) -> Result<Cubemap> {
     let exact = ComputeKernel::new(device, "convolve_exact", shaders::CONVOLVE_EXACT, WORKGROUP)?;
@@ -256,7 +278,10 @@ pub fn irradiance(
         let out = create_cube_texture(device, "irradiance", size, 1);
         let target = cube_mip_view(&out, 0);
         let mut encoder = device.create_command_encoder(&Default::default());
-        let source = ExactSource::Irradiance(moment_texels(env, irradiance_source_level(env)));
+        let source = ExactSource::Irradiance(
+            moment_texels(&src.cold, irradiance_source_level(&src.cold)),
+            src.hot.clone(),
+        );
         record_exact(device, &mut encoder, &exact, &source, size, &target);
         queue.submit([encoder.finish()]);
         out
