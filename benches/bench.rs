@@ -131,7 +131,7 @@ fn cubemap_benchmarks() {
             let (wall, cpu) = measure(1, || {
                 environment_to_cube(backend, env, 512, true, 0.0).unwrap();
             });
-            println!("| {name} | convert (pyramid, level 0, 9 mips, readback) | {label} | {wall:.3} | {cpu:.3} |");
+            println!("| {name} | convert (tables, level 0, 9 mips, readback) | {label} | {wall:.3} | {cpu:.3} |");
         }
     }
 }

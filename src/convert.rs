@@ -85,6 +85,12 @@ pub fn environment_into_cube_with_irradiance(
                 data: integral.radiance,
             };
             let hot = crate::environment::hot::split_equirect(&mut cold, params.rotation);
+            // The cold rest has no lamp to place to a fraction of a texel: a level of at
+            // most COLD_MAX_WIDTH columns (texels ~1/7 of a 64² cube's smallest) keeps
+            // the second conversion's tables small.
+            while cold.width > COLD_MAX_WIDTH {
+                cold = cold.downsample();
+            }
             let (cold, _, _) = equirect_cube(
                 backend,
                 Cow::Owned(cold),
@@ -101,6 +107,9 @@ pub fn environment_into_cube_with_irradiance(
         }
     }
 }
+
+/// Widest equirect level the cold part of the irradiance source is converted from.
+pub const COLD_MAX_WIDTH: u32 = 2048;
 
 fn check_rotation(rotate_degrees: f32) -> Result<()> {
     if !rotate_degrees.is_finite() {

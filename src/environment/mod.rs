@@ -1,5 +1,6 @@
 //! In-memory environments: equirectangular images (with an energy-preserving mip pyramid,
-//! see [`pyramid`], and the cumulative sums a conversion integrates, see [`integral`]) and cubemaps (with mip chains), both linear RGB radiance.
+//! see [`EquirectReducer`], and the cumulative sums a conversion integrates, see
+//! [`EquirectIntegral`]) and cubemaps (with mip chains), both linear RGB radiance.
 
 pub mod hot;
 mod integral;

@@ -43,18 +43,17 @@ pub struct InputOptions {
     /// Exposure in EV: radiance is multiplied by 2^EV.
     pub exposure_ev: f32,
     /// The face size of the cube the input will be converted to, when known. An equirect
-    /// is then reduced, as it is read, to the coarsest level of its area-filtered pyramid
-    /// that such a cube still samples ([`reduction_levels`]): a `.hdr`, and an `.exr`
-    /// stored top to bottom, are decoded row by row (block by block) into that level and
-    /// never held at full size; other files are decoded whole and reduced at once. The
-    /// conversion's result is the same either way, up to the rounding of its per-sample
-    /// level selection (tested: ≤ 4e-7 relative).
+    /// is then reduced, as it is read, to the level of its area-filtered pyramid that such
+    /// a conversion integrates ([`reduction_levels`]): a `.hdr`, and an `.exr` stored top
+    /// to bottom, are decoded row by row (block by block) into that level and never held
+    /// at full size; other files are decoded whole and reduced at once. The conversion's
+    /// result is bit-identical either way (tested).
     pub cube_size: Option<u32>,
 }
 
-/// How many times an equirect `height` rows high can be halved before a `face_size` cube
-/// would sample finer than what is kept: the conversion's finest needed pyramid level
-/// (see [`EquirectToCubeParams`]).
+/// How many times an equirect `height` rows high is halved before a `face_size` cube is
+/// integrated from it: the level the conversion reads (see
+/// [`crate::cpu::equirect_to_cube::source_level`]).
 pub fn reduction_levels(height: u32, face_size: u32) -> u32 {
     EquirectToCubeParams::new(face_size, 2 * height, height, 0.0).base_level
 }
