@@ -140,10 +140,10 @@ fn cubemap_benchmarks() {
 /// 256 chain with its method.
 fn specular_benchmarks() {
     use splitsum::cpu::prefilter_specular::{
-        level_method, mip_roughness, prefilter_level, split_hot_texels, DEFAULT_SAMPLES,
+        chain_levels, level_method, mip_roughness, prefilter_level, split_hot_texels,
+        DEFAULT_MIN_MIP_SIZE, DEFAULT_SAMPLES,
     };
-    use splitsum::Cubemap;
-    println!("\n## CPU specular chain of venice_sunset_1k.hdr (256, 9 levels), per level\n");
+    println!("\n## CPU specular chain of venice_sunset_1k.hdr (256, default levels), per level\n");
     println!("| level | size | roughness | method | wall s | CPU s |");
     println!("|---|---|---|---|---|---|");
     let loaded = splitsum::io::input::load_environment(
@@ -154,7 +154,7 @@ fn specular_benchmarks() {
     let env =
         splitsum::convert::environment_to_cube(&splitsum::CpuBackend, &loaded.env, 256, true, 0.0)
             .unwrap();
-    let levels = Cubemap::full_mip_count(env.size);
+    let levels = chain_levels(env.size, DEFAULT_MIN_MIP_SIZE);
     let (wall, cpu) = measure(1, || {
         split_hot_texels(&env);
     });
