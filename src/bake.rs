@@ -9,6 +9,7 @@ use sha2::{Digest, Sha256};
 
 use crate::convert::environment_into_cube_with_irradiance;
 use crate::cpu::prefilter_specular::chain_levels;
+use crate::cpu::roughest_level::fit_roughest_level;
 use crate::cpu::sh_project::{sh_project, ShCoefficients};
 use crate::environment::Cubemap;
 use crate::io::atomic::write_all_atomic;
@@ -342,11 +343,14 @@ pub fn bake(
 
     let done = timed(Stage::Specular, progress);
     let levels = chain_levels(opts.specular_size, opts.min_mip_size);
-    let specular = backend.prefilter_specular(&env, levels, opts.samples)?;
+    let mut specular = backend.prefilter_specular(&env, levels, opts.samples)?;
     done(&mut timings);
 
     let done = timed(Stage::Irradiance, progress);
     let irradiance = backend.irradiance(&irradiance_source, opts.irradiance_size)?;
+    // The r = 1 level is E/π; its texels are fitted to the finer irradiance cube for the
+    // bilinear lookup a shader makes (see `cpu::roughest_level`).
+    fit_roughest_level(&mut specular, &irradiance);
     done(&mut timings);
 
     let done = timed(Stage::Sh, progress);
@@ -427,7 +431,7 @@ fn manifest_json(
         })
         .collect();
     format!(
-        "{{\n  \"tool\": \"splitsum\",\n  \"version\": {},\n  \"input\": {},\n  \"backend\": {},\n  \"parameters\": {{\n    \"specular_size\": {},\n    \"specular_levels\": {},\n    \"min_mip_size\": {},\n    \"roughness_per_mip\": \"m / (levels - 1)\",\n    \"irradiance_size\": {},\n    \"irradiance\": \"E / pi\",\n    \"container\": {},\n    \"pixel_format\": {},\n    \"zstd\": {},\n    \"samples\": {},\n    \"rotate_degrees\": {},\n    \"exposure_ev\": {},\n    \"lut_size\": {}\n  }},\n  \"outputs\": [\n{}\n  ]\n}}\n",
+        "{{\n  \"tool\": \"splitsum\",\n  \"version\": {},\n  \"input\": {},\n  \"backend\": {},\n  \"parameters\": {{\n    \"specular_size\": {},\n    \"specular_levels\": {},\n    \"min_mip_size\": {},\n    \"roughness_per_mip\": \"m / (levels - 1)\",\n    \"roughest_level\": \"least-squares fit of the irradiance (E / pi) for bilinear lookups, when the irradiance cube is at least twice as fine\",\n    \"irradiance_size\": {},\n    \"irradiance\": \"E / pi\",\n    \"container\": {},\n    \"pixel_format\": {},\n    \"zstd\": {},\n    \"samples\": {},\n    \"rotate_degrees\": {},\n    \"exposure_ev\": {},\n    \"lut_size\": {}\n  }},\n  \"outputs\": [\n{}\n  ]\n}}\n",
         json_string(env!("CARGO_PKG_VERSION")),
         json_string(&input.to_string_lossy()),
         json_string(&backend.identity()),

@@ -8,4 +8,5 @@ pub mod cube_sample;
 pub mod equirect_to_cube;
 pub mod irradiance;
 pub mod prefilter_specular;
+pub mod roughest_level;
 pub mod sh_project;
