@@ -26,6 +26,73 @@ fn cpu_seconds() -> Option<f64> {
     Some((utime + stime) / 100.0)
 }
 
+/// User + system CPU seconds of this process's waited-for children so far (Linux).
+fn children_cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    let after = &stat[stat.rfind(')')? + 2..];
+    let fields: Vec<&str> = after.split_whitespace().collect();
+    let cutime: f64 = fields.get(13)?.parse().ok()?;
+    let cstime: f64 = fields.get(14)?.parse().ok()?;
+    Some((cutime + cstime) / 100.0)
+}
+
+/// CPU seconds of one run of `cmd` (a child process), or None if it cannot run.
+fn child_cpu(cmd: &mut std::process::Command) -> Option<f64> {
+    let before = children_cpu_seconds()?;
+    let status = cmd
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .status()
+        .ok()?;
+    status
+        .success()
+        .then(|| children_cpu_seconds().map(|a| a - before))?
+}
+
+/// The whole default `splitsum bake` process against Filament's cmgen doing the cube 256,
+/// the GGX chain 256 and SH3 (`cmgen --size=256 --sh=3 --ibl-ld`) on the same HDRI,
+/// interleaved, 3 runs each, CPU seconds (Debian: `apt-get install libfilament-tools`).
+fn process_versus_cmgen() {
+    let input = std::path::Path::new("tests/data/venice_sunset_1k.hdr");
+    let out = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench-vs-cmgen");
+    let _ = std::fs::create_dir_all(&out);
+    let splitsum = || {
+        let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_splitsum"));
+        c.args(["bake", "--quiet", "-o"]).arg(&out).arg(input);
+        c
+    };
+    let cmgen = || {
+        let mut c = std::process::Command::new("cmgen");
+        c.args(["--quiet", "--size=256", "--sh=3", "-f", "hdr"])
+            .arg(format!("--ibl-ld={}", out.display()))
+            .arg(input);
+        c
+    };
+    println!("\n## The whole default bake process vs cmgen (cube 256 + GGX 256 + SH3), CPU s\n");
+    let (mut ours, mut theirs) = (Vec::new(), Vec::new());
+    for _ in 0..3 {
+        ours.extend(child_cpu(&mut splitsum()));
+        match child_cpu(&mut cmgen()) {
+            Some(t) => theirs.push(t),
+            None => {
+                println!("(cmgen is not installed: `apt-get install libfilament-tools`)");
+                return;
+            }
+        }
+    }
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
+    println!("| tool | runs (CPU s) | mean |");
+    println!("|---|---|---|");
+    for (name, v) in [("splitsum bake (auto)", &ours), ("cmgen", &theirs)] {
+        let runs: Vec<String> = v.iter().map(|t| format!("{t:.2}")).collect();
+        println!("| {name} | {} | {:.2} |", runs.join(", "), mean(v));
+    }
+    println!(
+        "\nratio splitsum / cmgen: {:.2}",
+        mean(&ours) / mean(&theirs)
+    );
+}
+
 /// Runs `f` `runs` times; returns (median wall s, mean CPU s).
 fn measure(runs: usize, mut f: impl FnMut()) -> (f64, f64) {
     let mut walls = Vec::new();
@@ -166,7 +233,7 @@ fn specular_benchmarks() {
         let method = level_method(env.size, m, levels, DEFAULT_SAMPLES);
         let size = env.level_size(m as usize);
         let (wall, cpu) = measure(1, || {
-            prefilter_level(&env, &sampled, size, r, method);
+            prefilter_level(&env, None, &sampled, size, r, method);
         });
         println!("| {m} | {size} | {r:.3} | {method:?} | {wall:.3} | {cpu:.2} |");
     }
@@ -310,6 +377,7 @@ fn main() {
     }
     if run("bake") {
         bake_benchmarks();
+        process_versus_cmgen();
     }
     if run("cubemap") {
         cubemap_benchmarks();

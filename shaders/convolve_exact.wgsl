@@ -37,7 +37,7 @@ fn prefilter_exact_texel(n: vec3<f32>, roughness: f32) -> vec4<f32> {
             let n_dot_h = sqrt(0.5 * (1.0 + n_dot_l));
             let w = d_ggx(n_dot_h, alpha) * n_dot_l * l.w;
             sum += w * source[2u * k + 1u].rgb;
-            weight += w;
+            weight += w * source[2u * k + 1u].a; // 0 for a hot cell (see Rust)
         }
     }
     return vec4<f32>(sum / weight, 1.0);

@@ -46,8 +46,15 @@ pub trait Backend {
     ) -> Result<Cubemap>;
 
     /// The prefiltered specular chain of `env` (which has every mip) with `levels` levels:
-    /// level m at roughness m/(M − 1), see [`crate::cpu::prefilter_specular`].
-    fn prefilter_specular(&self, env: &Cubemap, levels: u32, samples: u32) -> Result<Cubemap>;
+    /// level m at roughness m/(M − 1), see [`crate::cpu::prefilter_specular`]. With the
+    /// bake's split source (`split`), exact levels sum the hot cells at source resolution.
+    fn prefilter_specular(
+        &self,
+        env: &Cubemap,
+        split: Option<&IrradianceSource>,
+        levels: u32,
+        samples: u32,
+    ) -> Result<Cubemap>;
 
     /// The irradiance cube (E/π) of edge `size` from the split source, see
     /// [`crate::cpu::irradiance`] and [`crate::environment::hot`].
@@ -87,9 +94,15 @@ impl Backend for CpuBackend {
         Ok(cube)
     }
 
-    fn prefilter_specular(&self, env: &Cubemap, levels: u32, samples: u32) -> Result<Cubemap> {
+    fn prefilter_specular(
+        &self,
+        env: &Cubemap,
+        split: Option<&IrradianceSource>,
+        levels: u32,
+        samples: u32,
+    ) -> Result<Cubemap> {
         Ok(cpu::prefilter_specular::prefilter_specular(
-            env, levels, samples,
+            env, split, levels, samples,
         ))
     }
 
@@ -137,9 +150,15 @@ impl Backend for GpuBackend {
         })
     }
 
-    fn prefilter_specular(&self, env: &Cubemap, levels: u32, samples: u32) -> Result<Cubemap> {
+    fn prefilter_specular(
+        &self,
+        env: &Cubemap,
+        split: Option<&IrradianceSource>,
+        levels: u32,
+        samples: u32,
+    ) -> Result<Cubemap> {
         self.ctx.run_kernel("prefilter_specular", |device, queue| {
-            gpu::prefilter::prefilter_specular(device, queue, env, levels, samples)
+            gpu::prefilter::prefilter_specular(device, queue, env, split, levels, samples)
         })
     }
 
@@ -191,8 +210,14 @@ impl Backend for SoftwareAdapterBackend {
         CpuBackend.equirect_to_cube(source, params, mips)
     }
 
-    fn prefilter_specular(&self, env: &Cubemap, levels: u32, samples: u32) -> Result<Cubemap> {
-        CpuBackend.prefilter_specular(env, levels, samples)
+    fn prefilter_specular(
+        &self,
+        env: &Cubemap,
+        split: Option<&IrradianceSource>,
+        levels: u32,
+        samples: u32,
+    ) -> Result<Cubemap> {
+        CpuBackend.prefilter_specular(env, split, levels, samples)
     }
 
     fn irradiance(&self, source: &IrradianceSource, size: u32) -> Result<Cubemap> {

@@ -343,7 +343,8 @@ pub fn bake(
 
     let done = timed(Stage::Specular, progress);
     let levels = chain_levels(opts.specular_size, opts.min_mip_size);
-    let mut specular = backend.prefilter_specular(&env, levels, opts.samples)?;
+    let mut specular =
+        backend.prefilter_specular(&env, Some(&irradiance_source), levels, opts.samples)?;
     done(&mut timings);
 
     let done = timed(Stage::Irradiance, progress);

@@ -83,8 +83,8 @@ pub fn verify(gpu: &GpuBackend, env: &Environment) -> Result<Vec<VerifyRow>> {
         1e-6,
     ));
     let (sa, sb) = (
-        gpu.prefilter_specular(&gb, Cubemap::full_mip_count(gb.size), 32)?,
-        cpu.prefilter_specular(&gb, Cubemap::full_mip_count(gb.size), 32)?,
+        gpu.prefilter_specular(&gb, None, Cubemap::full_mip_count(gb.size), 32)?,
+        cpu.prefilter_specular(&gb, None, Cubemap::full_mip_count(gb.size), 32)?,
     );
     rows.push(compare(
         "prefilter_specular 64",

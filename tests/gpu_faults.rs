@@ -32,7 +32,8 @@ fn every_kernel_reports_a_lost_device() {
     let kernels: [(&str, KernelRun); 3] = [
         ("brdf_lut", |b, _| b.brdf_lut(16, 16).map(drop)),
         ("prefilter_specular", |b, e| {
-            b.prefilter_specular(e, e.levels.len() as u32, 16).map(drop)
+            b.prefilter_specular(e, None, e.levels.len() as u32, 16)
+                .map(drop)
         }),
         ("irradiance", |b, e| {
             b.irradiance(&IrradianceSource::from_cube(e), 4).map(drop)

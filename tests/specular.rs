@@ -51,7 +51,7 @@ fn white_furnace() {
     let env = analytic_cube(128, |_| c);
     for backend in common::backends() {
         let spec = backend
-            .prefilter_specular(&env, env.levels.len() as u32, 64)
+            .prefilter_specular(&env, None, env.levels.len() as u32, 64)
             .unwrap();
         assert_eq!(spec.levels.len(), 8);
         let irr = backend
@@ -122,7 +122,7 @@ fn specular_matches_brute_force_on_quarry() {
     let levels = env.levels.len() as u32;
     for backend in common::backends() {
         let spec = backend
-            .prefilter_specular(&env, env.levels.len() as u32, 128)
+            .prefilter_specular(&env, None, env.levels.len() as u32, 128)
             .unwrap();
         for m in 1..levels {
             let r = mip_roughness(m, levels);
@@ -218,10 +218,10 @@ fn gpu_prefilter_and_irradiance_match_cpu() {
     let gpu = GpuBackend { ctx };
     let env = quarry_cube(128);
     let a = gpu
-        .prefilter_specular(&env, env.levels.len() as u32, 32)
+        .prefilter_specular(&env, None, env.levels.len() as u32, 32)
         .unwrap();
     let b = CpuBackend
-        .prefilter_specular(&env, env.levels.len() as u32, 32)
+        .prefilter_specular(&env, None, env.levels.len() as u32, 32)
         .unwrap();
     let ia = gpu
         .irradiance(&IrradianceSource::from_cube(&env), 16)
@@ -330,7 +330,8 @@ fn prefilter_accuracy_scan() {
             .ok()
             .and_then(|s| s.parse().ok())
             .unwrap_or(splitsum::cpu::prefilter_specular::DEFAULT_SAMPLES);
-        let spec = splitsum::cpu::prefilter_specular::prefilter_specular(&env, levels, samples);
+        let spec =
+            splitsum::cpu::prefilter_specular::prefilter_specular(&env, None, levels, samples);
         println!("{name}, {samples} samples");
         for m in 1..levels {
             let r = mip_roughness(m, levels);
@@ -354,7 +355,7 @@ fn prefilter_accuracy_scan() {
 fn no_fireflies_on_quarry() {
     let env = quarry_cube(128);
     let spec = CpuBackend
-        .prefilter_specular(&env, env.levels.len() as u32, 128)
+        .prefilter_specular(&env, None, env.levels.len() as u32, 128)
         .unwrap();
     let l = |t: [f32; 4]| 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2];
     for m in 1..spec.levels.len() {

@@ -26,7 +26,8 @@ pub struct SourceTexel {
     /// Luminance-weighted centroid direction of the texel's radiance (its centre when it
     /// is black), and its exact solid angle Ω.
     pub dir_omega: [f32; 4],
-    /// Mean radiance (rgb; a unused).
+    /// Mean radiance (rgb) and the texel's weight in the exact sum's normaliser (a: 1, or 0
+    /// for a hot cell, whose solid angle the cold texels already count).
     pub radiance: [f32; 4],
 }
 
@@ -44,7 +45,7 @@ pub struct MomentTexel {
     pub moments: [[f32; 4]; 3],
     /// Unit radiance centroid (xyz) and sin²σ of the effective cap (w).
     pub dir_sin2: [f32; 4],
-    /// Total radiance × solid angle (rgb; a unused).
+    /// Total radiance × solid angle (rgb) and, for hot cells, the solid angle (a).
     pub radiance_omega: [f32; 4],
 }
 

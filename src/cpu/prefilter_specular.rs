@@ -16,7 +16,7 @@ use std::f32::consts::PI;
 use crate::cpu::cube_sample::sample_cube_lod;
 use crate::cpu::equirect_to_cube::fill_cube_level;
 use crate::cpu::irradiance::{source_texels, SourceTexel};
-use crate::environment::Cubemap;
+use crate::environment::{Cubemap, IrradianceSource};
 use crate::math::brdf::{alpha_from_roughness, d_ggx};
 use crate::math::cubemap::{cube_texel_direction, normalize};
 use crate::math::sampling::{hammersley, importance_sample_ggx};
@@ -224,10 +224,46 @@ pub fn prefilter_exact_texel(source: &[SourceTexel], n: [f32; 3], roughness: f32
             for (sc, lc) in sum.iter_mut().zip(&t.radiance) {
                 *sc += w * lc;
             }
-            weight += w;
+            weight += w * t.radiance[3];
         }
     }
     [sum[0] / weight, sum[1] / weight, sum[2] / weight, 1.0]
+}
+
+/// The texels an exact-sum level reads: every texel of mip `source_mip` of `env` or, with
+/// the split source of the bake (`split`: the cold cube and the hot cells at the source's
+/// resolution, see [`crate::environment::hot`]), the cold cube's mip of that size and the
+/// hot cells, which add to the numerator only (the cold texels already count their solid
+/// angle). A sun then keeps its true position inside a lobe that a small mip's texels
+/// would blur (quarry_01 in a 64² chain at r = 1/4: 1.38 % → see `tests/lookup.rs`).
+pub fn exact_source_texels(
+    env: &Cubemap,
+    split: Option<&IrradianceSource>,
+    source_mip: usize,
+) -> Vec<SourceTexel> {
+    let n = env.level_size(source_mip);
+    let Some(split) = split.filter(|s| s.cold.size >= n) else {
+        return source_texels(env, source_mip);
+    };
+    let mut cold = split.cold.clone();
+    let full = Cubemap::full_mip_count(cold.size);
+    crate::cpu::cube_downsample::build_mips(&mut cold, full);
+    let m = (cold.size / n).trailing_zeros() as usize;
+    let mut texels = source_texels(&cold, m);
+    texels.extend(split.hot.iter().map(|c| {
+        let omega = c.radiance_omega[3];
+        let d = c.dir_sin2;
+        SourceTexel {
+            dir_omega: [d[0], d[1], d[2], omega],
+            radiance: [
+                c.radiance_omega[0] / omega,
+                c.radiance_omega[1] / omega,
+                c.radiance_omega[2] / omega,
+                0.0,
+            ],
+        }
+    }));
+    texels
 }
 
 /// How one prefiltered level is computed.
@@ -288,6 +324,7 @@ pub fn level_method(env_size: u32, m: u32, levels: u32, samples: u32) -> LevelMe
 /// split of `env` the sampled method reads).
 pub fn prefilter_level(
     env: &Cubemap,
+    split: Option<&IrradianceSource>,
     sampled: &SampledSource,
     size: u32,
     roughness: f32,
@@ -296,7 +333,7 @@ pub fn prefilter_level(
     let dir = |face: u32, i: u32, j: u32| cube_texel_direction(face, i as i32, j as i32, size);
     match method {
         LevelMethod::Exact { source_mip } => {
-            let source = source_texels(env, source_mip as usize);
+            let source = exact_source_texels(env, split, source_mip as usize);
             fill_cube_level(size, |face, i, j| {
                 prefilter_exact_texel(&source, dir(face, i, j), roughness)
             })
@@ -329,7 +366,12 @@ pub fn chain_levels(size: u32, min_mip_size: u32) -> u32 {
 /// The prefiltered chain of `env` (which must have every mip) with `levels` levels
 /// (clamped to the full chain): level 0 is the environment itself (r = 0), level m is
 /// prefiltered at r = m/(M − 1).
-pub fn prefilter_specular(env: &Cubemap, levels: u32, samples: u32) -> Cubemap {
+pub fn prefilter_specular(
+    env: &Cubemap,
+    split: Option<&IrradianceSource>,
+    levels: u32,
+    samples: u32,
+) -> Cubemap {
     let levels = levels.clamp(1, Cubemap::full_mip_count(env.size));
     let mut out = Cubemap {
         size: env.size,
@@ -341,6 +383,7 @@ pub fn prefilter_specular(env: &Cubemap, levels: u32, samples: u32) -> Cubemap {
         let method = level_method(env.size, m, levels, samples);
         out.levels.push(prefilter_level(
             env,
+            split,
             &sampled,
             env.level_size(m as usize),
             r,

@@ -121,7 +121,7 @@ fn moment_cell(l: [f32; 3], moment: [f32; 3], omega: f32) -> MomentTexel {
     MomentTexel {
         moments: l.map(|c| [c * moment[0], c * moment[1], c * moment[2], 0.0]),
         dir_sin2: [dir[0], dir[1], dir[2], u * (2.0 - u)],
-        radiance_omega: [l[0] * omega, l[1] * omega, l[2] * omega, 0.0],
+        radiance_omega: [l[0] * omega, l[1] * omega, l[2] * omega, omega],
     }
 }
 

@@ -2,11 +2,10 @@
 //! `shaders/convolve_exact.wgsl` (CPU mirrors in `cpu/prefilter_specular.rs` and
 //! `cpu/irradiance.rs`); the method per level is chosen by the same Rust function.
 
-use crate::cpu::irradiance::{
-    irradiance_source_level, moment_texels, source_texels, MomentTexel, SourceTexel,
-};
+use crate::cpu::irradiance::{irradiance_source_level, moment_texels, MomentTexel, SourceTexel};
 use crate::cpu::prefilter_specular::{
-    ggx_lobe_samples, level_method, mip_roughness, split_hot_texels, LevelMethod,
+    exact_source_texels, ggx_lobe_samples, level_method, mip_roughness, split_hot_texels,
+    LevelMethod,
 };
 use crate::environment::{Cubemap, IrradianceSource};
 use crate::gpu::compute::{buffer_with_data, with_error_scope, ComputeKernel};
@@ -164,6 +163,7 @@ pub fn prefilter_specular(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     env: &Cubemap,
+    source_split: Option<&IrradianceSource>,
     levels: u32,
     samples: u32,
 ) -> Result<Cubemap> {
@@ -214,7 +214,10 @@ pub fn prefilter_specular(
             let target = cube_mip_view(&out, m);
             match level_method(env.size, m, levels, samples) {
                 LevelMethod::Exact { source_mip } => {
-                    let source = ExactSource::Specular(source_texels(env, source_mip as usize), r);
+                    let source = ExactSource::Specular(
+                        exact_source_texels(env, source_split, source_mip as usize),
+                        r,
+                    );
                     record_exact(device, &mut encoder, &exact, &source, n, &target)
                 }
                 LevelMethod::Sampled { samples } => {
