@@ -15,25 +15,27 @@ use splitsum::lut::{lut_texel_coords, LutQuadrature};
 use splitsum::math::brdf::{fresnel_schlick_weight, g1_schlick_ggx, k_ibl};
 use splitsum::math::sampling::{hammersley, importance_sample_ggx};
 
-/// User + system CPU seconds of this process so far (Linux; USER_HZ is 100 on every
-/// mainstream architecture). None elsewhere.
-fn cpu_seconds() -> Option<f64> {
+/// The sum of two consecutive clock-tick fields of /proc/self/stat, from `first` (counted
+/// after the command name), in seconds (Linux; USER_HZ is 100 on every mainstream
+/// architecture). None elsewhere.
+fn stat_seconds(first: usize) -> Option<f64> {
     let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
     let after = &stat[stat.rfind(')')? + 2..];
     let fields: Vec<&str> = after.split_whitespace().collect();
-    let utime: f64 = fields.get(11)?.parse().ok()?;
-    let stime: f64 = fields.get(12)?.parse().ok()?;
-    Some((utime + stime) / 100.0)
+    let a: f64 = fields.get(first)?.parse().ok()?;
+    let b: f64 = fields.get(first + 1)?.parse().ok()?;
+    Some((a + b) / 100.0)
 }
 
-/// User + system CPU seconds of this process's waited-for children so far (Linux).
+/// User + system CPU seconds of this process so far (utime, stime).
+fn cpu_seconds() -> Option<f64> {
+    stat_seconds(11)
+}
+
+/// User + system CPU seconds of this process's waited-for children so far (cutime,
+/// cstime).
 fn children_cpu_seconds() -> Option<f64> {
-    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
-    let after = &stat[stat.rfind(')')? + 2..];
-    let fields: Vec<&str> = after.split_whitespace().collect();
-    let cutime: f64 = fields.get(13)?.parse().ok()?;
-    let cstime: f64 = fields.get(14)?.parse().ok()?;
-    Some((cutime + cstime) / 100.0)
+    stat_seconds(13)
 }
 
 /// CPU seconds of one run of `cmd` (a child process), or None if it cannot run.

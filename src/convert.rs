@@ -95,7 +95,7 @@ pub fn environment_into_cube_with_irradiance(
                 backend,
                 Cow::Owned(cold),
                 IRRADIANCE_SOURCE_SIZE,
-                false,
+                true,
                 rotate_degrees,
             )?;
             Ok((cube, IrradianceSource { cold, hot }))

@@ -126,20 +126,6 @@ fn real_hdris_keep_their_flux_at_every_size() {
     }
 }
 
-/// A small deterministic generator (PCG-style LCG), so the lamp positions are the same on
-/// every run.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 /// One lamp: the source texels it lights with their radiance (a one-texel lamp, or a point
 /// at a sub-texel position spread bilinearly over 2×2 texels).
 #[derive(Clone, Debug)]
@@ -154,7 +140,7 @@ const H: u32 = 512;
 /// `count` lamps at random directions (uniform on the sphere), alternately one-texel and
 /// sub-texel, each at least `separation` radians from the others.
 fn lamps(count: usize, separation: f64, seed: u64) -> Vec<Lamp> {
-    let mut rng = Rng(seed);
+    let mut rng = common::Lcg(seed);
     let mut out: Vec<Lamp> = Vec::new();
     while out.len() < count {
         let y = 1.0 - 2.0 * rng.next();

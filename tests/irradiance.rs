@@ -18,7 +18,6 @@ use std::f64::consts::PI;
 use splitsum::convert::environment_into_cube_with_irradiance;
 use splitsum::cpu::sh_project::sh_project;
 use splitsum::environment::{Environment, Equirect};
-use splitsum::io::input::{load_environment, InputOptions};
 use splitsum::math::cubemap::cube_texel_direction;
 
 fn luminance(c: [f64; 3]) -> f64 {
@@ -176,17 +175,6 @@ fn mean_ramp(x: f64, a: f64, b: f64) -> f64 {
     }
 }
 
-fn equirect(name: &str) -> Equirect {
-    let path = std::path::Path::new("tests/data").join(name);
-    match load_environment(&path, &InputOptions::default())
-        .unwrap()
-        .env
-    {
-        Environment::Equirect(e) => e,
-        Environment::Cube(_) => panic!("{name} is not an equirect"),
-    }
-}
-
 /// A one-texel lamp of radiance 1000 in a black 1024×512.
 fn lamp() -> Equirect {
     let (w, h) = (1024u32, 512u32);
@@ -205,8 +193,14 @@ fn lamp() -> Equirect {
 fn irradiance_matches_the_full_resolution_truth() {
     let backends = common::backends();
     for (name, e) in [
-        ("quarry_01_1k.hdr", equirect("quarry_01_1k.hdr")),
-        ("royal_esplanade_1k.hdr", equirect("royal_esplanade_1k.hdr")),
+        (
+            "quarry_01_1k.hdr",
+            common::test_equirect("quarry_01_1k.hdr"),
+        ),
+        (
+            "royal_esplanade_1k.hdr",
+            common::test_equirect("royal_esplanade_1k.hdr"),
+        ),
         ("one-texel lamp", lamp()),
     ] {
         let truth = Truth::new(&e);
@@ -312,20 +306,9 @@ fn sh_of_a_lamp_is_exact() {
         )
         .unwrap();
         let sh = sh_project(&source);
-        let mut state = 99u64;
-        let mut next = || {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
-        let dirs: Vec<[f32; 3]> = (0..600)
-            .map(|_| {
-                let yy = 1.0 - 2.0 * next();
-                let phi = 2.0 * PI * next();
-                let r = (1.0 - yy * yy).sqrt();
-                [(r * phi.cos()) as f32, yy as f32, (r * phi.sin()) as f32]
-            })
+        let dirs: Vec<[f32; 3]> = common::uniform_directions(600, 99)
+            .into_iter()
+            .map(|d| d.map(|v| v as f32))
             .collect();
         let eval = |c: &dyn Fn(usize) -> f64, d: [f32; 3]| -> f64 {
             let b = sh_basis(d);

@@ -10,7 +10,6 @@ mod common;
 use splitsum::cpu::cube_sample::sample_cube_lod;
 use splitsum::cpu::prefilter_specular::{chain_levels, DEFAULT_MIN_MIP_SIZE, DEFAULT_SAMPLES};
 use splitsum::environment::{Environment, Equirect};
-use splitsum::io::input::{load_environment, InputOptions};
 use splitsum::{Backend, CpuBackend};
 
 /// Roughnesses of the table (between mips of every layout tried).
@@ -23,23 +22,9 @@ fn luminance(c: [f64; 3]) -> f64 {
     0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
 }
 
-/// 600 directions uniform on the sphere (a fixed LCG, so every run uses the same ones).
+/// 600 directions uniform on the sphere (the same on every run).
 fn directions() -> Vec<[f64; 3]> {
-    let mut state = 0x5eed_u64;
-    let mut next = || {
-        state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
-    (0..DIRECTIONS)
-        .map(|_| {
-            let y = 1.0 - 2.0 * next();
-            let phi = 2.0 * std::f64::consts::PI * next();
-            let r = (1.0 - y * y).sqrt();
-            [r * phi.cos(), y, r * phi.sin()]
-        })
-        .collect()
+    common::uniform_directions(DIRECTIONS, 0x5eed)
 }
 
 /// One source texel of the brute-force sum: centre direction, solid angle Ω and Y·Ω.
@@ -97,18 +82,6 @@ fn truth(terms: &[Term], n: [f64; 3], roughness: &[f64]) -> Vec<f64> {
     num.iter().zip(&den).map(|(a, b)| a / b).collect()
 }
 
-/// An HDRI from tests/data as an equirect.
-fn equirect(name: &str) -> Equirect {
-    let path = std::path::Path::new("tests/data").join(name);
-    match load_environment(&path, &InputOptions::default())
-        .unwrap()
-        .env
-    {
-        Environment::Equirect(e) => e,
-        Environment::Cube(_) => panic!("{name} is not an equirect"),
-    }
-}
-
 /// The truth at every direction of [`directions`] for `roughness`, per direction.
 fn truths(e: &Equirect, roughness: &[f64]) -> Vec<Vec<f64>> {
     use rayon::prelude::*;
@@ -117,6 +90,29 @@ fn truths(e: &Equirect, roughness: &[f64]) -> Vec<Vec<f64>> {
         .par_iter()
         .map(|&n| truth(&terms, n, roughness))
         .collect()
+}
+
+/// The specular chain a bake of `e` prefilters (`size` down to `min_mip_size`, exact levels
+/// reading the split source), before the roughest level's fit, and that source.
+fn baked_chain(
+    backend: &dyn Backend,
+    e: &Equirect,
+    size: u32,
+    min_mip_size: u32,
+) -> (splitsum::Cubemap, splitsum::environment::IrradianceSource) {
+    let (env, source) = splitsum::convert::environment_into_cube_with_irradiance(
+        backend,
+        Environment::Equirect(e.clone()),
+        size,
+        true,
+        0.0,
+    )
+    .unwrap();
+    let levels = chain_levels(size, min_mip_size);
+    let chain = backend
+        .prefilter_specular(&env, Some(&source), levels, DEFAULT_SAMPLES)
+        .unwrap();
+    (chain, source)
 }
 
 /// Energy-weighted lookup error of a `size` chain with `min_mip_size`, per roughness,
@@ -129,18 +125,8 @@ fn lookup_errors(
     roughness: &[f64],
     truth: &[Vec<f64>],
 ) -> Vec<f64> {
-    let (env, source) = splitsum::convert::environment_into_cube_with_irradiance(
-        backend,
-        Environment::Equirect(e.clone()),
-        size,
-        true,
-        0.0,
-    )
-    .unwrap();
-    let levels = chain_levels(size, min_mip_size);
-    let mut chain = backend
-        .prefilter_specular(&env, Some(&source), levels, DEFAULT_SAMPLES)
-        .unwrap();
+    let (mut chain, source) = baked_chain(backend, e, size, min_mip_size);
+    let levels = chain.levels.len() as u32;
     // As the bake does: the r = 1 level fitted to the (default 32²) irradiance cube.
     let irradiance = backend.irradiance(&source, 32).unwrap();
     splitsum::cpu::roughest_level::fit_roughest_level(&mut chain, &irradiance);
@@ -177,7 +163,7 @@ fn default_bake_lookup_error() {
         ),
     ];
     for (name, bar) in peers {
-        let e = equirect(name);
+        let e = common::test_equirect(name);
         let truth = truths(&e, &ROUGHNESS);
         let errors = lookup_errors(
             &CpuBackend,
@@ -220,7 +206,7 @@ fn layout_scan() {
         "venice_sunset_1k.hdr",
         "pedestrian_overpass_1k.hdr",
     ] {
-        let e = equirect(name);
+        let e = common::test_equirect(name);
         let truth = truths(&e, &r);
         println!(
             "\n{name}: r = {}",
@@ -263,21 +249,11 @@ fn layout_scan() {
 fn small_chains_match_the_full_resolution_truth() {
     use rayon::prelude::*;
     use splitsum::math::cubemap::cube_texel_direction;
-    let e = equirect("quarry_01_1k.hdr");
+    let e = common::test_equirect("quarry_01_1k.hdr");
     let terms = source_terms(&e);
     for size in [64u32, 128] {
-        let (env, source) = splitsum::convert::environment_into_cube_with_irradiance(
-            &CpuBackend,
-            Environment::Equirect(e.clone()),
-            size,
-            true,
-            0.0,
-        )
-        .unwrap();
-        let levels = chain_levels(size, DEFAULT_MIN_MIP_SIZE);
-        let chain = CpuBackend
-            .prefilter_specular(&env, Some(&source), levels, DEFAULT_SAMPLES)
-            .unwrap();
+        let (chain, _) = baked_chain(&CpuBackend, &e, size, DEFAULT_MIN_MIP_SIZE);
+        let levels = chain.levels.len() as u32;
         for m in 1..levels as usize {
             let r = m as f64 / (levels - 1) as f64;
             let n = chain.level_size(m);

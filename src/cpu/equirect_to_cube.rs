@@ -328,3 +328,41 @@ pub fn equirect_to_cube(src: &EquirectIntegral, p: &EquirectToCubeParams) -> Cub
         levels: vec![level],
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::environment::Equirect;
+
+    /// The shared-edge level equals, bit for bit, the per-texel function (the GPU's).
+    #[test]
+    fn shared_edges_equal_the_per_texel_kernel() {
+        let (w, h) = (64u32, 32u32);
+        let data = (0..w * h)
+            .map(|k| {
+                let v = (k.wrapping_mul(2_654_435_761) % 1000) as f32;
+                [v, 0.5 * v + 1.0, (k % 7) as f32]
+            })
+            .collect();
+        let src = EquirectIntegral::new(Equirect {
+            width: w,
+            height: h,
+            data,
+        });
+        for (n, rotate) in [(8u32, 0.0f32), (4, 37.0), (1, 0.0)] {
+            let p = EquirectToCubeParams::new(n, w, h, rotate);
+            let cube = equirect_to_cube(&src, &p);
+            for face in 0..6 {
+                for j in 0..n {
+                    for i in 0..n {
+                        assert_eq!(
+                            cube.texel(0, face, i, j),
+                            equirect_to_cube_texel(&src, &p, face, i, j),
+                            "{n} rotated {rotate}: face {face} ({i}, {j})"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}

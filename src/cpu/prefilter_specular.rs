@@ -67,6 +67,21 @@ pub const HOT_FACTOR: f32 = 16.0;
 /// At most this many hot texels (the most energetic) are split off.
 pub const MAX_HOT_TEXELS: usize = 512;
 
+/// Indices of the texels whose luminance exceeds [`HOT_FACTOR`] × `mean`, at most
+/// [`MAX_HOT_TEXELS`], most energetic first; `texels` yields (index, luminance, energy =
+/// luminance × Ω). Equal energies keep index order, so the choice is deterministic. Shared
+/// by the sampled levels' split ([`split_hot_texels`]) and the irradiance source's
+/// ([`crate::environment::hot`]).
+pub fn hottest_texels(texels: impl Iterator<Item = (usize, f64, f64)>, mean: f64) -> Vec<usize> {
+    let mut hot: Vec<(usize, f64)> = texels
+        .filter(|&(_, y, _)| y > HOT_FACTOR as f64 * mean)
+        .map(|(k, _, e)| (k, e))
+        .collect();
+    hot.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
+    hot.truncate(MAX_HOT_TEXELS);
+    hot.into_iter().map(|h| h.0).collect()
+}
+
 /// The environment for the importance-sampled levels, split in two: `rest`, the
 /// environment with its hot texels (a sun, bright lamps) blacked out and its mips
 /// rebuilt, which filtered importance sampling handles well because its dynamic range is
@@ -95,14 +110,13 @@ pub fn split_hot_texels(env: &Cubemap) -> SampledSource {
         .map(|t| (lum(t) * t.dir_omega[3]) as f64)
         .sum::<f64>()
         / (4.0 * std::f64::consts::PI);
-    let mut hot: Vec<usize> = (0..texels.len())
-        .filter(|&k| lum(&texels[k]) as f64 > HOT_FACTOR as f64 * mean)
-        .collect();
-    hot.sort_by(|&a, &b| {
-        let e = |k: usize| lum(&texels[k]) * texels[k].dir_omega[3];
-        e(b).total_cmp(&e(a)).then(a.cmp(&b))
-    });
-    hot.truncate(MAX_HOT_TEXELS);
+    let hot = hottest_texels(
+        (0..texels.len()).map(|k| {
+            let y = lum(&texels[k]);
+            (k, y as f64, (y * texels[k].dir_omega[3]) as f64)
+        }),
+        mean,
+    );
     let mut level0 = env.levels[0].clone();
     let (n0, k) = (env.size, env.size / n);
     for &idx in &hot {
@@ -245,11 +259,8 @@ pub fn exact_source_texels(
     let Some(split) = split.filter(|s| s.cold.size >= n) else {
         return source_texels(env, source_mip);
     };
-    let mut cold = split.cold.clone();
-    let full = Cubemap::full_mip_count(cold.size);
-    crate::cpu::cube_downsample::build_mips(&mut cold, full);
-    let m = (cold.size / n).trailing_zeros() as usize;
-    let mut texels = source_texels(&cold, m);
+    let m = (split.cold.size / n).trailing_zeros() as usize;
+    let mut texels = source_texels(&split.cold, m);
     texels.extend(split.hot.iter().map(|c| {
         let omega = c.radiance_omega[3];
         let d = c.dir_sin2;

@@ -14,9 +14,9 @@
 
 use crate::cpu::irradiance::{MomentTexel, IRRADIANCE_SOURCE_SIZE};
 use crate::environment::{Cubemap, Equirect};
-use crate::math::cubemap::{cube_texel_direction, cube_texel_solid_angle, rotate_y, FACES};
+use crate::math::cubemap::{cube_texel_direction, cube_texel_solid_angle, rotate_y};
 
-pub use crate::cpu::prefilter_specular::{HOT_FACTOR, MAX_HOT_TEXELS};
+pub use crate::cpu::prefilter_specular::{hottest_texels, HOT_FACTOR, MAX_HOT_TEXELS};
 
 /// Cells per axis a hot equirect texel is split into (equal solid angle: uniform in φ and
 /// in cos θ), so a cell straddling a normal's horizon is 1/4 of a source texel wide.
@@ -25,8 +25,8 @@ pub const HOT_SUBCELLS: u32 = 4;
 /// What the irradiance and SH kernels read.
 #[derive(Clone, Debug)]
 pub struct IrradianceSource {
-    /// The environment without its hot texels, one level of at most
-    /// [`IRRADIANCE_SOURCE_SIZE`]².
+    /// The environment without its hot texels, at most [`IRRADIANCE_SOURCE_SIZE`]², with
+    /// its solid-angle mip chain (the exact specular levels read its mips).
     pub cold: Cubemap,
     /// The hot texels' cells, in the output frame (rotation applied).
     pub hot: Vec<MomentTexel>,
@@ -40,21 +40,20 @@ impl IrradianceSource {
         let n = env.size;
         let mut level0 = env.levels[0].clone();
         let lum = |t: &[f32; 4]| luminance([t[0], t[1], t[2]]);
-        let mut omega = Vec::with_capacity(level0.len());
-        let mut mean = 0.0f64;
-        for face in 0..FACES as u32 {
-            for j in 0..n {
-                for i in 0..n {
-                    let o = cube_texel_solid_angle(i, j, n);
-                    mean += lum(&level0[omega.len()]) as f64 * o as f64;
-                    omega.push(o);
-                }
-            }
-            let _ = face;
-        }
-        mean /= 4.0 * std::f64::consts::PI;
-        let hot = hottest(
-            (0..level0.len()).map(|k| (k, lum(&level0[k]) as f64, omega[k] as f64)),
+        // Texel k is (face, j, i) = (k / n², k % n² / n, k % n); solid angles repeat per face.
+        let face_omega: Vec<f32> = (0..n * n)
+            .map(|k| cube_texel_solid_angle(k % n, k / n, n))
+            .collect();
+        let omega = |k: usize| face_omega[k % (n * n) as usize];
+        let mean = (0..level0.len())
+            .map(|k| lum(&level0[k]) as f64 * omega(k) as f64)
+            .sum::<f64>()
+            / (4.0 * std::f64::consts::PI);
+        let hot = hottest_texels(
+            (0..level0.len()).map(|k| {
+                let y = lum(&level0[k]) as f64;
+                (k, y, y * omega(k) as f64)
+            }),
             mean,
         );
         let mut cells = Vec::with_capacity(hot.len());
@@ -64,8 +63,8 @@ impl IrradianceSource {
             let l = level0[k];
             cells.push(moment_cell(
                 [l[0], l[1], l[2]],
-                d.map(|v| v * omega[k]),
-                omega[k],
+                d.map(|v| v * omega(k)),
+                omega(k),
             ));
             level0[k] = [0.0, 0.0, 0.0, 1.0];
         }
@@ -79,7 +78,7 @@ impl IrradianceSource {
     }
 }
 
-/// The cold cube reduced to at most [`IRRADIANCE_SOURCE_SIZE`]² (one level).
+/// The cold cube from its largest mip no bigger than [`IRRADIANCE_SOURCE_SIZE`]² down.
 fn reduced_cold(mut cube: Cubemap) -> Cubemap {
     let full = Cubemap::full_mip_count(cube.size);
     crate::cpu::cube_downsample::build_mips(&mut cube, full);
@@ -88,27 +87,12 @@ fn reduced_cold(mut cube: Cubemap) -> Cubemap {
         .unwrap_or(cube.levels.len() - 1);
     Cubemap {
         size: cube.level_size(m),
-        levels: vec![cube.levels.swap_remove(m)],
+        levels: cube.levels.split_off(m),
     }
 }
 
 fn luminance(c: [f32; 3]) -> f32 {
     0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
-}
-
-/// Indices of the texels whose luminance exceeds [`HOT_FACTOR`] × `mean`, the
-/// [`MAX_HOT_TEXELS`] most energetic (luminance × Ω) first; `texels` yields
-/// (index, luminance, Ω). Ties keep index order, so the choice is deterministic.
-fn hottest(texels: impl Iterator<Item = (usize, f64, f64)>, mean: f64) -> Vec<usize> {
-    let mut hot: Vec<(usize, f64)> = texels
-        .filter(|&(_, y, _)| y > HOT_FACTOR as f64 * mean)
-        .map(|(k, y, o)| (k, y * o))
-        .collect();
-    hot.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
-    hot.truncate(MAX_HOT_TEXELS);
-    let mut idx: Vec<usize> = hot.into_iter().map(|h| h.0).collect();
-    idx.sort_unstable();
-    idx
 }
 
 /// A cell of radiance `l` with first moment ∫ l dω = `moment` and solid angle `omega`;
@@ -138,8 +122,11 @@ pub fn split_equirect(level: &mut Equirect, rotation: [f32; 2]) -> Vec<MomentTex
         mean += s * row_omega[y];
     }
     mean /= 4.0 * PI;
-    let hot = hottest(
-        (0..level.data.len()).map(|k| (k, luminance(level.data[k]) as f64, row_omega[k / w])),
+    let hot = hottest_texels(
+        (0..level.data.len()).map(|k| {
+            let y = luminance(level.data[k]) as f64;
+            (k, y, y * row_omega[k / w])
+        }),
         mean,
     );
     let s = HOT_SUBCELLS as usize;

@@ -230,3 +230,44 @@ pub fn worst_lut_error(
     }
     worst
 }
+
+/// An HDRI from `tests/data` as an equirect (the tests' real environments).
+pub fn test_equirect(name: &str) -> splitsum::Equirect {
+    use splitsum::environment::Environment;
+    let path = std::path::Path::new("tests/data").join(name);
+    match splitsum::io::input::load_environment(&path, &Default::default())
+        .unwrap()
+        .env
+    {
+        Environment::Equirect(e) => e,
+        Environment::Cube(_) => panic!("{name} is not an equirect"),
+    }
+}
+
+/// A small deterministic generator (an LCG with Knuth's MMIX constants), so random test
+/// positions are the same on every run.
+pub struct Lcg(pub u64);
+
+impl Lcg {
+    /// The next number in [0, 1).
+    pub fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// `count` directions uniform on the sphere (cos θ and φ uniform) from `seed`.
+pub fn uniform_directions(count: usize, seed: u64) -> Vec<[f64; 3]> {
+    let mut rng = Lcg(seed);
+    (0..count)
+        .map(|_| {
+            let y = 1.0 - 2.0 * rng.next();
+            let phi = 2.0 * PI * rng.next();
+            let r = (1.0 - y * y).sqrt();
+            [r * phi.cos(), y, r * phi.sin()]
+        })
+        .collect()
+}
