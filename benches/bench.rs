@@ -232,7 +232,7 @@ fn specular_benchmarks() {
     println!("| - | - | - | {} hot texels | - | - |", sampled.hot.len());
     for m in 1..levels {
         let r = mip_roughness(m, levels);
-        let method = level_method(env.size, m, levels, DEFAULT_SAMPLES);
+        let method = level_method(env.size, m, r, DEFAULT_SAMPLES);
         let size = env.level_size(m as usize);
         let (wall, cpu) = measure(1, || {
             prefilter_level(&env, None, &sampled, size, r, method);

@@ -2,6 +2,7 @@
 //! without a GPU) and a GPU one (wgpu). Tests run every kernel through both.
 
 use crate::cpu::equirect_to_cube::EquirectToCubeParams;
+use crate::cpu::prefilter_specular::SpecularChain;
 use crate::environment::{Cubemap, EquirectIntegral, IrradianceSource};
 use crate::gpu::GpuContext;
 use crate::lut::{validate_lut_size, BrdfLut, LutQuadrature};
@@ -45,14 +46,14 @@ pub trait Backend {
         mips: u32,
     ) -> Result<Cubemap>;
 
-    /// The prefiltered specular chain of `env` (which has every mip) with `levels` levels:
+    /// The prefiltered specular chain of `env` (which has every mip) in `chain`'s layout:
     /// level m at roughness m/(M − 1), see [`crate::cpu::prefilter_specular`]. With the
     /// bake's split source (`split`), exact levels sum the hot cells at source resolution.
     fn prefilter_specular(
         &self,
         env: &Cubemap,
         split: Option<&IrradianceSource>,
-        levels: u32,
+        chain: SpecularChain,
         samples: u32,
     ) -> Result<Cubemap>;
 
@@ -98,11 +99,11 @@ impl Backend for CpuBackend {
         &self,
         env: &Cubemap,
         split: Option<&IrradianceSource>,
-        levels: u32,
+        chain: SpecularChain,
         samples: u32,
     ) -> Result<Cubemap> {
         Ok(cpu::prefilter_specular::prefilter_specular(
-            env, split, levels, samples,
+            env, split, chain, samples,
         ))
     }
 
@@ -154,11 +155,11 @@ impl Backend for GpuBackend {
         &self,
         env: &Cubemap,
         split: Option<&IrradianceSource>,
-        levels: u32,
+        chain: SpecularChain,
         samples: u32,
     ) -> Result<Cubemap> {
         self.ctx.run_kernel("prefilter_specular", |device, queue| {
-            gpu::prefilter::prefilter_specular(device, queue, env, split, levels, samples)
+            gpu::prefilter::prefilter_specular(device, queue, env, split, chain, samples)
         })
     }
 
@@ -214,10 +215,10 @@ impl Backend for SoftwareAdapterBackend {
         &self,
         env: &Cubemap,
         split: Option<&IrradianceSource>,
-        levels: u32,
+        chain: SpecularChain,
         samples: u32,
     ) -> Result<Cubemap> {
-        CpuBackend.prefilter_specular(env, split, levels, samples)
+        CpuBackend.prefilter_specular(env, split, chain, samples)
     }
 
     fn irradiance(&self, source: &IrradianceSource, size: u32) -> Result<Cubemap> {

@@ -5,10 +5,11 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use serde::Serialize;
 use sha2::{Digest, Sha256};
 
 use crate::convert::environment_into_cube_with_irradiance;
-use crate::cpu::prefilter_specular::chain_levels;
+use crate::cpu::prefilter_specular::{chain_levels, SpecularChain};
 use crate::cpu::roughest_level::fit_roughest_level;
 use crate::cpu::sh_project::{sh_project, ShCoefficients};
 use crate::environment::Cubemap;
@@ -19,6 +20,7 @@ use crate::io::lut::{encode_lut, LutWriteOptions};
 use crate::io::{dds, exr, ktx2, PixelFormat};
 use crate::lut::BrdfLut;
 use crate::math::sh::SH_ORDER;
+use crate::target::{Target, GENERIC};
 use crate::{Backend, Error, Result};
 
 /// Container of the specular and irradiance outputs.
@@ -46,6 +48,10 @@ impl Container {
 /// Everything a bake can be asked for.
 #[derive(Clone, Debug)]
 pub struct BakeOptions {
+    /// The engine the files are for: orientation, chain layout and which files are
+    /// written come from it (pixel format, zstd, minimum mip size and SH are its defaults
+    /// in [`BakeOptions::for_target`], overridable here).
+    pub target: &'static Target,
     /// Specular cube edge (a power of two).
     pub specular_size: u32,
     /// Edge of the smallest specular mip (a power of two; 1 gives the full chain): the
@@ -66,21 +72,43 @@ pub struct BakeOptions {
     pub rotate_degrees: f32,
     /// Exposure in EV.
     pub exposure_ev: f32,
+    /// Write sh.json.
+    pub sh: bool,
 }
 
-impl Default for BakeOptions {
-    fn default() -> Self {
+impl BakeOptions {
+    /// The defaults of `target`: its pixel format, supercompression, minimum mip size and
+    /// SH output; 256² specular, 32² irradiance, KTX2.
+    pub fn for_target(target: &'static Target) -> Self {
         BakeOptions {
+            target,
             specular_size: 256,
-            min_mip_size: crate::cpu::prefilter_specular::DEFAULT_MIN_MIP_SIZE,
+            min_mip_size: target.min_mip_size,
             irradiance_size: 32,
             container: Container::Ktx2,
-            pixel_format: PixelFormat::Rgba16f,
-            zstd: None,
+            pixel_format: target.pixel_format,
+            zstd: target.zstd,
             samples: crate::cpu::prefilter_specular::DEFAULT_SAMPLES,
             rotate_degrees: 0.0,
             exposure_ev: 0.0,
+            sh: target.sh,
         }
+    }
+
+    /// The specular chain's layout: levels down to the minimum mip, the target's roughness
+    /// per mip.
+    pub fn specular_chain(&self) -> SpecularChain {
+        SpecularChain {
+            levels: chain_levels(self.specular_size, self.min_mip_size),
+            roughness: self.target.roughness,
+        }
+    }
+}
+
+impl Default for BakeOptions {
+    /// The generic target's defaults.
+    fn default() -> Self {
+        BakeOptions::for_target(&GENERIC)
     }
 }
 
@@ -157,52 +185,29 @@ pub struct BakeReport {
     pub warnings: Vec<String>,
 }
 
-/// A JSON string literal.
-fn json_string(s: &str) -> String {
-    let mut out = String::from("\"");
-    for c in s.chars() {
-        match c {
-            '"' => out.push_str("\\\""),
-            '\\' => out.push_str("\\\\"),
-            '\n' => out.push_str("\\n"),
-            c if (c as u32) < 0x20 => out.push_str(&format!("\\u{:04x}", c as u32)),
-            c => out.push(c),
-        }
-    }
-    out.push('"');
-    out
-}
-
-/// A JSON number for an f32 (shortest round-trip form; non-finite values never occur
-/// because inputs are sanitised, but are written as 0 to keep the file valid).
-fn json_f32(v: f32) -> String {
-    if v.is_finite() {
-        format!("{v:?}")
-    } else {
-        "0.0".into()
-    }
-}
-
 /// `sh.json`: the coefficient order, the radiance projection and the E/π coefficients.
+#[derive(Serialize)]
+struct ShJson<'a> {
+    order: &'a str,
+    radiance_sh9: &'a [[f32; 3]; 9],
+    irradiance_sh9: &'a [[f32; 3]; 9],
+}
+
+/// `sh.json` of `sh` (world space, generic orientation, whatever the target).
 pub fn sh_json(sh: &ShCoefficients) -> String {
-    let list = |c: &[[f32; 3]; 9]| {
-        c.iter()
-            .map(|v| {
-                format!(
-                    "[{}, {}, {}]",
-                    json_f32(v[0]),
-                    json_f32(v[1]),
-                    json_f32(v[2])
-                )
-            })
-            .collect::<Vec<_>>()
-            .join(",\n    ")
-    };
-    format!(
-        "{{\n  \"order\": \"{SH_ORDER}\",\n  \"radiance_sh9\": [\n    {}\n  ],\n  \"irradiance_sh9\": [\n    {}\n  ]\n}}\n",
-        list(&sh.radiance),
-        list(&sh.irradiance)
-    )
+    to_json(&ShJson {
+        order: SH_ORDER,
+        radiance_sh9: &sh.radiance,
+        irradiance_sh9: &sh.irradiance,
+    })
+}
+
+/// Pretty JSON with a final newline. Serialising these plain structs cannot fail, and
+/// non-finite floats (which sanitised inputs never give) become `null`.
+fn to_json(value: &impl Serialize) -> String {
+    let mut s = serde_json::to_string_pretty(value).unwrap_or_default();
+    s.push('\n');
+    s
 }
 
 fn sha256_hex(bytes: &[u8]) -> String {
@@ -342,23 +347,32 @@ pub fn bake(
     done(&mut timings);
 
     let done = timed(Stage::Specular, progress);
-    let levels = chain_levels(opts.specular_size, opts.min_mip_size);
-    let mut specular =
-        backend.prefilter_specular(&env, Some(&irradiance_source), levels, opts.samples)?;
+    let chain = opts.specular_chain();
+    let specular =
+        backend.prefilter_specular(&env, Some(&irradiance_source), chain, opts.samples)?;
     done(&mut timings);
 
     let done = timed(Stage::Irradiance, progress);
     let irradiance = backend.irradiance(&irradiance_source, opts.irradiance_size)?;
     // The r = 1 level is E/π; its texels are fitted to the finer irradiance cube for the
     // bilinear lookup a shader makes (see `cpu::roughest_level`).
+    let mut specular = specular;
     fit_roughest_level(&mut specular, &irradiance);
     done(&mut timings);
 
     let done = timed(Stage::Sh, progress);
-    let sh = sh_project(&irradiance_source);
+    let sh = opts.sh.then(|| sh_project(&irradiance_source));
     done(&mut timings);
 
     let done = timed(Stage::Write, progress);
+    let target = opts.target;
+    let mut warnings = warnings;
+    if opts.container != Container::Exr {
+        if let Some(w) = target.format_warning(opts.pixel_format) {
+            warnings.push(format!("--target {}: {w}", target.name));
+        }
+    }
+    let specular = target.orientation.apply(specular);
     let dir = output_dir(out_root, input);
     let mut out = Staging::default();
     let fmt = match opts.container {
@@ -369,18 +383,27 @@ pub fn bake(
         let levels = specular.levels.len() as u32;
         out.add(path, bytes, ("specular", fmt, specular.size, levels));
     }
-    for (path, bytes) in encode_cube(&dir, "irradiance", &irradiance, opts)? {
-        out.add(path, bytes, ("irradiance", fmt, irradiance.size, 1));
+    if target.irradiance {
+        let irradiance = target.orientation.apply(irradiance);
+        for (path, bytes) in encode_cube(&dir, "irradiance", &irradiance, opts)? {
+            out.add(path, bytes, ("irradiance", fmt, irradiance.size, 1));
+        }
     }
-    out.add(
-        dir.join("sh.json"),
-        sh_json(&sh).into_bytes(),
-        ("sh", "json", 0, 0),
-    );
+    if let Some(sh) = &sh {
+        out.add(
+            dir.join("sh.json"),
+            sh_json(sh).into_bytes(),
+            ("sh", "json", 0, 0),
+        );
+    }
     if let Some(lut) = lut {
-        let path = dir.join("brdf_lut.png");
+        let path = dir.join(target.lut_file.file_name());
         let bytes = encode_lut(&path, lut, LutWriteOptions::default())?;
-        out.add(path, bytes, ("brdf_lut", "png rgb16", lut.width, 1));
+        out.add(
+            path,
+            bytes,
+            ("brdf_lut", target.lut_file.format(), lut.width, 1),
+        );
     }
     // The manifest lists every other file (it cannot hold its own hash).
     let manifest = manifest_json(input, backend, opts, lut.map(|l| l.width), &out.outputs);
@@ -401,9 +424,60 @@ pub fn bake(
     })
 }
 
-/// `manifest.json`: tool version, backend, every parameter, every output (file name,
-/// kind, format, size, levels, bytes, SHA-256). No timestamps, so equal bakes give equal
-/// manifests.
+/// manifest.json's root.
+#[derive(Serialize)]
+struct Manifest<'a> {
+    tool: &'a str,
+    version: &'a str,
+    input: String,
+    backend: String,
+    target: TargetRecord<'a>,
+    parameters: Parameters<'a>,
+    outputs: Vec<OutputEntry<'a>>,
+}
+
+/// What the target implies, so a reader of the manifest knows how to sample the files.
+#[derive(Serialize)]
+struct TargetRecord<'a> {
+    name: &'a str,
+    orientation: &'a str,
+    notes: &'a [&'a str],
+}
+
+/// Every parameter of the bake.
+#[derive(Serialize)]
+struct Parameters<'a> {
+    specular_size: u32,
+    specular_levels: u32,
+    min_mip_size: u32,
+    roughness_per_mip: &'a str,
+    roughest_level: &'a str,
+    irradiance_size: u32,
+    irradiance: &'a str,
+    container: &'a str,
+    pixel_format: &'a str,
+    zstd: Option<i32>,
+    samples: u32,
+    rotate_degrees: f32,
+    exposure_ev: f32,
+    lut_size: Option<u32>,
+}
+
+/// One output file.
+#[derive(Serialize)]
+struct OutputEntry<'a> {
+    file: String,
+    kind: &'a str,
+    format: &'a str,
+    size: u32,
+    levels: u32,
+    bytes: usize,
+    sha256: &'a str,
+}
+
+/// `manifest.json`: tool version, backend, target, every parameter, every output (file
+/// name, kind, format, size, levels, bytes, SHA-256). No timestamps, so equal bakes give
+/// equal manifests.
 fn manifest_json(
     input: &Path,
     backend: &dyn Backend,
@@ -411,42 +485,48 @@ fn manifest_json(
     lut_size: Option<u32>,
     outputs: &[OutputRecord],
 ) -> String {
-    let file_name = |p: &Path| {
-        p.file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default()
-    };
-    let outs: Vec<String> = outputs
-        .iter()
-        .map(|o| {
-            format!(
-                "    {{\"file\": {}, \"kind\": {}, \"format\": {}, \"size\": {}, \"levels\": {}, \"bytes\": {}, \"sha256\": {}}}",
-                json_string(&file_name(&o.path)),
-                json_string(o.kind),
-                json_string(&o.format),
-                o.size,
-                o.levels,
-                o.bytes,
-                json_string(&o.sha256)
-            )
-        })
-        .collect();
-    format!(
-        "{{\n  \"tool\": \"splitsum\",\n  \"version\": {},\n  \"input\": {},\n  \"backend\": {},\n  \"parameters\": {{\n    \"specular_size\": {},\n    \"specular_levels\": {},\n    \"min_mip_size\": {},\n    \"roughness_per_mip\": \"m / (levels - 1)\",\n    \"roughest_level\": \"least-squares fit of the irradiance (E / pi) for bilinear lookups, when the irradiance cube is at least twice as fine\",\n    \"irradiance_size\": {},\n    \"irradiance\": \"E / pi\",\n    \"container\": {},\n    \"pixel_format\": {},\n    \"zstd\": {},\n    \"samples\": {},\n    \"rotate_degrees\": {},\n    \"exposure_ev\": {},\n    \"lut_size\": {}\n  }},\n  \"outputs\": [\n{}\n  ]\n}}\n",
-        json_string(env!("CARGO_PKG_VERSION")),
-        json_string(&input.to_string_lossy()),
-        json_string(&backend.identity()),
-        opts.specular_size,
-        chain_levels(opts.specular_size, opts.min_mip_size),
-        opts.min_mip_size,
-        opts.irradiance_size,
-        json_string(opts.container.extension()),
-        json_string(opts.pixel_format.name()),
-        opts.zstd.map(|z| z.to_string()).unwrap_or_else(|| "null".into()),
-        opts.samples,
-        json_f32(opts.rotate_degrees),
-        json_f32(opts.exposure_ev),
-        lut_size.map(|s| s.to_string()).unwrap_or_else(|| "null".into()),
-        outs.join(",\n")
-    )
+    let target = opts.target;
+    to_json(&Manifest {
+        tool: "splitsum",
+        version: env!("CARGO_PKG_VERSION"),
+        input: input.to_string_lossy().into_owned(),
+        backend: backend.identity(),
+        target: TargetRecord {
+            name: target.name,
+            orientation: target.orientation.description(),
+            notes: target.notes,
+        },
+        parameters: Parameters {
+            specular_size: opts.specular_size,
+            specular_levels: opts.specular_chain().levels,
+            min_mip_size: opts.min_mip_size,
+            roughness_per_mip: target.roughness.formula(),
+            roughest_level: "least-squares fit of the irradiance (E / pi) for bilinear lookups, when the irradiance cube is at least twice as fine",
+            irradiance_size: opts.irradiance_size,
+            irradiance: "E / pi",
+            container: opts.container.extension(),
+            pixel_format: opts.pixel_format.name(),
+            zstd: opts.zstd,
+            samples: opts.samples,
+            rotate_degrees: opts.rotate_degrees,
+            exposure_ev: opts.exposure_ev,
+            lut_size,
+        },
+        outputs: outputs
+            .iter()
+            .map(|o| OutputEntry {
+                file: o
+                    .path
+                    .file_name()
+                    .map(|n| n.to_string_lossy().into_owned())
+                    .unwrap_or_default(),
+                kind: o.kind,
+                format: &o.format,
+                size: o.size,
+                levels: o.levels,
+                bytes: o.bytes,
+                sha256: &o.sha256,
+            })
+            .collect(),
+    })
 }

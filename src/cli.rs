@@ -54,10 +54,12 @@ pub enum Command {
     /// Bakes everything a PBR renderer needs for image-based lighting from each input.
     ///
     /// Writes <out>/<stem>/specular.<ext> (prefiltered GGX, mip m at roughness
-    /// m/(levels−1), size down to 1×1), irradiance.<ext> (E/π: multiply by the diffuse
-    /// albedo), sh.json (9 SH coefficients, radiance and E/π), brdf_lut.png (unless
-    /// --no-lut) and manifest.json (version, parameters, every output with its SHA-256).
-    /// Every input is baked even when another fails; the exit code is 1 if any failed.
+    /// m/(levels−1), down to --min-mip-size), irradiance.<ext> (E/π: multiply by the
+    /// diffuse albedo), sh.json (9 SH coefficients, radiance and E/π), brdf_lut.png and
+    /// manifest.json (version, target, parameters, every output with its SHA-256).
+    /// --target bevy|three write what that engine reads, as it samples it (see the
+    /// README's "Engine targets"). Every input is baked even when another fails; the
+    /// exit code is 1 if any failed.
     Bake(BakeArgs),
 
     /// Runs every kernel on the GPU and on the CPU reference on a reduced problem and
@@ -83,10 +85,16 @@ pub struct BakeArgs {
     #[arg(long, default_value_t = 256)]
     pub specular_size: u32,
 
+    /// The engine the files are for: generic (DESIGN.md's conventions), bevy (Bevy 0.19:
+    /// z mirrored, rgb9e5 + zstd, no LUT or SH), three (three.js r187: x mirrored, a PMREM
+    /// chain to 8×8 at r = 1 − √(1 − m/(levels − 1)), no irradiance cube or LUT).
+    #[arg(long, value_enum, default_value_t = TargetArg::Generic)]
+    pub target: TargetArg,
+
     /// Edge of the smallest specular mip (power of two; 1 for the full chain to 1×1): the
-    /// chain has log2(specular-size / min-mip-size) + 1 levels, roughness m / (levels − 1).
-    #[arg(long, default_value_t = splitsum::cpu::prefilter_specular::DEFAULT_MIN_MIP_SIZE)]
-    pub min_mip_size: u32,
+    /// chain has log2(specular-size / min-mip-size) + 1 levels [default: 4; three: 8].
+    #[arg(long)]
+    pub min_mip_size: Option<u32>,
 
     /// Irradiance cube edge (power of two).
     #[arg(long, default_value_t = 32)]
@@ -96,18 +104,29 @@ pub struct BakeArgs {
     #[arg(long, value_enum, default_value_t = ContainerArg::Ktx2)]
     pub container: ContainerArg,
 
-    /// Pixel format of KTX2/DDS outputs.
-    #[arg(long, value_enum, default_value_t = PixelFormatArg::Rgba16f)]
-    pub pixel_format: PixelFormatArg,
+    /// Pixel format of KTX2/DDS outputs [default: the target's: rgba16f; bevy: rgb9e5].
+    #[arg(long, value_enum)]
+    pub pixel_format: Option<PixelFormatArg>,
 
-    /// KTX2: Zstandard-supercompress each level (LEVEL 1–22, default 10).
-    #[arg(long, value_name = "LEVEL", num_args = 0..=1, default_missing_value = "10",
-          value_parser = clap::value_parser!(i32).range(1..=22))]
-    pub zstd: Option<i32>,
+    #[command(flatten)]
+    pub zstd: ZstdArgs,
 
-    /// Do not write brdf_lut.png.
+    /// Write the BRDF LUT (the target's default: generic yes as brdf_lut.png; bevy and
+    /// three no, and three's is brdf_lut.ktx2, RG16F).
+    #[arg(long, conflicts_with = "no_lut")]
+    pub lut: bool,
+
+    /// Do not write the BRDF LUT.
     #[arg(long)]
     pub no_lut: bool,
+
+    /// Write sh.json (the target's default: generic and three yes, bevy no).
+    #[arg(long, conflicts_with = "no_sh")]
+    pub sh: bool,
+
+    /// Do not write sh.json.
+    #[arg(long)]
+    pub no_sh: bool,
 
     /// GGX samples per texel for the importance-sampled (low-roughness) specular levels.
     #[arg(long, default_value_t = splitsum::cpu::prefilter_specular::DEFAULT_SAMPLES)]
@@ -233,14 +252,16 @@ pub struct CubemapArgs {
     #[arg(long)]
     pub mips: bool,
 
-    /// Pixel format of KTX2/DDS outputs.
-    #[arg(long, value_enum, default_value_t = PixelFormatArg::Rgba16f)]
-    pub pixel_format: PixelFormatArg,
+    /// The engine the cube is for: its orientation and default pixel format (see bake).
+    #[arg(long, value_enum, default_value_t = TargetArg::Generic)]
+    pub target: TargetArg,
 
-    /// KTX2: Zstandard-supercompress each level (LEVEL 1–22, default 10).
-    #[arg(long, value_name = "LEVEL", num_args = 0..=1, default_missing_value = "10",
-          value_parser = clap::value_parser!(i32).range(1..=22))]
-    pub zstd: Option<i32>,
+    /// Pixel format of KTX2/DDS outputs [default: the target's: rgba16f; bevy: rgb9e5].
+    #[arg(long, value_enum)]
+    pub pixel_format: Option<PixelFormatArg>,
+
+    #[command(flatten)]
+    pub zstd: ZstdArgs,
 
     /// Layout of .exr/.hdr outputs.
     #[arg(long, value_enum, default_value_t = LayoutArg::Faces)]
@@ -251,6 +272,52 @@ pub struct CubemapArgs {
 
     #[command(flatten)]
     pub common: CommonArgs,
+}
+
+/// KTX2 supercompression, defaulting to the target's (bevy and three: zstd 10).
+#[derive(Debug, Args)]
+pub struct ZstdArgs {
+    /// KTX2: Zstandard-supercompress each level (LEVEL 1–22, default 10).
+    #[arg(long, value_name = "LEVEL", num_args = 0..=1, default_missing_value = "10",
+          value_parser = clap::value_parser!(i32).range(1..=22), conflicts_with = "no_zstd")]
+    pub zstd: Option<i32>,
+
+    /// KTX2: no supercompression, whatever the target's default.
+    #[arg(long)]
+    pub no_zstd: bool,
+}
+
+impl ZstdArgs {
+    /// The Zstandard level for `target`.
+    pub fn level(&self, target: &splitsum::target::Target) -> Option<i32> {
+        if self.no_zstd {
+            None
+        } else {
+            self.zstd.or(target.zstd)
+        }
+    }
+}
+
+/// `--target` values.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum TargetArg {
+    /// DESIGN.md's conventions.
+    Generic,
+    /// Bevy 0.19.
+    Bevy,
+    /// three.js r187.
+    Three,
+}
+
+impl From<TargetArg> for &'static splitsum::target::Target {
+    fn from(t: TargetArg) -> Self {
+        use splitsum::target as t_;
+        match t {
+            TargetArg::Generic => &t_::GENERIC,
+            TargetArg::Bevy => &t_::BEVY,
+            TargetArg::Three => &t_::THREE,
+        }
+    }
 }
 
 /// `--pixel-format` values.

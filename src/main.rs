@@ -90,6 +90,25 @@ fn run_cubemap(args: CubemapArgs) -> anyhow::Result<()> {
     if let Some(size) = args.size {
         splitsum::convert::validate_cube_size(size)?;
     }
+    let target: &'static splitsum::target::Target = args.target.into();
+    let format = args.pixel_format.map_or(target.pixel_format, Into::into);
+    let is_texture = matches!(splitsum::io::extension_of(&output).as_str(), "ktx2" | "dds");
+    if target.orientation != splitsum::target::Orientation::Generic
+        && !is_texture
+        && matches!(args.layout, cli::LayoutArg::Equirect)
+    {
+        return Err(splitsum::Error::InvalidParameter {
+            name: "--target",
+            message: format!(
+                "an equirect is not a cube: --target {} mirrors cube faces, so it applies to .ktx2, .dds and the faces or cross layouts",
+                target.name
+            ),
+        }
+        .into());
+    }
+    if let Some(w) = target.format_warning(format).filter(|_| is_texture) {
+        eprintln!("warning: --target {}: {w}", target.name);
+    }
     let opts = InputOptions {
         exposure_ev: args.input_opts.exposure,
         cube_size: args.size,
@@ -130,12 +149,13 @@ fn run_cubemap(args: CubemapArgs) -> anyhow::Result<()> {
             start.elapsed().as_secs_f64()
         );
     }
+    let cube = target.orientation.apply(cube);
     let written = write_cubemap(
         &output,
         &cube,
         &CubeWriteOptions {
-            format: args.pixel_format.into(),
-            zstd: args.zstd,
+            format,
+            zstd: args.zstd.level(target),
             layout: args.layout.into(),
         },
     )?;
@@ -151,17 +171,22 @@ fn run_bake(args: BakeArgs) -> anyhow::Result<()> {
     use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
     use splitsum::bake::{bake, BakeOptions, Stage};
     use std::io::IsTerminal;
+    let target: &'static splitsum::target::Target = args.target.into();
+    let defaults = BakeOptions::for_target(target);
     let opts = BakeOptions {
         specular_size: args.specular_size,
-        min_mip_size: args.min_mip_size,
+        min_mip_size: args.min_mip_size.unwrap_or(defaults.min_mip_size),
         irradiance_size: args.irradiance_size,
         container: args.container.into(),
-        pixel_format: args.pixel_format.into(),
-        zstd: args.zstd,
+        pixel_format: args.pixel_format.map_or(defaults.pixel_format, Into::into),
+        zstd: args.zstd.level(target),
         samples: args.samples,
         rotate_degrees: args.input_opts.rotate,
         exposure_ev: args.input_opts.exposure,
+        sh: (defaults.sh || args.sh) && !args.no_sh,
+        target,
     };
+    let write_lut = (target.lut || args.lut) && !args.no_lut;
     splitsum::convert::validate_cube_size(opts.specular_size)?;
     let mut backend = open_backend(&args.common)?;
     // With --backend auto a GPU failure (device lost, out of memory, a driver error)
@@ -178,7 +203,7 @@ fn run_bake(args: BakeArgs) -> anyhow::Result<()> {
     };
     let lut_size = 512;
     let compute_lut = |backend: &dyn splitsum::Backend| backend.brdf_lut(lut_size, lut_size);
-    let mut lut = if args.no_lut {
+    let mut lut = if !write_lut {
         None
     } else {
         let lut = match compute_lut(backend.as_ref()) {

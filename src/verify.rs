@@ -2,6 +2,7 @@
 //! problem, with the tolerances the tests state (and their reasons, in `tests/`).
 
 use crate::convert::environment_to_cube;
+use crate::cpu::prefilter_specular::SpecularChain;
 use crate::environment::{Cubemap, Environment, IrradianceSource};
 use crate::{Backend, CpuBackend, GpuBackend, Result};
 
@@ -83,8 +84,18 @@ pub fn verify(gpu: &GpuBackend, env: &Environment) -> Result<Vec<VerifyRow>> {
         1e-6,
     ));
     let (sa, sb) = (
-        gpu.prefilter_specular(&gb, None, Cubemap::full_mip_count(gb.size), 32)?,
-        cpu.prefilter_specular(&gb, None, Cubemap::full_mip_count(gb.size), 32)?,
+        gpu.prefilter_specular(
+            &gb,
+            None,
+            SpecularChain::linear(Cubemap::full_mip_count(gb.size)),
+            32,
+        )?,
+        cpu.prefilter_specular(
+            &gb,
+            None,
+            SpecularChain::linear(Cubemap::full_mip_count(gb.size)),
+            32,
+        )?,
     );
     rows.push(compare(
         "prefilter_specular 64",

@@ -5,6 +5,7 @@
 //! binary) and wgpu's device-lost callback and error scopes report it.
 mod common;
 
+use splitsum::cpu::prefilter_specular::SpecularChain;
 use splitsum::environment::IrradianceSource;
 
 use std::path::Path;
@@ -32,7 +33,7 @@ fn every_kernel_reports_a_lost_device() {
     let kernels: [(&str, KernelRun); 3] = [
         ("brdf_lut", |b, _| b.brdf_lut(16, 16).map(drop)),
         ("prefilter_specular", |b, e| {
-            b.prefilter_specular(e, None, e.levels.len() as u32, 16)
+            b.prefilter_specular(e, None, SpecularChain::linear(e.levels.len() as u32), 16)
                 .map(drop)
         }),
         ("irradiance", |b, e| {

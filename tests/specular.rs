@@ -5,7 +5,7 @@ mod common;
 use splitsum::environment::IrradianceSource;
 
 use splitsum::convert::environment_to_cube;
-use splitsum::cpu::prefilter_specular::mip_roughness;
+use splitsum::cpu::prefilter_specular::{mip_roughness, SpecularChain};
 use splitsum::cpu::sh_project::sh_project;
 use splitsum::environment::Cubemap;
 use splitsum::io::input::{load_environment, InputOptions};
@@ -51,7 +51,12 @@ fn white_furnace() {
     let env = analytic_cube(128, |_| c);
     for backend in common::backends() {
         let spec = backend
-            .prefilter_specular(&env, None, env.levels.len() as u32, 64)
+            .prefilter_specular(
+                &env,
+                None,
+                SpecularChain::linear(env.levels.len() as u32),
+                64,
+            )
             .unwrap();
         assert_eq!(spec.levels.len(), 8);
         let irr = backend
@@ -122,7 +127,12 @@ fn specular_matches_brute_force_on_quarry() {
     let levels = env.levels.len() as u32;
     for backend in common::backends() {
         let spec = backend
-            .prefilter_specular(&env, None, env.levels.len() as u32, 128)
+            .prefilter_specular(
+                &env,
+                None,
+                SpecularChain::linear(env.levels.len() as u32),
+                128,
+            )
             .unwrap();
         for m in 1..levels {
             let r = mip_roughness(m, levels);
@@ -218,10 +228,20 @@ fn gpu_prefilter_and_irradiance_match_cpu() {
     let gpu = GpuBackend { ctx };
     let env = quarry_cube(128);
     let a = gpu
-        .prefilter_specular(&env, None, env.levels.len() as u32, 32)
+        .prefilter_specular(
+            &env,
+            None,
+            SpecularChain::linear(env.levels.len() as u32),
+            32,
+        )
         .unwrap();
     let b = CpuBackend
-        .prefilter_specular(&env, None, env.levels.len() as u32, 32)
+        .prefilter_specular(
+            &env,
+            None,
+            SpecularChain::linear(env.levels.len() as u32),
+            32,
+        )
         .unwrap();
     let ia = gpu
         .irradiance(&IrradianceSource::from_cube(&env), 16)
@@ -330,13 +350,17 @@ fn prefilter_accuracy_scan() {
             .ok()
             .and_then(|s| s.parse().ok())
             .unwrap_or(splitsum::cpu::prefilter_specular::DEFAULT_SAMPLES);
-        let spec =
-            splitsum::cpu::prefilter_specular::prefilter_specular(&env, None, levels, samples);
+        let spec = splitsum::cpu::prefilter_specular::prefilter_specular(
+            &env,
+            None,
+            SpecularChain::linear(levels),
+            samples,
+        );
         println!("{name}, {samples} samples");
         for m in 1..levels {
             let r = mip_roughness(m, levels);
             let (err, worst) = brute_force_errors(&env, &spec, m as usize, r);
-            let method = splitsum::cpu::prefilter_specular::level_method(128, m, levels, samples);
+            let method = splitsum::cpu::prefilter_specular::level_method(128, m, r, samples);
             println!(
                 "mip {m} r {r:.2} {method:?}: energy-weighted {:.2} %, worst texel {:.1} %",
                 100.0 * err,
@@ -355,7 +379,12 @@ fn prefilter_accuracy_scan() {
 fn no_fireflies_on_quarry() {
     let env = quarry_cube(128);
     let spec = CpuBackend
-        .prefilter_specular(&env, None, env.levels.len() as u32, 128)
+        .prefilter_specular(
+            &env,
+            None,
+            SpecularChain::linear(env.levels.len() as u32),
+            128,
+        )
         .unwrap();
     let l = |t: [f32; 4]| 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2];
     for m in 1..spec.levels.len() {

@@ -50,7 +50,15 @@ fn generic_outputs(dir: &Path, extra: &[&str]) -> Vec<(PathBuf, String)> {
         .arg(dir)
         .args(extra));
     run(splitsum()
-        .args(["cubemap", input, "--backend", "cpu", "--size", "32", "--mips"])
+        .args([
+            "cubemap",
+            input,
+            "--backend",
+            "cpu",
+            "--size",
+            "32",
+            "--mips",
+        ])
         .args(["--pixel-format", "rgb9e5", "--zstd", "-o"])
         .arg(dir.join("cube.ktx2"))
         .args(extra));
@@ -91,4 +99,186 @@ fn generic_outputs_keep_their_bytes() {
     for ((path, hash), want) in got.iter().zip(GENERIC_PINNED) {
         assert_eq!(hash, want, "{} changed", path.display());
     }
+}
+
+fn manifest(dir: &Path) -> serde_json::Value {
+    serde_json::from_slice(&std::fs::read(dir.join("manifest.json")).unwrap()).unwrap()
+}
+
+fn cube(path: &Path) -> splitsum::Cubemap {
+    splitsum::io::input::read_ktx2_cube(path).unwrap()
+}
+
+/// A small CPU bake of quarry_01 with `extra` options into `dir`/quarry_01_1k.
+fn small_bake(dir: &Path, extra: &[&str]) -> PathBuf {
+    let _ = std::fs::remove_dir_all(dir);
+    run(splitsum()
+        .args(["bake", "tests/data/quarry_01_1k.hdr", "--backend", "cpu"])
+        .args([
+            "--specular-size",
+            "32",
+            "--irradiance-size",
+            "8",
+            "-q",
+            "-o",
+        ])
+        .arg(dir)
+        .args(extra));
+    dir.join("quarry_01_1k")
+}
+
+/// `--target bevy`: rgb9e5 + zstd, irradiance, no LUT or SH, and, in rgba16f, exactly the
+/// generic bake's texels mirrored in z (specular and irradiance alike).
+#[test]
+fn bevy_target_is_the_generic_bake_mirrored_in_z() {
+    let generic = small_bake(&common::output_dir("targets-bevy-generic"), &["--no-lut"]);
+    let bevy = small_bake(&common::output_dir("targets-bevy"), &["--target", "bevy"]);
+    let files: Vec<String> = manifest(&bevy)["outputs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|o| o["file"].as_str().unwrap().to_string())
+        .collect();
+    assert_eq!(
+        files,
+        ["specular.ktx2", "irradiance.ktx2"],
+        "the manifest lists the others"
+    );
+    let m = manifest(&bevy);
+    assert_eq!(m["target"]["name"], "bevy");
+    assert_eq!(m["parameters"]["pixel_format"], "rgb9e5");
+    assert_eq!(m["parameters"]["zstd"], 10);
+    assert_eq!(m["parameters"]["roughness_per_mip"], "m / (levels - 1)");
+    let bytes = std::fs::read(bevy.join("specular.ktx2")).unwrap();
+    assert_eq!(
+        u32::from_le_bytes(bytes[44..48].try_into().unwrap()),
+        2,
+        "zstd"
+    );
+
+    let half = small_bake(
+        &common::output_dir("targets-bevy-16f"),
+        &["--target", "bevy", "--pixel-format", "rgba16f", "--no-zstd"],
+    );
+    for name in ["specular.ktx2", "irradiance.ktx2"] {
+        let want = cube(&generic.join(name)).mirrored(2);
+        assert_eq!(cube(&half.join(name)), want, "{name}");
+    }
+    // rgb9e5 holds the same texels to its 9-bit mantissa.
+    let packed = cube(&bevy.join("specular.ktx2"));
+    let want = cube(&generic.join("specular.ktx2")).mirrored(2);
+    for (a, b) in packed
+        .levels
+        .iter()
+        .flatten()
+        .zip(want.levels.iter().flatten())
+    {
+        let scale = a[0].max(a[1]).max(a[2]).max(1e-3);
+        for c in 0..3 {
+            assert!((a[c] - b[c]).abs() <= scale / 256.0, "{a:?} vs {b:?}");
+        }
+    }
+}
+
+/// `--target three`: r187's PMREM layout (to 8², r = 1 − √(1 − m/(M − 1))), x mirrored,
+/// no irradiance cube, sh.json unmirrored, the LUT (when asked) as RG16F KTX2.
+#[test]
+fn three_target_is_a_pmrem_chain_mirrored_in_x() {
+    let three = small_bake(
+        &common::output_dir("targets-three"),
+        &["--target", "three", "--lut"],
+    );
+    let m = manifest(&three);
+    assert_eq!(m["target"]["name"], "three");
+    assert_eq!(m["parameters"]["specular_levels"], 3, "32² to 8²");
+    assert_eq!(
+        m["parameters"]["roughness_per_mip"],
+        "1 - sqrt(1 - m / (levels - 1))"
+    );
+    let files: Vec<&str> = m["outputs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|o| o["file"].as_str().unwrap())
+        .collect();
+    assert_eq!(files, ["specular.ktx2", "sh.json", "brdf_lut.ktx2"]);
+    let lut = std::fs::read(three.join("brdf_lut.ktx2")).unwrap();
+    let vk = u32::from_le_bytes(lut[12..16].try_into().unwrap());
+    assert_eq!(vk, 83, "VK_FORMAT_R16G16_SFLOAT");
+
+    // The same chain baked by the library in generic orientation, then mirrored.
+    use splitsum::bake::{bake, BakeOptions};
+    let dir = common::output_dir("targets-three-generic-orientation");
+    let opts = BakeOptions {
+        specular_size: 32,
+        irradiance_size: 8,
+        zstd: None,
+        ..BakeOptions::for_target(&splitsum::target::THREE)
+    };
+    let report = bake(
+        &splitsum::CpuBackend,
+        Path::new("tests/data/quarry_01_1k.hdr"),
+        &dir,
+        &opts,
+        None,
+        &mut |_| {},
+    )
+    .unwrap();
+    let lib = cube(&report.out_dir.join("specular.ktx2"));
+    assert_eq!(cube(&three.join("specular.ktx2")), lib);
+    let generic = small_bake(&common::output_dir("targets-three-generic"), &["--no-lut"]);
+    // sh.json is world space: the same as the generic bake's.
+    assert_eq!(
+        sh_values_hash(&three.join("sh.json")),
+        sh_values_hash(&generic.join("sh.json"))
+    );
+    // Level 0 is the environment, mirrored in x.
+    let g = cube(&generic.join("specular.ktx2"));
+    assert_eq!(lib.levels[0], g.mirrored(0).levels[0]);
+}
+
+/// `cubemap --target` mirrors every level; an equirect layout cannot carry a mirror.
+#[test]
+fn cubemap_targets_mirror_and_refuse_an_equirect() {
+    let dir = common::output_dir("targets-cubemap");
+    let input = "tests/data/venice_sunset_1k.hdr";
+    let out = |name: &str| dir.join(name);
+    run(splitsum()
+        .args([
+            "cubemap",
+            input,
+            "--size",
+            "16",
+            "--mips",
+            "--backend",
+            "cpu",
+        ])
+        .args(["--pixel-format", "rgba32f", "-o"])
+        .arg(out("generic.ktx2")));
+    for (target, axis) in [("bevy", 2), ("three", 0)] {
+        let path = out(&format!("{target}.ktx2"));
+        run(splitsum()
+            .args([
+                "cubemap",
+                input,
+                "--size",
+                "16",
+                "--mips",
+                "--backend",
+                "cpu",
+            ])
+            .args(["--pixel-format", "rgba32f", "--target", target, "-o"])
+            .arg(&path));
+        assert_eq!(cube(&path), cube(&out("generic.ktx2")).mirrored(axis));
+    }
+    let o = splitsum()
+        .args(["cubemap", input, "--size", "16", "--target", "bevy"])
+        .args(["--layout", "equirect", "-o"])
+        .arg(out("sky.hdr"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("an equirect is not a cube"), "{err}");
+    assert!(!out("sky.hdr").exists());
 }

@@ -1,5 +1,6 @@
 //! CPU reference for `shaders/prefilter_specular.wgsl`: the split-sum prefiltered radiance
-//! (Karis 2013), with n = v = r, for mip m of M at roughness r = m/(M − 1).
+//! (Karis 2013), with n = v = r, for mip m of M at the roughness its [`MipRoughness`] maps
+//! it to (r = m/(M − 1) for generic and Bevy bakes).
 //!
 //! Estimator: P(n) = Σ L(lᵢ) (n·lᵢ) / Σ (n·lᵢ), lᵢ = reflect(−n, hᵢ) with hᵢ GGX-distributed
 //! (Hammersley points), which converges to ∫ L D (n·l) dl / ∫ D (n·l) dl. The samples
@@ -34,13 +35,78 @@ pub const LOD_BIAS: f32 = 0.0;
 /// (the bulk of a default bake) for about 0.1 point.
 pub const DEFAULT_SAMPLES: u32 = 64;
 
-/// Roughness of mip `m` of a chain of `levels` (DESIGN.md: r = m / (M − 1)).
-pub fn mip_roughness(m: u32, levels: u32) -> f32 {
-    if levels <= 1 {
-        0.0
-    } else {
-        m as f32 / (levels - 1) as f32
+/// How a chain's mips map to perceptual roughness, and back: a shader reads roughness r at
+/// `lod(r)`, and mip m is prefiltered at `roughness(m)`, its inverse.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MipRoughness {
+    /// r = m/(M − 1), lod = r·(M − 1) (DESIGN.md; Bevy's `environment_map.wgsl`,
+    /// glTF-IBL-Sampler).
+    Linear,
+    /// r = 1 − √(1 − m/(M − 1)), lod = (M − 1)·r·(2 − r): three.js r187's PMREM
+    /// (`PMREMGenerator` `lodToRoughness`, `roughnessToMip` in
+    /// envmap_common_pars_fragment) and Filament's `perceptualRoughnessToLod`.
+    Quadratic,
+}
+
+impl MipRoughness {
+    /// Roughness of mip `m` of a chain of `levels`.
+    pub fn roughness(self, m: u32, levels: u32) -> f32 {
+        if levels <= 1 {
+            return 0.0;
+        }
+        let t = m as f32 / (levels - 1) as f32;
+        match self {
+            MipRoughness::Linear => t,
+            MipRoughness::Quadratic => 1.0 - (1.0 - t).max(0.0).sqrt(),
+        }
     }
+
+    /// The lod a shader reads roughness `r` at, in a chain of `levels`.
+    pub fn lod(self, r: f32, levels: u32) -> f32 {
+        let r = r.clamp(0.0, 1.0);
+        let max_lod = levels.saturating_sub(1) as f32;
+        match self {
+            MipRoughness::Linear => r * max_lod,
+            MipRoughness::Quadratic => r * (2.0 - r) * max_lod,
+        }
+    }
+
+    /// The mapping as written in manifests.
+    pub fn formula(self) -> &'static str {
+        match self {
+            MipRoughness::Linear => "m / (levels - 1)",
+            MipRoughness::Quadratic => "1 - sqrt(1 - m / (levels - 1))",
+        }
+    }
+}
+
+/// The layout of a prefiltered chain: how many levels and the roughness of each.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SpecularChain {
+    /// Number of levels M (level 0 is the environment itself, r = 0).
+    pub levels: u32,
+    /// Roughness of each level.
+    pub roughness: MipRoughness,
+}
+
+impl SpecularChain {
+    /// `levels` levels at r = m/(M − 1).
+    pub fn linear(levels: u32) -> Self {
+        SpecularChain {
+            levels,
+            roughness: MipRoughness::Linear,
+        }
+    }
+
+    /// Roughness of mip `m`.
+    pub fn mip_roughness(&self, m: u32) -> f32 {
+        self.roughness.roughness(m, self.levels)
+    }
+}
+
+/// Roughness of mip `m` of a linear chain of `levels` (DESIGN.md: r = m / (M − 1)).
+pub fn mip_roughness(m: u32, levels: u32) -> f32 {
+    MipRoughness::Linear.roughness(m, levels)
 }
 
 /// An orthonormal tangent frame (t, b) around unit `n`.
@@ -305,11 +371,10 @@ pub const EXACT_TEXELS_PER_ALPHA: f32 = 16.0;
 /// binding (found by `tests/specular.rs`), whatever limit it reports.
 pub const EXACT_MAX_SOURCE: u32 = 64;
 
-/// Picks the method for output mip `m` of an `env_size` chain: the exact sum over the
+/// Picks the method for output mip `m` (at roughness `r`) of an `env_size` chain: the exact sum over the
 /// smallest source mip fine enough for the lobe (texel angle ≤ α/16) when it fits
 /// [`EXACT_BUDGET`], else filtered importance sampling.
-pub fn level_method(env_size: u32, m: u32, levels: u32, samples: u32) -> LevelMethod {
-    let r = mip_roughness(m, levels);
+pub fn level_method(env_size: u32, m: u32, r: f32, samples: u32) -> LevelMethod {
     let alpha = alpha_from_roughness(r);
     let out = (env_size >> m).max(1) as u64;
     // Smallest power of two n with (π/2)/n ≤ α/K, at most the environment's size.
@@ -374,24 +439,25 @@ pub fn chain_levels(size: u32, min_mip_size: u32) -> u32 {
     Cubemap::full_mip_count(size) - Cubemap::full_mip_count(min) + 1
 }
 
-/// The prefiltered chain of `env` (which must have every mip) with `levels` levels
-/// (clamped to the full chain): level 0 is the environment itself (r = 0), level m is
-/// prefiltered at r = m/(M − 1).
+/// The prefiltered chain of `env` (which must have every mip) in the layout of `chain`
+/// (its level count clamped to the full chain): level 0 is the environment itself (r = 0),
+/// level m is prefiltered at `chain.mip_roughness(m)`.
 pub fn prefilter_specular(
     env: &Cubemap,
     split: Option<&IrradianceSource>,
-    levels: u32,
+    chain: SpecularChain,
     samples: u32,
 ) -> Cubemap {
-    let levels = levels.clamp(1, Cubemap::full_mip_count(env.size));
+    let levels = chain.levels.clamp(1, Cubemap::full_mip_count(env.size));
+    let chain = SpecularChain { levels, ..chain };
     let mut out = Cubemap {
         size: env.size,
         levels: vec![env.levels[0].clone()],
     };
     let sampled = split_hot_texels(env);
     for m in 1..levels {
-        let r = mip_roughness(m, levels);
-        let method = level_method(env.size, m, levels, samples);
+        let r = chain.mip_roughness(m);
+        let method = level_method(env.size, m, r, samples);
         out.levels.push(prefilter_level(
             env,
             split,

@@ -85,6 +85,42 @@ impl Cubemap {
     pub fn level_len(n: u32) -> usize {
         FACES * (n as usize) * (n as usize)
     }
+
+    /// This cube mirrored along world axis `axis` (0 = x, 1 = y, 2 = z), every level:
+    /// the returned cube's texel at direction d holds this cube's texel at d with that
+    /// coordinate negated. A mirror maps texel centres onto texel centres, so this is an
+    /// exact permutation of texels (no resampling).
+    pub fn mirrored(&self, axis: usize) -> Cubemap {
+        use crate::math::cubemap::{cube_face_coords, cube_texel_direction};
+        let levels = (0..self.levels.len())
+            .map(|m| {
+                let n = self.level_size(m);
+                let mut out = Vec::with_capacity(Cubemap::level_len(n));
+                for face in 0..FACES as u32 {
+                    for j in 0..n {
+                        for i in 0..n {
+                            let mut d = cube_texel_direction(face, i as i32, j as i32, n);
+                            d[axis] = -d[axis];
+                            let (f, s, t) = cube_face_coords(d);
+                            // (s, t) is a texel centre: s = (2i + 1)/n − 1.
+                            let index = |c: f32| {
+                                (((c + 1.0) * n as f32 - 1.0) * 0.5)
+                                    .round()
+                                    .clamp(0.0, (n - 1) as f32)
+                                    as u32
+                            };
+                            out.push(self.texel(m, f, index(s), index(t)));
+                        }
+                    }
+                }
+                out
+            })
+            .collect();
+        Cubemap {
+            size: self.size,
+            levels,
+        }
+    }
 }
 
 /// An environment as loaded from a file.

@@ -4,8 +4,8 @@
 
 use crate::cpu::irradiance::{irradiance_source_level, moment_texels, MomentTexel, SourceTexel};
 use crate::cpu::prefilter_specular::{
-    exact_source_texels, ggx_lobe_samples, level_method, mip_roughness, split_hot_texels,
-    LevelMethod,
+    exact_source_texels, ggx_lobe_samples, level_method, split_hot_texels, LevelMethod,
+    SpecularChain,
 };
 use crate::environment::{Cubemap, IrradianceSource};
 use crate::gpu::compute::{buffer_with_data, with_error_scope, ComputeKernel};
@@ -164,7 +164,7 @@ pub fn prefilter_specular(
     queue: &wgpu::Queue,
     env: &Cubemap,
     source_split: Option<&IrradianceSource>,
-    levels: u32,
+    chain: SpecularChain,
     samples: u32,
 ) -> Result<Cubemap> {
     let sampled = ComputeKernel::new(
@@ -174,7 +174,8 @@ pub fn prefilter_specular(
         WORKGROUP,
     )?;
     let exact = ComputeKernel::new(device, "convolve_exact", shaders::CONVOLVE_EXACT, WORKGROUP)?;
-    let levels = levels.clamp(1, Cubemap::full_mip_count(env.size));
+    let levels = chain.levels.clamp(1, Cubemap::full_mip_count(env.size));
+    let chain = SpecularChain { levels, ..chain };
     let split = split_hot_texels(env);
     let out = with_error_scope(device, "prefilter_specular dispatch", || {
         let source = upload_cube(device, queue, &split.rest, env.levels.len() as u32);
@@ -209,10 +210,10 @@ pub fn prefilter_specular(
         );
         let mut encoder = device.create_command_encoder(&Default::default());
         for m in 1..levels {
-            let r = mip_roughness(m, levels);
+            let r = chain.mip_roughness(m);
             let n = (env.size >> m).max(1);
             let target = cube_mip_view(&out, m);
-            match level_method(env.size, m, levels, samples) {
+            match level_method(env.size, m, r, samples) {
                 LevelMethod::Exact { source_mip } => {
                     let source = ExactSource::Specular(
                         exact_source_texels(env, source_split, source_mip as usize),
