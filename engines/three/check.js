@@ -1,0 +1,255 @@
+// Runs in the page: renders a splitsum `--target three` bake with three.js's own
+// materials and background, and the same HDRI through three's own path (HDRLoader as
+// float, equirect background, three's run-time PMREM for the spheres), and returns the
+// measurements for check.mjs to judge. Every render goes to a float target (no tone
+// mapping), so the numbers are linear radiance.
+import * as THREE from 'three';
+import { HDRLoader } from 'three/addons/loaders/HDRLoader.js';
+import { loadSplitsumBake, loadSplitsumCube } from '/js/splitsum-three.js';
+
+// Edge of the renders; the mirror sphere is rendered larger, since one pixel of it turns
+// the reflected direction by twice the normal's change (about 2.3° at 160 px).
+let SIZE = 160;
+const MIRROR_SIZE = 512;
+
+const renderer = new THREE.WebGLRenderer({ antialias: false });
+renderer.setSize(SIZE, SIZE);
+renderer.toneMapping = THREE.NoToneMapping;
+document.body.appendChild(renderer.domElement);
+let target = new THREE.WebGLRenderTarget(SIZE, SIZE, { type: THREE.FloatType });
+
+function setSize(size) {
+  SIZE = size;
+  target.dispose();
+  target = new THREE.WebGLRenderTarget(SIZE, SIZE, { type: THREE.FloatType });
+}
+
+const luminance = (p, i) => 0.2126 * p[i] + 0.7152 * p[i + 1] + 0.0722 * p[i + 2];
+
+function render(scene, camera) {
+  renderer.setRenderTarget(target);
+  renderer.setClearColor(0x000000, 0);
+  renderer.render(scene, camera);
+  const px = new Float32Array(SIZE * SIZE * 4);
+  renderer.readRenderTargetPixels(target, 0, 0, SIZE, SIZE, px);
+  renderer.setRenderTarget(null);
+  return px;
+}
+
+// The HDRI's sun: luminance-weighted mean direction of the texels above half the maximum
+// (three's equirect convention: u = atan(z, x)/2π + 0.5, the first row at +y).
+function sunDirection(hdr) {
+  const { data, width, height } = hdr.image;
+  let max = 0;
+  for (let i = 0; i < width * height; i++) max = Math.max(max, luminance(data, 4 * i));
+  const d = new THREE.Vector3();
+  for (let y = 0; y < height; y++) {
+    const theta = (Math.PI * (y + 0.5)) / height;
+    for (let x = 0; x < width; x++) {
+      const l = luminance(data, 4 * (y * width + x));
+      if (l < 0.5 * max) continue;
+      const phi = 2 * Math.PI * ((x + 0.5) / width - 0.5);
+      const w = l * Math.sin(theta);
+      d.x += w * Math.sin(theta) * Math.cos(phi);
+      d.y += w * Math.cos(theta);
+      d.z += w * Math.sin(theta) * Math.sin(phi);
+    }
+  }
+  return d.normalize();
+}
+
+// Centroid (in pixels) of the pixels above half the image's maximum luminance.
+function brightCentroid(px) {
+  let max = 0;
+  for (let i = 0; i < SIZE * SIZE; i++) max = Math.max(max, luminance(px, 4 * i));
+  let sx = 0, sy = 0, sw = 0;
+  for (let i = 0; i < SIZE * SIZE; i++) {
+    const l = luminance(px, 4 * i);
+    if (l < 0.5 * max) continue;
+    sx += l * ((i % SIZE) + 0.5);
+    sy += l * (Math.floor(i / SIZE) + 0.5);
+    sw += l;
+  }
+  return [sx / sw, sy / sw];
+}
+
+// The world ray through pixel (x, y) of a readRenderTargetPixels image (row 0 at the bottom).
+function pixelRay(camera, [x, y]) {
+  const ndc = new THREE.Vector3((2 * x) / SIZE - 1, (2 * y) / SIZE - 1, 0.5);
+  const dir = ndc.unproject(camera).sub(camera.position).normalize();
+  return new THREE.Ray(camera.position.clone(), dir);
+}
+
+const degrees = (a, b) => THREE.MathUtils.radToDeg(a.angleTo(b));
+
+// Mean |Δ ln(1 + L)| over the pixels both images cover.
+function logDiff(a, b) {
+  let s = 0, n = 0;
+  for (let i = 0; i < SIZE * SIZE; i++) {
+    if (a[4 * i + 3] === 0 || b[4 * i + 3] === 0) continue;
+    for (let c = 0; c < 3; c++) s += Math.abs(Math.log1p(a[4 * i + c]) - Math.log1p(b[4 * i + c]));
+    n += 3;
+  }
+  return s / n;
+}
+
+// Mean luminance ratio and correlation over the pixels the sphere covers (alpha 1).
+function compareSpheres(got, want) {
+  const g = [], w = [];
+  for (let i = 0; i < SIZE * SIZE; i++) {
+    if (got[4 * i + 3] < 1 || want[4 * i + 3] < 1) continue;
+    g.push(luminance(got, 4 * i));
+    w.push(luminance(want, 4 * i));
+  }
+  const mean = (v) => v.reduce((a, b) => a + b, 0) / v.length;
+  const mg = mean(g), mw = mean(w);
+  let sgw = 0, sgg = 0, sww = 0;
+  for (let i = 0; i < g.length; i++) {
+    sgw += (g[i] - mg) * (w[i] - mw);
+    sgg += (g[i] - mg) ** 2;
+    sww += (w[i] - mw) ** 2;
+  }
+  return { pixels: g.length, ratio: mg / mw, correlation: sgw / Math.sqrt(sgg * sww) };
+}
+
+// An RGBA8 PNG (data URL) of a float render, Reinhard-mapped, for the record.
+function toPng(px) {
+  const canvas = document.createElement('canvas');
+  canvas.width = canvas.height = SIZE;
+  const ctx = canvas.getContext('2d');
+  const img = ctx.createImageData(SIZE, SIZE);
+  for (let y = 0; y < SIZE; y++) {
+    for (let x = 0; x < SIZE; x++) {
+      const s = 4 * ((SIZE - 1 - y) * SIZE + x), d = 4 * (y * SIZE + x);
+      for (let c = 0; c < 3; c++) {
+        const v = px[s + c] / (1 + px[s + c]);
+        img.data[d + c] = Math.round(255 * Math.pow(v, 1 / 2.2));
+      }
+      img.data[d + 3] = 255;
+    }
+  }
+  ctx.putImageData(img, 0, 0);
+  return canvas.toDataURL('image/png');
+}
+
+window.runCheck = async function ({ hdrUrl, bakeDir, cubeUrl, roughness }) {
+  const hdr = await new HDRLoader().setDataType(THREE.FloatType).loadAsync(hdrUrl);
+  hdr.mapping = THREE.EquirectangularReflectionMapping;
+  const bake = await loadSplitsumBake(bakeDir, renderer);
+  // splitsum's exact 256² cube (`cubemap --target three`), as a plain cube that three
+  // PMREMs at run time: tells three's equirect → cube step from its PMREM filtering.
+  const exactCube = await loadSplitsumCube(cubeUrl, renderer, { pmrem: false });
+  const sun = sunDirection(hdr);
+  const images = {};
+  const out = { sun: sun.toArray(), levels: bake.envMap.image[0].mipmaps.length };
+
+  // Background, looking at the sun: three's equirect path against the bake's cube.
+  const camera = new THREE.PerspectiveCamera(50, 1, 0.1, 10);
+  camera.position.set(0, 0, 0);
+  camera.lookAt(sun);
+  camera.updateMatrixWorld();
+  const scene = new THREE.Scene();
+  scene.background = hdr;
+  const refSky = render(scene, camera);
+  scene.background = bake.envMap;
+  const gotSky = render(scene, camera);
+  const refSun = pixelRay(camera, brightCentroid(refSky)).direction;
+  const gotSun = pixelRay(camera, brightCentroid(gotSky)).direction;
+  out.background = {
+    sunError: degrees(gotSun, refSun),
+    threeSunVsEquirect: degrees(refSun, sun),
+    logDiff: logDiff(gotSky, refSky),
+  };
+  images.sky_three = toPng(refSky);
+  images.sky_splitsum = toPng(gotSky);
+
+  // Six axis views of the whole background.
+  let sum = 0;
+  for (const d of [[1, 0, 0], [-1, 0, 0], [0, 1, 0.001], [0, -1, 0.001], [0, 0, 1], [0, 0, -1]]) {
+    camera.lookAt(new THREE.Vector3(...d));
+    camera.updateMatrixWorld();
+    scene.background = hdr;
+    const a = render(scene, camera);
+    scene.background = bake.envMap;
+    sum += logDiff(render(scene, camera), a) / 6;
+  }
+  out.background.logDiffAllViews = sum;
+
+  // Spheres. The camera sits 40° from the sun so each sphere shows its lit and shaded side.
+  const sphereScene = new THREE.Scene();
+  const material = new THREE.MeshStandardMaterial({ color: 0xffffff });
+  const sphere = new THREE.Mesh(new THREE.SphereGeometry(1, 128, 64), material);
+  sphereScene.add(sphere);
+  const axis = new THREE.Vector3(0, 1, 0).cross(sun).normalize();
+  const view = sun.clone().applyAxisAngle(axis, THREE.MathUtils.degToRad(40));
+  const sphereCamera = new THREE.PerspectiveCamera(30, 1, 0.1, 100);
+  sphereCamera.position.copy(view.clone().multiplyScalar(4.2));
+  sphereCamera.lookAt(0, 0, 0);
+  sphereCamera.updateMatrixWorld();
+  const withEnvironment = (env) => {
+    sphereScene.environment = env;
+    material.needsUpdate = true;
+    return render(sphereScene, sphereCamera);
+  };
+  // The bake used as it is, and three's run-time PMREM of the equirect.
+  const both = () => [withEnvironment(bake.envMap), withEnvironment(hdr)];
+
+  // A mirror sphere: the sun's reflection against three's own path.
+  material.metalness = 1;
+  material.roughness = 0;
+  setSize(MIRROR_SIZE);
+  const [gotMirror, refMirror] = both();
+  setSize(160);
+  const reflected = (px) => {
+    const ray = pixelRay(sphereCamera, brightCentroid(px));
+    const hit = ray.intersectSphere(new THREE.Sphere(new THREE.Vector3(), 1), new THREE.Vector3());
+    const n = hit.clone().normalize();
+    return ray.direction.clone().reflect(n);
+  };
+  out.mirror = {
+    sunError: degrees(reflected(gotMirror), reflected(refMirror)),
+    threeSunVsEquirect: degrees(reflected(refMirror), sun),
+  };
+  images.mirror_three = toPng(refMirror);
+  images.mirror_splitsum = toPng(gotMirror);
+
+  out.spheres = [];
+  for (const metalness of [1, 0]) {
+    for (const r of roughness) {
+      material.metalness = metalness;
+      material.roughness = r;
+      const [got, want] = both();
+      const viaExactCube = compareSpheres(got, withEnvironment(exactCube));
+      out.spheres.push({
+        metalness,
+        roughness: r,
+        ...compareSpheres(got, want),
+        ratioToThreePmremOfExactCube: viaExactCube.ratio,
+      });
+      images[`sphere_m${metalness}_r${r}_three`] = toPng(want);
+      images[`sphere_m${metalness}_r${r}_splitsum`] = toPng(got);
+    }
+  }
+
+  // The bake's SH as a THREE.LightProbe (radiance_sh9 as it is) against three's PMREM
+  // diffuse: a white sphere with no specular (MeshPhysicalMaterial, specularIntensity 0).
+  if (bake.lightProbe) {
+    const diffuse = new THREE.MeshPhysicalMaterial({ color: 0xffffff, metalness: 0, roughness: 1, specularIntensity: 0 });
+    const probeScene = new THREE.Scene();
+    probeScene.add(new THREE.Mesh(sphere.geometry, diffuse));
+    probeScene.add(bake.lightProbe);
+    const got = render(probeScene, sphereCamera);
+    const pmremScene = new THREE.Scene();
+    pmremScene.add(new THREE.Mesh(sphere.geometry, diffuse));
+    pmremScene.environment = hdr;
+    const want = render(pmremScene, sphereCamera);
+    out.lightProbe = compareSpheres(got, want);
+    images.probe_splitsum = toPng(got);
+    images.probe_three = toPng(want);
+  }
+
+  out.renderer = renderer.getContext().getParameter(renderer.getContext().VERSION);
+  return { out, images };
+};
+
+window.checkReady = true;
