@@ -402,12 +402,26 @@ fn lut_benchmarks() {
         match &ctx {
             Ok(ctx) => {
                 let t = Instant::now();
-                splitsum::gpu::brdf_lut::brdf_lut(&ctx.device, &ctx.queue, size, size, &quad)
-                    .unwrap();
+                splitsum::gpu::brdf_lut::brdf_lut(
+                    &ctx.device,
+                    &ctx.queue,
+                    size,
+                    size,
+                    &quad,
+                    Default::default(),
+                )
+                .unwrap();
                 let first = t.elapsed().as_secs_f64();
                 let (wall, cpu) = measure(3, || {
-                    splitsum::gpu::brdf_lut::brdf_lut(&ctx.device, &ctx.queue, size, size, &quad)
-                        .unwrap();
+                    splitsum::gpu::brdf_lut::brdf_lut(
+                        &ctx.device,
+                        &ctx.queue,
+                        size,
+                        size,
+                        &quad,
+                        Default::default(),
+                    )
+                    .unwrap();
                 });
                 println!(
                     "| {size} | gpu | {wall:.3} | {cpu:.3} | {}; first call {first:.3} s |",
@@ -417,7 +431,7 @@ fn lut_benchmarks() {
             Err(e) => println!("| {size} | gpu | - | - | unavailable: {e} |"),
         }
         let (wall, cpu) = measure(3, || {
-            splitsum::cpu::brdf_lut::brdf_lut(size, size, &quad);
+            splitsum::cpu::brdf_lut::brdf_lut(size, size, &quad, Default::default());
         });
         println!(
             "| {size} | cpu | {wall:.3} | {cpu:.3} | rayon, {} threads |",
@@ -433,7 +447,12 @@ fn lut_benchmarks() {
         let (nv, r) = lut_texel_coords(i, j, 512, 512);
         let (ra, rb) = common::reference_lut(nv as f64, r as f64);
         let err = |v: [f32; 2]| (v[0] as f64 - ra).abs().max((v[1] as f64 - rb).abs());
-        let ours = err(splitsum::cpu::brdf_lut::brdf_lut_texel(nv, r, &quad));
+        let ours = err(splitsum::cpu::brdf_lut::brdf_lut_texel(
+            nv,
+            r,
+            &quad,
+            Default::default(),
+        ));
         let mc = err(monte_carlo_texel(nv, r, 1024));
         worst = [worst[0].max(ours), worst[1].max(mc)];
     }
@@ -442,7 +461,12 @@ fn lut_benchmarks() {
         let err = |v: [f32; 2]| (v[0] as f64 - ra).abs().max((v[1] as f64 - rb).abs());
         println!(
             "| {nv} | {r} | {:.1e} | {:.1e} |",
-            err(splitsum::cpu::brdf_lut::brdf_lut_texel(nv, r, &quad)),
+            err(splitsum::cpu::brdf_lut::brdf_lut_texel(
+                nv,
+                r,
+                &quad,
+                Default::default()
+            )),
             err(monte_carlo_texel(nv, r, 1024))
         );
     }

@@ -10,18 +10,38 @@ struct LutParams {
     phi_rule: vec2<u32>,
     panel_growth: f32,
     max_panels: u32,
+    visibility: u32,          // 0 Schlick-GGX, 1 height-correlated Smith (src/lut.rs)
+    channel_layout: u32,      // 0 (A, B), 1 multiscatter (B, A + B)
 }
 
 @group(0) @binding(0) var<uniform> params: LutParams;
 @group(0) @binding(1) var<storage, read> rules: array<vec2<f32>>;   // (x, w) on [0, 1]
 @group(0) @binding(2) var output: texture_storage_2d<rgba32float, write>;
 
+// g_vis: G1(n.v)/(n.v) for Schlick-GGX, Lambda'(v) for the correlated visibility.
 struct LutTexel {
     cos_v: f32,
     sin_v: f32,
     alpha2: f32,
     k: f32,
     g_vis: f32,
+    visibility: u32,
+}
+
+// 4 V (n.l): f (n.l) / pdf(l) = 4 V (n.l) F (v.h)/(n.h) for pdf(l) = D (n.h) / (4 v.h).
+fn lut_visibility(tx: LutTexel, n_dot_l: f32) -> f32 {
+    if (tx.visibility == 1u) {
+        return smith_correlated_4v_n_dot_l(tx.cos_v, n_dot_l, tx.alpha2, tx.g_vis);
+    }
+    return g1_schlick_ggx(n_dot_l, tx.k) * tx.g_vis;
+}
+
+// The stored pair for the integrals (A, B).
+fn arrange(channel_layout: u32, ab: vec2<f32>) -> vec2<f32> {
+    if (channel_layout == 1u) {
+        return vec2<f32>(ab.y, ab.x + ab.y);
+    }
+    return ab;
 }
 
 // n.v and roughness at the centre of texel (i, j).
@@ -82,8 +102,8 @@ fn integrate_panel(tx: LutTexel, q_a: f32, q_b: f32, full: bool, lower_singular:
             let v_dot_h = tx.sin_v * sin_h * cos(phi) + tx.cos_v * cos_h;
             let n_dot_l = 2.0 * v_dot_h * cos_h - tx.cos_v;
             if (n_dot_l > 0.0) {
-                // f (n.l) / pdf(l) without F = G1(n.l) * G1(n.v)/(n.v) * (v.h)/(n.h)
-                let g = g1_schlick_ggx(n_dot_l, tx.k) * tx.g_vis * v_dot_h / cos_h;
+                // f (n.l) / pdf(l) without F = 4 V (n.l) * (v.h)/(n.h)
+                let g = lut_visibility(tx, n_dot_l) * v_dot_h / cos_h;
                 let fc = fresnel_schlick_weight(v_dot_h);
                 let wgt = weight_panel * pn.y * g;
                 sum += wgt * vec2<f32>(1.0 - fc, fc);
@@ -97,8 +117,12 @@ fn brdf_lut_texel(n_dot_v: f32, roughness: f32) -> vec2<f32> {
     let alpha = alpha_from_roughness(roughness);
     let alpha2 = alpha * alpha;
     let k = k_ibl(roughness);
-    let tx = LutTexel(n_dot_v, sqrt(max(1.0 - n_dot_v * n_dot_v, 0.0)), alpha2, k,
-                      g1_over_n_dot_v(n_dot_v, k));
+    var g_vis = g1_over_n_dot_v(n_dot_v, k);
+    if (params.visibility == 1u) {
+        g_vis = smith_correlated_lambda(n_dot_v, alpha2);
+    }
+    let tx = LutTexel(n_dot_v, sqrt(max(1.0 - n_dot_v * n_dot_v, 0.0)), alpha2, k, g_vis,
+                      params.visibility);
     let theta_v = acos_precise(n_dot_v);
     // Horizon breakpoints in theta_h.
     let theta_full = 0.5 * (FRAC_PI_2 - theta_v);
@@ -125,7 +149,7 @@ fn brdf_lut_texel(n_dot_v: f32, roughness: f32) -> vec2<f32> {
         t0 = t1;
         q0 = q1;
     }
-    return ab;
+    return arrange(params.channel_layout, ab);
 }
 
 @compute @workgroup_size(WORKGROUP_X, WORKGROUP_Y, WORKGROUP_Z)

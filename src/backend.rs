@@ -5,7 +5,7 @@ use crate::cpu::equirect_to_cube::EquirectToCubeParams;
 use crate::cpu::prefilter_specular::SpecularChain;
 use crate::environment::{Cubemap, EquirectIntegral, IrradianceSource};
 use crate::gpu::GpuContext;
-use crate::lut::{validate_lut_size, BrdfLut, LutQuadrature};
+use crate::lut::{validate_lut_size, BrdfLut, LutModel, LutQuadrature};
 use crate::{cpu, gpu, Error, Result};
 
 /// Which backend the user asked for.
@@ -33,8 +33,13 @@ pub trait Backend {
         self.description()
     }
 
-    /// The split-sum BRDF LUT (see [`crate::lut`]).
-    fn brdf_lut(&self, width: u32, height: u32) -> Result<BrdfLut>;
+    /// The BRDF LUT of `model` (see [`crate::lut`]).
+    fn brdf_lut_model(&self, width: u32, height: u32, model: LutModel) -> Result<BrdfLut>;
+
+    /// The split-sum BRDF LUT of the default model (Schlick-GGX scale and bias).
+    fn brdf_lut(&self, width: u32, height: u32) -> Result<BrdfLut> {
+        self.brdf_lut_model(width, height, LutModel::default())
+    }
 
     /// An equirect (one pyramid level, prepared for exact integrals) to a cube of
     /// `params.face_size` with `mips` levels (level 0: each texel the exact footprint mean,
@@ -75,12 +80,13 @@ impl Backend for CpuBackend {
         "cpu".into()
     }
 
-    fn brdf_lut(&self, width: u32, height: u32) -> Result<BrdfLut> {
+    fn brdf_lut_model(&self, width: u32, height: u32, model: LutModel) -> Result<BrdfLut> {
         validate_lut_size(width, height)?;
         Ok(cpu::brdf_lut::brdf_lut(
             width,
             height,
             &LutQuadrature::default(),
+            model,
         ))
     }
 
@@ -133,10 +139,11 @@ impl Backend for GpuBackend {
         format!("gpu: {}", self.ctx.adapter_description())
     }
 
-    fn brdf_lut(&self, width: u32, height: u32) -> Result<BrdfLut> {
+    fn brdf_lut_model(&self, width: u32, height: u32, model: LutModel) -> Result<BrdfLut> {
         validate_lut_size(width, height)?;
         self.ctx.run_kernel("brdf_lut", |device, queue| {
-            gpu::brdf_lut::brdf_lut(device, queue, width, height, &LutQuadrature::default())
+            let quad = LutQuadrature::default();
+            gpu::brdf_lut::brdf_lut(device, queue, width, height, &quad, model)
         })
     }
 
@@ -198,8 +205,8 @@ impl Backend for SoftwareAdapterBackend {
         )
     }
 
-    fn brdf_lut(&self, width: u32, height: u32) -> Result<BrdfLut> {
-        self.gpu.brdf_lut(width, height)
+    fn brdf_lut_model(&self, width: u32, height: u32, model: LutModel) -> Result<BrdfLut> {
+        self.gpu.brdf_lut_model(width, height, model)
     }
 
     fn equirect_to_cube(

@@ -28,7 +28,7 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Writes the split-sum BRDF lookup table (scale A in R, bias B in G).
+    /// Writes a BRDF lookup table (by default the split-sum scale A in R, bias B in G).
     ///
     /// Texel (i, j) of an N×N table holds n·v = (i+½)/N and roughness r = (j+½)/N; row 0
     /// (r ≈ 0) is the first row stored (top of a PNG), so a shader samples it at
@@ -200,8 +200,37 @@ pub struct LutArgs {
     #[arg(long = "f32")]
     pub f32: bool,
 
+    /// What the two channels hold (README, "LUT models").
+    #[arg(long, value_enum, default_value_t = LutModelArg::SchlickGgx)]
+    pub model: LutModelArg,
+
     #[command(flatten)]
     pub common: CommonArgs,
+}
+
+/// `--model` values of `splitsum lut`.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum LutModelArg {
+    /// (A, B) scale and bias, Smith/Schlick-GGX with k = r²/2 (Karis 2013).
+    SchlickGgx,
+    /// (A, B) with the height-correlated Smith visibility (Heitz 2014).
+    SmithCorrelated,
+    /// (∫Fc·V, ∫V), Schlick-GGX: specular = mix(x, y, f0), energy compensation 1 + f0 (1/y − 1).
+    MultiscatterSchlickGgx,
+    /// (∫Fc·V, ∫V), height-correlated Smith: Filament's DFG (R, G).
+    MultiscatterSmithCorrelated,
+}
+
+impl From<LutModelArg> for splitsum::lut::LutModel {
+    fn from(m: LutModelArg) -> Self {
+        use splitsum::lut::LutModel as M;
+        match m {
+            LutModelArg::SchlickGgx => M::SchlickGgx,
+            LutModelArg::SmithCorrelated => M::SmithCorrelated,
+            LutModelArg::MultiscatterSchlickGgx => M::MultiscatterSchlickGgx,
+            LutModelArg::MultiscatterSmithCorrelated => M::MultiscatterSmithCorrelated,
+        }
+    }
 }
 
 /// Options that read an environment.

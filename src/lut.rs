@@ -55,15 +55,97 @@ pub const MAX_PARTIAL_PANELS: u32 = 64;
 /// Largest LUT edge accepted (per side).
 pub const MAX_LUT_SIZE: u32 = 8192;
 
-/// A BRDF lookup table: `data[j * width + i] = [A, B]` for n·v = (i + ½)/width and
-/// roughness = (j + ½)/height.
+/// The visibility term V of a LUT's integrand f = D V F with GGX D (α = r²).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Visibility {
+    /// Separable Smith with Schlick-GGX G1, k = r²/2 (Karis 2013): V = G1(l) G1(v) / (4 n·l n·v).
+    SchlickGgx = 0,
+    /// Height-correlated Smith-GGX (Heitz 2014): V = 0.5 / (n·l Λ'(v) + n·v Λ'(l)), what
+    /// Filament, three.js and the glTF Sample Viewer use.
+    SmithCorrelated = 1,
+}
+
+/// How a LUT stores its two integrals A = ∫ f/F (1 − Fc)(n·l) and B = ∫ f/F Fc (n·l).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LutLayout {
+    /// (A, B): specular ≈ prefiltered · (F0·A + B) (Karis 2013).
+    ScaleBias = 0,
+    /// (B, A + B) = (∫ Fc V', ∫ V'), Filament's `DFV_Multiscatter` (Karis 2014, Fdez-Agüera
+    /// 2019): specular ≈ prefiltered · mix(x, y, F0), and the multiple-scattering energy
+    /// compensation is 1 + F0 (1/y − 1).
+    Multiscatter = 1,
+}
+
+/// A LUT model: which integrand and which layout (`splitsum lut --model`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum LutModel {
+    /// (A, B) with Smith/Schlick-GGX, k = r²/2: the default, the mission's model.
+    #[default]
+    SchlickGgx,
+    /// (A, B) with the height-correlated Smith visibility.
+    SmithCorrelated,
+    /// (∫ Fc V', ∫ V') with Smith/Schlick-GGX.
+    MultiscatterSchlickGgx,
+    /// (∫ Fc V', ∫ V') with the height-correlated Smith visibility: Filament's DFG (its R
+    /// and G channels).
+    MultiscatterSmithCorrelated,
+}
+
+impl LutModel {
+    /// Every model, in the command line's order.
+    pub const ALL: [LutModel; 4] = [
+        LutModel::SchlickGgx,
+        LutModel::SmithCorrelated,
+        LutModel::MultiscatterSchlickGgx,
+        LutModel::MultiscatterSmithCorrelated,
+    ];
+
+    /// The name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            LutModel::SchlickGgx => "schlick-ggx",
+            LutModel::SmithCorrelated => "smith-correlated",
+            LutModel::MultiscatterSchlickGgx => "multiscatter-schlick-ggx",
+            LutModel::MultiscatterSmithCorrelated => "multiscatter-smith-correlated",
+        }
+    }
+
+    /// The visibility term.
+    pub fn visibility(self) -> Visibility {
+        match self {
+            LutModel::SchlickGgx | LutModel::MultiscatterSchlickGgx => Visibility::SchlickGgx,
+            _ => Visibility::SmithCorrelated,
+        }
+    }
+
+    /// The channel layout.
+    pub fn layout(self) -> LutLayout {
+        match self {
+            LutModel::SchlickGgx | LutModel::SmithCorrelated => LutLayout::ScaleBias,
+            _ => LutLayout::Multiscatter,
+        }
+    }
+}
+
+impl LutLayout {
+    /// The stored pair for the integrals (A, B).
+    pub fn arrange(self, ab: [f32; 2]) -> [f32; 2] {
+        match self {
+            LutLayout::ScaleBias => ab,
+            LutLayout::Multiscatter => [ab[1], ab[0] + ab[1]],
+        }
+    }
+}
+
+/// A BRDF lookup table: `data[j * width + i]` holds the model's two channels (for the
+/// default, [A, B]) for n·v = (i + ½)/width and roughness = (j + ½)/height.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BrdfLut {
     /// Number of n·v columns.
     pub width: u32,
     /// Number of roughness rows.
     pub height: u32,
-    /// Row-major (scale A, bias B) pairs; row 0 is roughness ≈ 0.
+    /// Row-major channel pairs ([`LutModel`]); row 0 is roughness ≈ 0.
     pub data: Vec<[f32; 2]>,
 }
 
@@ -163,8 +245,8 @@ impl LutQuadrature {
         &self.nodes[r.offset as usize..(r.offset + r.count) as usize]
     }
 
-    /// The uniform block the GPU kernel reads, for a width×height table.
-    pub fn params(&self, width: u32, height: u32) -> LutParams {
+    /// The uniform block the GPU kernel reads, for a width×height table of `model`.
+    pub fn params(&self, width: u32, height: u32, model: LutModel) -> LutParams {
         LutParams {
             size: [width, height],
             full_rule: [self.full.offset, self.full.count],
@@ -172,7 +254,8 @@ impl LutQuadrature {
             phi_rule: [self.phi.offset, self.phi.count],
             panel_growth: self.panel_growth,
             max_panels: self.max_panels,
-            _pad: [0; 2],
+            visibility: model.visibility() as u32,
+            channel_layout: model.layout() as u32,
         }
     }
 }
@@ -194,6 +277,8 @@ pub struct LutParams {
     pub panel_growth: f32,
     /// Maximum number of partial panels.
     pub max_panels: u32,
-    /// Pads the block to 16 bytes as uniform buffers require.
-    pub _pad: [u32; 2],
+    /// [`Visibility`] as u32.
+    pub visibility: u32,
+    /// [`LutLayout`] as u32 (`layout` is a reserved word in WGSL).
+    pub channel_layout: u32,
 }

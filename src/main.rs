@@ -313,7 +313,7 @@ fn run_lut(args: LutArgs) -> anyhow::Result<()> {
     let backend = open_backend(&args.common)?;
     let start = Instant::now();
     let lut = backend
-        .brdf_lut(args.size, args.size)
+        .brdf_lut_model(args.size, args.size, args.model.into())
         .context("computing the BRDF LUT")?;
     if args.common.verbose {
         eprintln!(

@@ -1,7 +1,7 @@
 //! Every GPU kernel against its CPU reference.
 mod common;
 
-use splitsum::lut::LutQuadrature;
+use splitsum::lut::{LutModel, LutQuadrature};
 
 /// GPU vs CPU tolerance for the LUT. Both sides run the same quadrature, with the same f32
 /// node tables and the same polynomial acos (`math::trig`), in f32; they differ through
@@ -15,9 +15,14 @@ const LUT_GPU_TOLERANCE: f32 = 5e-5;
 fn brdf_lut_gpu_matches_cpu() {
     let Some(ctx) = common::gpu() else { return };
     let quad = LutQuadrature::default();
-    for (w, h) in [(64u32, 32u32), (128, 128)] {
-        let gpu = splitsum::gpu::brdf_lut::brdf_lut(&ctx.device, &ctx.queue, w, h, &quad).unwrap();
-        let cpu = splitsum::cpu::brdf_lut::brdf_lut(w, h, &quad);
+    let sizes = [(64u32, 32u32), (128, 128)];
+    for (model, (w, h)) in LutModel::ALL
+        .into_iter()
+        .flat_map(|m| sizes.map(|s| (m, s)))
+    {
+        let gpu =
+            splitsum::gpu::brdf_lut::brdf_lut(&ctx.device, &ctx.queue, w, h, &quad, model).unwrap();
+        let cpu = splitsum::cpu::brdf_lut::brdf_lut(w, h, &quad, model);
         assert_eq!((gpu.width, gpu.height), (w, h));
         let max = gpu
             .data
@@ -26,9 +31,10 @@ fn brdf_lut_gpu_matches_cpu() {
             .map(|(g, c)| (g[0] - c[0]).abs().max((g[1] - c[1]).abs()))
             .fold(0.0f32, f32::max);
         println!(
-            "{w}x{h} on {}: max |gpu - cpu| = {max:.2e}",
+            "{} {w}x{h} on {}: max |gpu - cpu| = {max:.2e}",
+            model.name(),
             ctx.adapter_description()
         );
-        assert!(max <= LUT_GPU_TOLERANCE, "{w}x{h}: {max}");
+        assert!(max <= LUT_GPU_TOLERANCE, "{} {w}x{h}: {max}", model.name());
     }
 }

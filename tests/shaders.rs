@@ -53,6 +53,8 @@ fn lut_params_layout_matches_rust() {
         ("phi_rule", offset_of!(LutParams, phi_rule)),
         ("panel_growth", offset_of!(LutParams, panel_growth)),
         ("max_panels", offset_of!(LutParams, max_panels)),
+        ("visibility", offset_of!(LutParams, visibility)),
+        ("channel_layout", offset_of!(LutParams, channel_layout)),
     ];
     assert_eq!(members.len(), rust.len());
     for ((wname, woff), (rname, roff)) in members.iter().zip(rust) {

@@ -7,7 +7,7 @@ use splitsum::lut::{BrdfLut, LutQuadrature};
 
 /// A small non-square LUT, so a transposed writer would show.
 fn small_lut() -> BrdfLut {
-    splitsum::cpu::brdf_lut::brdf_lut(24, 10, &LutQuadrature::default())
+    splitsum::cpu::brdf_lut::brdf_lut(24, 10, &LutQuadrature::default(), Default::default())
 }
 
 /// A file in a folder of its own (tests run in parallel and each clears its folder).

@@ -30,6 +30,17 @@ fn g1_over_n_dot_v(n_dot_v: f32, k: f32) -> f32 {
     return 1.0 / (n_dot_v * (1.0 - k) + k);
 }
 
+// Lambda'(x) = sqrt((n.x)^2 (1 - a^2) + a^2) of the height-correlated Smith-GGX visibility
+// (Heitz 2014, eq. 99).
+fn smith_correlated_lambda(n_dot_x: f32, alpha2: f32) -> f32 {
+    return sqrt(n_dot_x * n_dot_x * (1.0 - alpha2) + alpha2);
+}
+
+// 4 V (n.l) for V = 0.5 / (n.l Lambda'(v) + n.v Lambda'(l)): finite at grazing n.v.
+fn smith_correlated_4v_n_dot_l(n_dot_v: f32, n_dot_l: f32, alpha2: f32, lambda_v: f32) -> f32 {
+    return 2.0 * n_dot_l / (n_dot_l * lambda_v + n_dot_v * smith_correlated_lambda(n_dot_l, alpha2));
+}
+
 // Fresnel-Schlick weight (1 - v.h)^5: F = F0 (1 - w) + w (Schlick 1994).
 fn fresnel_schlick_weight(v_dot_h: f32) -> f32 {
     let m = clamp(1.0 - v_dot_h, 0.0, 1.0);

@@ -6,20 +6,33 @@ use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
 use rayon::prelude::*;
 
-use crate::lut::{lut_texel_coords, BrdfLut, LutQuadrature};
+use crate::lut::{lut_texel_coords, BrdfLut, LutModel, LutQuadrature, Visibility};
 use crate::math::brdf::{
     alpha_from_roughness, fresnel_schlick_weight, g1_over_n_dot_v, g1_schlick_ggx, k_ibl,
+    smith_correlated_4v_n_dot_l, smith_correlated_lambda,
 };
 use crate::math::sampling::{ggx_q_from_theta, ggx_theta_from_q};
 use crate::math::trig::acos_precise;
 
-/// Per-texel constants of the integrand.
+/// Per-texel constants of the integrand. `g_vis` is the view-side factor of the
+/// visibility: G1(n·v)/(n·v) for Schlick-GGX, Λ'(v) for the correlated form.
 struct LutTexel {
     cos_v: f32,
     sin_v: f32,
     alpha2: f32,
     k: f32,
     g_vis: f32,
+    visibility: Visibility,
+}
+
+/// 4 V (n·l): f (n·l) / pdf(l) = 4 V (n·l) · F · (v·h)/(n·h) for pdf(l) = D (n·h) / (4 v·h).
+fn lut_visibility(tx: &LutTexel, n_dot_l: f32) -> f32 {
+    match tx.visibility {
+        Visibility::SchlickGgx => g1_schlick_ggx(n_dot_l, tx.k) * tx.g_vis,
+        Visibility::SmithCorrelated => {
+            smith_correlated_4v_n_dot_l(tx.cos_v, n_dot_l, tx.alpha2, tx.g_vis)
+        }
+    }
 }
 
 /// Maps a Gauss-Legendre abscissa t ∈ [0, 1] to the panel variable x ∈ [0, 1] and returns
@@ -93,8 +106,8 @@ fn integrate_panel(
             let v_dot_h = tx.sin_v * sin_h * phi.cos() + tx.cos_v * cos_h;
             let n_dot_l = 2.0 * v_dot_h * cos_h - tx.cos_v;
             if n_dot_l > 0.0 {
-                // f (n·l) / pdf(l) without F = G1(n·l) · G1(n·v)/(n·v) · (v·h)/(n·h)
-                let g = g1_schlick_ggx(n_dot_l, tx.k) * tx.g_vis * v_dot_h / cos_h;
+                // f (n·l) / pdf(l) without F = 4 V (n·l) · (v·h)/(n·h)
+                let g = lut_visibility(tx, n_dot_l) * v_dot_h / cos_h;
                 let fc = fresnel_schlick_weight(v_dot_h);
                 let wgt = weight_panel * wp * g;
                 sum[0] += wgt * (1.0 - fc);
@@ -105,17 +118,27 @@ fn integrate_panel(
     sum
 }
 
-/// (A, B) for one (n·v, roughness) pair.
-pub fn brdf_lut_texel(n_dot_v: f32, roughness: f32, quad: &LutQuadrature) -> [f32; 2] {
+/// The model's two channels for one (n·v, roughness) pair (see [`LutModel`]).
+pub fn brdf_lut_texel(
+    n_dot_v: f32,
+    roughness: f32,
+    quad: &LutQuadrature,
+    model: LutModel,
+) -> [f32; 2] {
     let alpha = alpha_from_roughness(roughness);
     let alpha2 = alpha * alpha;
     let k = k_ibl(roughness);
+    let visibility = model.visibility();
     let tx = LutTexel {
         cos_v: n_dot_v,
         sin_v: (1.0 - n_dot_v * n_dot_v).max(0.0).sqrt(),
         alpha2,
         k,
-        g_vis: g1_over_n_dot_v(n_dot_v, k),
+        g_vis: match visibility {
+            Visibility::SchlickGgx => g1_over_n_dot_v(n_dot_v, k),
+            Visibility::SmithCorrelated => smith_correlated_lambda(n_dot_v, alpha2),
+        },
+        visibility,
     };
     let theta_v = acos_precise(n_dot_v);
     // Horizon breakpoints in θh (see crate::lut).
@@ -148,18 +171,18 @@ pub fn brdf_lut_texel(n_dot_v: f32, roughness: f32, quad: &LutQuadrature) -> [f3
         t0 = t1;
         q0 = q1;
     }
-    ab
+    model.layout().arrange(ab)
 }
 
-/// The whole LUT on the CPU (rayon over rows).
-pub fn brdf_lut(width: u32, height: u32, quad: &LutQuadrature) -> BrdfLut {
+/// The whole LUT of `model` on the CPU (rayon over rows).
+pub fn brdf_lut(width: u32, height: u32, quad: &LutQuadrature, model: LutModel) -> BrdfLut {
     let mut data = vec![[0.0f32; 2]; (width * height) as usize];
     data.par_chunks_mut(width as usize)
         .enumerate()
         .for_each(|(j, row)| {
             for (i, texel) in row.iter_mut().enumerate() {
                 let (n_dot_v, roughness) = lut_texel_coords(i as u32, j as u32, width, height);
-                *texel = brdf_lut_texel(n_dot_v, roughness, quad);
+                *texel = brdf_lut_texel(n_dot_v, roughness, quad, model);
             }
         });
     BrdfLut {

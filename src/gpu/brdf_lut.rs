@@ -2,23 +2,24 @@
 
 use crate::gpu::compute::{buffer_with_data, read_texture_level, with_error_scope, ComputeKernel};
 use crate::gpu::shaders;
-use crate::lut::{BrdfLut, LutQuadrature};
+use crate::lut::{BrdfLut, LutModel, LutQuadrature};
 use crate::Result;
 
 /// Workgroup of the LUT kernel (x = n·v, y = roughness).
 pub const WORKGROUP: [u32; 3] = [8, 8, 1];
 
-/// Computes a width×height LUT on the GPU.
+/// Computes a width×height LUT of `model` on the GPU.
 pub fn brdf_lut(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     width: u32,
     height: u32,
     quad: &LutQuadrature,
+    model: LutModel,
 ) -> Result<BrdfLut> {
     let kernel = ComputeKernel::new(device, "brdf_lut", shaders::BRDF_LUT, WORKGROUP)?;
     let texture = with_error_scope(device, "brdf_lut dispatch", || {
-        let params = quad.params(width, height);
+        let params = quad.params(width, height, model);
         let uniform = buffer_with_data(
             device,
             "lut params",

@@ -36,6 +36,21 @@ pub fn g1_over_n_dot_v(n_dot_v: f32, k: f32) -> f32 {
     1.0 / (n_dot_v * (1.0 - k) + k)
 }
 
+/// Λ'(x) = √((n·x)² (1 − α²) + α²), the per-direction term of the height-correlated
+/// Smith-GGX visibility (Heitz 2014, "Understanding the Masking-Shadowing Function",
+/// eq. 99; Filament's `V_SmithGGXCorrelated`).
+pub fn smith_correlated_lambda(n_dot_x: f32, alpha2: f32) -> f32 {
+    (n_dot_x * n_dot_x * (1.0 - alpha2) + alpha2).sqrt()
+}
+
+/// 4 V (n·l) for the height-correlated Smith-GGX visibility
+/// V = 0.5 / (n·l Λ'(v) + n·v Λ'(l)) (Heitz 2014): 2 n·l / (n·l Λ'(v) + n·v Λ'(l)),
+/// with `lambda_v` = Λ'(v) precomputed. Finite at grazing n·v (→ 2/α), like
+/// [`g1_over_n_dot_v`] for the uncorrelated form.
+pub fn smith_correlated_4v_n_dot_l(n_dot_v: f32, n_dot_l: f32, alpha2: f32, lambda_v: f32) -> f32 {
+    2.0 * n_dot_l / (n_dot_l * lambda_v + n_dot_v * smith_correlated_lambda(n_dot_l, alpha2))
+}
+
 /// The Fresnel-Schlick weight (1 − v·h)⁵: F = F0 + (1 − F0)·w = F0 (1 − w) + w (Schlick 1994).
 pub fn fresnel_schlick_weight(v_dot_h: f32) -> f32 {
     let m = (1.0 - v_dot_h).clamp(0.0, 1.0);

@@ -72,11 +72,46 @@ pub fn adaptive(f: &mut dyn FnMut(f64) -> f64, a: f64, b: f64, tol: f64) -> f64 
 /// where n·l reaches 0 (found by bisection), and the u range at θh = (π/2 ∓ θv)/2, so the
 /// adaptive rule never straddles the horizon kink.
 pub fn reference_lut(n_dot_v: f64, roughness: f64) -> (f64, f64) {
+    reference_integrals(n_dot_v, roughness, splitsum::lut::Visibility::SchlickGgx)
+}
+
+/// [`reference_lut`] for `model`, in the model's channel layout: (A, B), or (B, A + B) for
+/// the multiscatter layout (Filament's `DFV_Multiscatter`). The height-correlated
+/// visibility is V = 0.5 / (n·l √(n·v² (1 − α²) + α²) + n·v √(n·l² (1 − α²) + α²))
+/// (Heitz 2014, eq. 99), written here from the paper.
+pub fn reference_lut_model(
+    n_dot_v: f64,
+    roughness: f64,
+    model: splitsum::lut::LutModel,
+) -> (f64, f64) {
+    let (a, b) = reference_integrals(n_dot_v, roughness, model.visibility());
+    match model.layout() {
+        splitsum::lut::LutLayout::ScaleBias => (a, b),
+        splitsum::lut::LutLayout::Multiscatter => (b, a + b),
+    }
+}
+
+/// A = ∫ f/F (1 − Fc)(n·l) dl and B = ∫ f/F Fc (n·l) dl with `visibility`.
+fn reference_integrals(
+    n_dot_v: f64,
+    roughness: f64,
+    visibility: splitsum::lut::Visibility,
+) -> (f64, f64) {
     let alpha = roughness * roughness;
     let a2 = alpha * alpha;
     let k = alpha / 2.0;
     let v = [(1.0 - n_dot_v * n_dot_v).sqrt(), 0.0, n_dot_v];
     let g1 = |x: f64| x / (x * (1.0 - k) + k);
+    // G = 4 V (n·l)(n·v), so that f = D G F / (4 (n·l)(n·v)) for both forms.
+    let g2 = |n_dot_l: f64| match visibility {
+        splitsum::lut::Visibility::SchlickGgx => g1(n_dot_l) * g1(n_dot_v),
+        splitsum::lut::Visibility::SmithCorrelated => {
+            let lv = (n_dot_v * n_dot_v * (1.0 - a2) + a2).sqrt();
+            let ll = (n_dot_l * n_dot_l * (1.0 - a2) + a2).sqrt();
+            let vis = 0.5 / (n_dot_l * lv + n_dot_v * ll);
+            4.0 * vis * n_dot_l * n_dot_v
+        }
+    };
     let integrand = |u: f64, phi: f64| -> (f64, f64) {
         let den = (1.0 - u) + a2 * u;
         let ct = ((1.0 - u) / den).sqrt();
@@ -88,7 +123,7 @@ pub fn reference_lut(n_dot_v: f64, roughness: f64) -> (f64, f64) {
             return (0.0, 0.0);
         }
         let d = a2 / (PI * (ct * ct * (a2 - 1.0) + 1.0).powi(2));
-        let g = g1(n_dot_l) * g1(n_dot_v);
+        let g = g2(n_dot_l);
         let f_no_fresnel = d * g / (4.0 * n_dot_l * n_dot_v);
         let pdf_l = d * ct / (4.0 * v_dot_h);
         let val = f_no_fresnel * n_dot_l / pdf_l;
@@ -218,11 +253,28 @@ pub fn worst_lut_error(
     texels: &[(u32, u32)],
     lut_texel: impl Fn(f32, f32) -> [f32; 2],
 ) -> (f64, (u32, u32)) {
+    worst_model_error(
+        width,
+        height,
+        texels,
+        splitsum::lut::LutModel::SchlickGgx,
+        lut_texel,
+    )
+}
+
+/// [`worst_lut_error`] against [`reference_lut_model`] for `model`.
+pub fn worst_model_error(
+    width: u32,
+    height: u32,
+    texels: &[(u32, u32)],
+    model: splitsum::lut::LutModel,
+    lut_texel: impl Fn(f32, f32) -> [f32; 2],
+) -> (f64, (u32, u32)) {
     let mut worst = (0.0f64, (0, 0));
     for &(i, j) in texels {
         let (nv, r) = splitsum::lut::lut_texel_coords(i, j, width, height);
         let got = lut_texel(nv, r);
-        let (ra, rb) = reference_lut(nv as f64, r as f64);
+        let (ra, rb) = reference_lut_model(nv as f64, r as f64, model);
         let err = (got[0] as f64 - ra).abs().max((got[1] as f64 - rb).abs());
         if err > worst.0 {
             worst = (err, (i, j));
