@@ -134,3 +134,78 @@ fn every_model_keeps_the_albedo_identities() {
         }
     }
 }
+
+/// Filament's DFG as cmgen writes it (`--ibl-dfg`, 1024 Hammersley samples per texel),
+/// against splitsum's model of the same definition and against the converged reference.
+/// cmgen (Debian `libfilament-tools`) is not a dependency, so this runs on demand where it
+/// is installed: `cargo test --release --test lut_accuracy filament_dfg -- --ignored
+/// --nocapture`. cmgen's row y of an h-row table holds roughness min(1, (h − y + ½)/h)
+/// (CubemapIBL.cpp `DFG`), n·v = (x + ½)/w, and α = roughness².
+#[test]
+#[ignore]
+fn filament_dfg_against_cmgen() {
+    use exr::prelude::*;
+    let Ok(cmgen) = which_cmgen() else {
+        eprintln!("cmgen not found; skipping");
+        return;
+    };
+    let dir = common::output_dir("lut-cmgen");
+    let n = 128usize;
+    for (model, extra) in [
+        (LutModel::SmithCorrelated, None),
+        (LutModel::MultiscatterSmithCorrelated, Some("--ibl-dfg-multiscatter")),
+    ] {
+        let path = dir.join(format!("{}.exr", model.name()));
+        let mut cmd = std::process::Command::new(&cmgen);
+        cmd.arg(format!("--ibl-dfg={}", path.display()))
+            .arg(format!("--size={n}"));
+        if let Some(e) = extra {
+            cmd.arg(e);
+        }
+        assert!(cmd.output().unwrap().status.success());
+        let image = read_first_rgba_layer_from_file(
+            &path,
+            |res, _| vec![[0f32; 2]; res.width() * res.height()],
+            move |px: &mut Vec<[f32; 2]>, pos, (r, g, _b, _a): (f32, f32, f32, f32)| {
+                px[pos.y() * n + pos.x()] = [r, g];
+            },
+        )
+        .unwrap();
+        let data = image.layer_data.channel_data.pixels;
+        let quad = LutQuadrature::default();
+        let (mut vs_ours, mut vs_ref, mut ours_vs_ref) = (0.0f64, 0.0f64, 0.0f64);
+        for y in (0..n).step_by(3) {
+            let r = ((n - y) as f32 + 0.5) / n as f32;
+            let r = r.min(1.0);
+            for x in (0..n).step_by(3) {
+                let nv = (x as f32 + 0.5) / n as f32;
+                let theirs = data[y * n + x];
+                let ours = brdf_lut_texel(nv, r, &quad, model);
+                let (ra, rb) = common::reference_lut_model(nv as f64, r as f64, model);
+                for c in 0..2 {
+                    let reference = [ra, rb][c];
+                    vs_ours = vs_ours.max((theirs[c] - ours[c]).abs() as f64);
+                    vs_ref = vs_ref.max((theirs[c] as f64 - reference).abs());
+                    ours_vs_ref = ours_vs_ref.max((ours[c] as f64 - reference).abs());
+                }
+            }
+        }
+        println!(
+            "{}: cmgen vs splitsum max |Δ| {vs_ours:.2e}, cmgen vs converged {vs_ref:.2e}, splitsum vs converged {ours_vs_ref:.2e}",
+            model.name()
+        );
+        // Matching the peer to its own accuracy: the two differ by no more than cmgen's
+        // own error plus splitsum's.
+        assert!(vs_ours <= vs_ref + ours_vs_ref + 1e-6);
+    }
+}
+
+fn which_cmgen() -> Result<std::path::PathBuf, ()> {
+    std::env::var_os("PATH")
+        .and_then(|p| {
+            std::env::split_paths(&p)
+                .map(|d| d.join("cmgen"))
+                .find(|c| c.is_file())
+        })
+        .ok_or(())
+}

@@ -1,0 +1,706 @@
+//! The Bevy engine check: bakes the bundled HDRIs with `splitsum bake --target bevy` (and a
+//! 1024² skybox with `splitsum cubemap --target bevy`) in rgb9e5 + zstd, rgba16f and
+//! rg11b10f, renders them headless with Bevy's own `EnvironmentMapLight` and `Skybox`
+//! (lavapipe or any Vulkan adapter, into float image targets read back with Bevy's
+//! screenshot API), and compares against the HDRI itself:
+//!
+//! - the skybox, looking at the sun, against a direct bilinear equirect lookup of each
+//!   pixel's ray (mean |Δ ln(1 + L)|) and the sun's direction in both;
+//! - a mirror sphere (metallic, roughness 0): the sun's reflected direction against the
+//!   HDRI's sun;
+//! - a white dielectric sphere at roughness 1 against E/π at each pixel's normal (a
+//!   brute-force cosine sum over the HDRI box-reduced to 256×128, energy kept): Bevy's
+//!   diffuse plus specular of a white rough dielectric sums to E/π when the roughest
+//!   specular level is E/π, as splitsum bakes it.
+//!
+//! Bevy's default exposure (EV100 9.7) and `intensity = brightness = 1 / exposure`
+//! (≈ 998, the README's advice) give radiance on screen as in the HDRI.
+//!
+//! Run from the repository root after `cargo build --release`:
+//! `cargo run --manifest-path engines/bevy/Cargo.toml` (SPLITSUM names another binary;
+//! SPLITSUM_TARGET=generic bakes without the target, the negative control: the check then
+//! fails, the sun off by tens of degrees).
+//! Writes renders (PNG, Reinhard-mapped) and results.txt to target/engines/bevy/; exits 1
+//! when a bar is missed.
+
+use std::collections::HashMap;
+use std::f32::consts::PI;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use bevy::app::ScheduleRunnerPlugin;
+use bevy::asset::UntypedAssetId;
+use bevy::camera::visibility::RenderLayers;
+use bevy::camera::{Exposure, Hdr, RenderTarget};
+use bevy::core_pipeline::tonemapping::Tonemapping;
+use bevy::light::{EnvironmentMapLight, GlobalAmbientLight, Skybox};
+use bevy::prelude::*;
+use bevy::render::render_resource::TextureFormat;
+use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
+use bevy::window::ExitCondition;
+
+/// The bars: sun within 1°, skybox mean |Δ ln(1 + L)| ≤ 0.01, the rough sphere
+/// within 2 % of E/π in mean with correlation ≥ 0.99.
+const SUN_DEGREES: f32 = 1.0;
+const SKY_LOG_DIFF: f32 = 0.01;
+const DIFFUSE_BRIGHTNESS: f32 = 0.02;
+const DIFFUSE_CORRELATION: f32 = 0.99;
+
+const HDRIS: [&str; 2] = ["quarry_01_1k", "venice_sunset_1k"];
+/// (pixel format, extra bake arguments): the target's default and the other two Bevy reads.
+const FORMATS: [(&str, &[&str]); 3] = [
+    ("rgb9e5_zstd", &[]),
+    ("rgba16f", &["--pixel-format", "rgba16f"]),
+    ("rg11b10f", &["--pixel-format", "rg11b10f"]),
+];
+const SIZE: u32 = 160;
+/// The mirror sphere is rendered larger: one pixel of it turns the reflected direction by
+/// twice the normal's change.
+const MIRROR_SIZE: u32 = 512;
+/// Vertical field of view of every camera.
+const FOV: f32 = 50.0 * PI / 180.0;
+const SPHERE_DISTANCE: f32 = 4.2;
+const SPHERE_FOV: f32 = 30.0 * PI / 180.0;
+
+/// An equirect in splitsum's convention (u = 0.5 + atan2(z, x)/2π, v = acos(y)/π).
+#[derive(Clone)]
+struct Equirect {
+    width: usize,
+    height: usize,
+    data: Vec<[f32; 3]>,
+}
+
+impl Equirect {
+    fn load(path: &Path) -> Equirect {
+        let img = image::open(path)
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+            .into_rgb32f();
+        Equirect {
+            width: img.width() as usize,
+            height: img.height() as usize,
+            data: img.pixels().map(|p| p.0).collect(),
+        }
+    }
+
+    /// Bilinear lookup (wrapping in u, clamped in v) of direction `d`.
+    fn lookup(&self, d: Vec3) -> [f32; 3] {
+        let u = 0.5 + d.z.atan2(d.x) / (2.0 * PI);
+        let v = d.y.clamp(-1.0, 1.0).acos() / PI;
+        let x = u * self.width as f32 - 0.5;
+        let y = (v * self.height as f32 - 0.5).clamp(0.0, (self.height - 1) as f32);
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let at = |xi: i64, yi: usize| {
+            let xi = xi.rem_euclid(self.width as i64) as usize;
+            self.data[yi.min(self.height - 1) * self.width + xi]
+        };
+        let (xi, yi) = (x0 as i64, y0 as usize);
+        let mut out = [0.0; 3];
+        for c in 0..3 {
+            let top = at(xi, yi)[c] * (1.0 - fx) + at(xi + 1, yi)[c] * fx;
+            let bottom = at(xi, yi + 1)[c] * (1.0 - fx) + at(xi + 1, yi + 1)[c] * fx;
+            out[c] = top * (1.0 - fy) + bottom * fy;
+        }
+        out
+    }
+
+    /// Direction and solid angle of texel (x, y).
+    fn texel(&self, x: usize, y: usize) -> (Vec3, f32) {
+        let (t0, t1) = (
+            PI * y as f32 / self.height as f32,
+            PI * (y + 1) as f32 / self.height as f32,
+        );
+        let theta = 0.5 * (t0 + t1);
+        let phi = 2.0 * PI * ((x as f32 + 0.5) / self.width as f32 - 0.5);
+        let omega = 2.0 * PI / self.width as f32 * (t0.cos() - t1.cos());
+        (
+            Vec3::new(
+                theta.sin() * phi.cos(),
+                theta.cos(),
+                theta.sin() * phi.sin(),
+            ),
+            omega,
+        )
+    }
+
+    /// The sun: luminance-weighted mean direction of the texels above half the maximum.
+    fn sun(&self) -> Vec3 {
+        let max = self.data.iter().map(|&p| luminance(p)).fold(0.0, f32::max);
+        let mut d = Vec3::ZERO;
+        for y in 0..self.height {
+            for x in 0..self.width {
+                let l = luminance(self.data[y * self.width + x]);
+                if l >= 0.5 * max {
+                    let (dir, omega) = self.texel(x, y);
+                    d += dir * l * omega;
+                }
+            }
+        }
+        d.normalize()
+    }
+
+    /// The solid-angle-weighted box reduction by `k` in each axis (energy kept).
+    fn reduce(&self, k: usize) -> Equirect {
+        let (w, h) = (self.width / k, self.height / k);
+        let mut data = vec![[0.0; 3]; w * h];
+        for y in 0..h {
+            for x in 0..w {
+                let (mut sum, mut weight) = ([0.0f32; 3], 0.0);
+                for yy in y * k..(y + 1) * k {
+                    let omega = self.texel(0, yy).1;
+                    for xx in x * k..(x + 1) * k {
+                        let p = self.data[yy * self.width + xx];
+                        for c in 0..3 {
+                            sum[c] += p[c] * omega;
+                        }
+                        weight += omega;
+                    }
+                }
+                data[y * w + x] = sum.map(|s| s / weight);
+            }
+        }
+        Equirect {
+            width: w,
+            height: h,
+            data,
+        }
+    }
+
+    /// E(n)/π, the cosine-weighted sum over every texel.
+    fn irradiance_over_pi(&self, n: Vec3) -> [f32; 3] {
+        let mut e = [0.0f32; 3];
+        for y in 0..self.height {
+            for x in 0..self.width {
+                let (d, omega) = self.texel(x, y);
+                let c = n.dot(d);
+                if c > 0.0 {
+                    let p = self.data[y * self.width + x];
+                    for k in 0..3 {
+                        e[k] += p[k] * c * omega;
+                    }
+                }
+            }
+        }
+        e.map(|v| v / PI)
+    }
+}
+
+fn luminance(p: [f32; 3]) -> f32 {
+    0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]
+}
+
+/// What one camera renders.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+enum View {
+    Sky,
+    Mirror,
+    Rough,
+}
+
+/// One camera of the scene: which bake it shows, how, and where it looks from.
+#[derive(Clone)]
+struct Shot {
+    hdri: &'static str,
+    format: &'static str,
+    view: View,
+    size: u32,
+    transform: Transform,
+    fov: f32,
+    target: Handle<Image>,
+}
+
+impl Shot {
+    fn name(&self) -> String {
+        format!("{}_{}_{:?}", self.hdri, self.format, self.view).to_lowercase()
+    }
+
+    /// The world ray through the centre of pixel (x, y), row 0 at the top.
+    fn ray(&self, x: f32, y: f32) -> Vec3 {
+        let t = (0.5 * self.fov).tan();
+        let ndc_x = 2.0 * (x + 0.5) / self.size as f32 - 1.0;
+        let ndc_y = 1.0 - 2.0 * (y + 0.5) / self.size as f32;
+        (self.transform.rotation * Vec3::new(ndc_x * t, ndc_y * t, -1.0)).normalize()
+    }
+
+    /// Where the ray through pixel (x, y) meets the unit sphere at the origin, if it does.
+    fn sphere_hit(&self, x: f32, y: f32) -> Option<(Vec3, Vec3)> {
+        let o = self.transform.translation;
+        let d = self.ray(x, y);
+        let b = o.dot(d);
+        let disc = b * b - (o.length_squared() - 1.0);
+        (disc > 0.0).then(|| (o + d * (-b - disc.sqrt()), d))
+    }
+}
+
+/// The captures, by shot index, shared with the screenshot observers.
+#[derive(Resource, Clone, Default)]
+struct Captures(Arc<Mutex<HashMap<usize, Vec<Vec<f32>>>>>);
+
+#[derive(Resource)]
+struct Check {
+    shots: Vec<Shot>,
+    assets: Vec<UntypedAssetId>,
+    loaded_at: Option<u32>,
+    frame: u32,
+    started: Instant,
+    out: PathBuf,
+    equirects: HashMap<&'static str, Equirect>,
+}
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn run(cmd: &mut Command) {
+    let status = cmd.status().unwrap_or_else(|e| panic!("{cmd:?}: {e}"));
+    assert!(status.success(), "{cmd:?} failed");
+}
+
+fn bake_everything(splitsum: &Path, bakes: &Path) {
+    let target = std::env::var("SPLITSUM_TARGET").unwrap_or_else(|_| "bevy".into());
+    for (format, extra) in FORMATS {
+        let dir = bakes.join(format);
+        let inputs: Vec<String> = HDRIS
+            .iter()
+            .map(|h| format!("tests/data/{h}.hdr"))
+            .collect();
+        run(Command::new(splitsum)
+            .current_dir(root())
+            .arg("bake")
+            .args(&inputs)
+            .args(["--target", &target, "-q", "--no-sh", "--no-lut", "-o"])
+            .arg(&dir)
+            .args(extra));
+        for h in HDRIS {
+            run(Command::new(splitsum)
+                .current_dir(root())
+                .args([
+                    "cubemap",
+                    &format!("tests/data/{h}.hdr"),
+                    "--target",
+                    &target,
+                ])
+                .args(["--size", "1024", "-o"])
+                .arg(dir.join(format!("{h}_sky.ktx2")))
+                .args(extra));
+        }
+    }
+}
+
+fn main() -> AppExit {
+    let root = root();
+    let out = root.join("target/engines/bevy");
+    let bakes = out.join("bakes");
+    let splitsum = std::env::var_os("SPLITSUM")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| root.join("target/release/splitsum"));
+    assert!(
+        splitsum.exists(),
+        "{} not found: build splitsum first (cargo build --release) or set SPLITSUM",
+        splitsum.display()
+    );
+    std::fs::create_dir_all(&out).unwrap();
+    bake_everything(&splitsum, &bakes);
+    let equirects: HashMap<&'static str, Equirect> = HDRIS
+        .iter()
+        .map(|&h| (h, Equirect::load(&root.join(format!("tests/data/{h}.hdr")))))
+        .collect();
+
+    let mut app = App::new();
+    app.add_plugins(
+        DefaultPlugins
+            .set(WindowPlugin {
+                primary_window: None,
+                exit_condition: ExitCondition::DontExit,
+                ..default()
+            })
+            .set(AssetPlugin {
+                file_path: bakes.to_string_lossy().into_owned(),
+                ..default()
+            }),
+    )
+    .add_plugins(ScheduleRunnerPlugin::run_loop(Duration::from_millis(5)))
+    .insert_resource(GlobalAmbientLight::NONE)
+    .insert_resource(Captures::default())
+    .insert_resource(Check {
+        shots: Vec::new(),
+        assets: Vec::new(),
+        loaded_at: None,
+        frame: 0,
+        started: Instant::now(),
+        out,
+        equirects,
+    })
+    .add_systems(Startup, setup)
+    .add_systems(Update, capture);
+    app.run()
+}
+
+fn setup(
+    mut commands: Commands,
+    assets: Res<AssetServer>,
+    mut images: ResMut<Assets<Image>>,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+    mut check: ResMut<Check>,
+) {
+    let sphere = meshes.add(Sphere::new(1.0).mesh().uv(128, 64));
+    let mirror = materials.add(StandardMaterial {
+        base_color: Color::WHITE,
+        metallic: 1.0,
+        perceptual_roughness: 0.0,
+        ..default()
+    });
+    let rough = materials.add(StandardMaterial {
+        base_color: Color::WHITE,
+        metallic: 0.0,
+        perceptual_roughness: 1.0,
+        ..default()
+    });
+    // Render layer 1: the mirror sphere, 2: the rough sphere, 0 (default): nothing but
+    // the skybox.
+    commands.spawn((
+        Mesh3d(sphere.clone()),
+        MeshMaterial3d(mirror),
+        RenderLayers::layer(1),
+    ));
+    commands.spawn((
+        Mesh3d(sphere),
+        MeshMaterial3d(rough),
+        RenderLayers::layer(2),
+    ));
+
+    // Raw HDRI radiance at Bevy's default exposure: intensity = 1 / exposure (≈ 998).
+    let intensity = 1.0 / Exposure::default().exposure();
+    let mut shots = Vec::new();
+    let mut handles = Vec::new();
+    for hdri in HDRIS {
+        let sun = check.equirects[hdri].sun();
+        // The sphere cameras sit 40° from the sun so each sphere shows its lit and shaded
+        // side; the sky camera is at the origin looking at the sun.
+        let axis = Vec3::Y.cross(sun).normalize();
+        let view_dir = Quat::from_axis_angle(axis, 40f32.to_radians()) * sun;
+        for (format, _) in FORMATS {
+            let specular: Handle<Image> = assets.load(format!("{format}/{hdri}/specular.ktx2"));
+            let diffuse: Handle<Image> = assets.load(format!("{format}/{hdri}/irradiance.ktx2"));
+            let sky: Handle<Image> = assets.load(format!("{format}/{hdri}_sky.ktx2"));
+            handles.extend([
+                specular.id().untyped(),
+                diffuse.id().untyped(),
+                sky.id().untyped(),
+            ]);
+            for view in [View::Sky, View::Mirror, View::Rough] {
+                let size = if view == View::Mirror {
+                    MIRROR_SIZE
+                } else {
+                    SIZE
+                };
+                let target = images.add(Image::new_target_texture(
+                    size,
+                    size,
+                    TextureFormat::Rgba32Float,
+                    None,
+                ));
+                let (transform, fov) = match view {
+                    View::Sky => (Transform::IDENTITY.looking_to(sun, Vec3::Y), FOV),
+                    _ => (
+                        Transform::from_translation(view_dir * SPHERE_DISTANCE)
+                            .looking_at(Vec3::ZERO, Vec3::Y),
+                        SPHERE_FOV,
+                    ),
+                };
+                let mut camera = commands.spawn((
+                    Camera3d::default(),
+                    Camera {
+                        order: shots.len() as isize,
+                        clear_color: ClearColorConfig::Custom(Color::NONE),
+                        ..default()
+                    },
+                    RenderTarget::Image(target.clone().into()),
+                    Projection::Perspective(PerspectiveProjection { fov, ..default() }),
+                    transform,
+                    Hdr,
+                    Tonemapping::None,
+                    Msaa::Off,
+                    Exposure::default(),
+                ));
+                match view {
+                    View::Sky => {
+                        camera.insert((
+                            Skybox {
+                                image: Some(sky.clone()),
+                                brightness: intensity,
+                                ..default()
+                            },
+                            RenderLayers::layer(0),
+                        ));
+                    }
+                    View::Mirror | View::Rough => {
+                        camera.insert((
+                            EnvironmentMapLight {
+                                diffuse_map: diffuse.clone(),
+                                specular_map: specular.clone(),
+                                intensity,
+                                ..default()
+                            },
+                            RenderLayers::layer(if view == View::Mirror { 1 } else { 2 }),
+                        ));
+                    }
+                }
+                shots.push(Shot {
+                    hdri,
+                    format,
+                    view,
+                    size,
+                    transform,
+                    fov,
+                    target,
+                });
+            }
+        }
+    }
+    check.shots = shots;
+    check.assets = handles;
+}
+
+/// Frames between capture rounds once everything has loaded; a shot counts as final when
+/// two rounds in a row are identical (pipelines compile asynchronously, so the first frames
+/// may lack a mesh or a skybox).
+const CAPTURE_EVERY: u32 = 15;
+const TIMEOUT: Duration = Duration::from_secs(600);
+
+fn capture(
+    mut commands: Commands,
+    assets: Res<AssetServer>,
+    captures: Res<Captures>,
+    mut check: ResMut<Check>,
+    mut exit: MessageWriter<AppExit>,
+) {
+    check.frame += 1;
+    if check.started.elapsed() > TIMEOUT {
+        eprintln!("error: no stable renders after {TIMEOUT:?}");
+        exit.write(AppExit::error());
+        return;
+    }
+    for id in &check.assets {
+        if let Some(bevy::asset::LoadState::Failed(e)) = assets.get_load_state(*id) {
+            eprintln!("error: Bevy failed to load an asset: {e}");
+            exit.write(AppExit::error());
+            return;
+        }
+    }
+    if check.loaded_at.is_none() {
+        if check
+            .assets
+            .iter()
+            .all(|id| assets.is_loaded_with_dependencies(*id))
+        {
+            check.loaded_at = Some(check.frame);
+        }
+        return;
+    }
+    let since = check.frame - check.loaded_at.unwrap_or(0);
+    if since % CAPTURE_EVERY != 0 {
+        return;
+    }
+    let stable = {
+        let map = captures.0.lock().unwrap();
+        check.shots.len() == map.len()
+            && map.values().all(|v| {
+                v.len() >= 2
+                    && v[v.len() - 1] == v[v.len() - 2]
+                    && v[v.len() - 1].iter().any(|&x| x > 0.0)
+            })
+    };
+    if stable {
+        let code = evaluate(&check, &captures.0.lock().unwrap());
+        exit.write(AppExit::from_code(code));
+        return;
+    }
+    for (i, shot) in check.shots.iter().enumerate() {
+        let store = captures.0.clone();
+        commands
+            .spawn(Screenshot::image(shot.target.clone()))
+            .observe(move |captured: On<ScreenshotCaptured>| {
+                let floats = captured
+                    .image
+                    .data
+                    .as_deref()
+                    .unwrap_or(&[])
+                    .chunks_exact(4)
+                    .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+                    .collect();
+                store.lock().unwrap().entry(i).or_default().push(floats);
+            });
+    }
+}
+
+/// Pixel (x, y) of an RGBA float capture.
+fn pixel(data: &[f32], size: u32, x: u32, y: u32) -> [f32; 3] {
+    let i = 4 * (y * size + x) as usize;
+    [data[i], data[i + 1], data[i + 2]]
+}
+
+/// Centroid of the pixels above half the maximum luminance (of those `keep` accepts).
+fn bright_centroid(data: &[f32], size: u32, keep: impl Fn(u32, u32) -> bool) -> (f32, f32) {
+    let mut max = 0.0f32;
+    for y in 0..size {
+        for x in 0..size {
+            if keep(x, y) {
+                max = max.max(luminance(pixel(data, size, x, y)));
+            }
+        }
+    }
+    let (mut sx, mut sy, mut sw) = (0.0, 0.0, 0.0);
+    for y in 0..size {
+        for x in 0..size {
+            let l = luminance(pixel(data, size, x, y));
+            if keep(x, y) && l >= 0.5 * max {
+                sx += l * x as f32;
+                sy += l * y as f32;
+                sw += l;
+            }
+        }
+    }
+    (sx / sw, sy / sw)
+}
+
+fn correlation(a: &[f32], b: &[f32]) -> f32 {
+    let n = a.len() as f32;
+    let (ma, mb) = (a.iter().sum::<f32>() / n, b.iter().sum::<f32>() / n);
+    let (mut ab, mut aa, mut bb) = (0.0, 0.0, 0.0);
+    for (x, y) in a.iter().zip(b) {
+        ab += (x - ma) * (y - mb);
+        aa += (x - ma) * (x - ma);
+        bb += (y - mb) * (y - mb);
+    }
+    ab / (aa * bb).sqrt()
+}
+
+/// A Reinhard-mapped 8-bit PNG of a float capture, for people.
+fn save_png(path: &Path, data: &[f32], size: u32) {
+    let mut rgb = Vec::with_capacity((3 * size * size) as usize);
+    for y in 0..size {
+        for x in 0..size {
+            rgb.extend(pixel(data, size, x, y).map(|v| {
+                let v = v.max(0.0);
+                (255.0 * (v / (1.0 + v)).powf(1.0 / 2.2)).round() as u8
+            }));
+        }
+    }
+    let file = std::fs::File::create(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), size, size);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    let mut writer = encoder
+        .write_header()
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    writer
+        .write_image_data(&rgb)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+}
+
+/// Measures every shot against the HDRI, prints and writes the results; the exit code.
+fn evaluate(check: &Check, captures: &HashMap<usize, Vec<Vec<f32>>>) -> u8 {
+    let mut lines = Vec::new();
+    let mut failed = false;
+    let mut report = |ok: bool, text: String| {
+        let line = format!("{} {text}", if ok { "ok  " } else { "FAIL" });
+        println!("{line}");
+        lines.push(line);
+        failed |= !ok;
+    };
+    let reduced: HashMap<&str, Equirect> = check
+        .equirects
+        .iter()
+        .map(|(k, e)| (*k, e.reduce(4)))
+        .collect();
+    for (i, shot) in check.shots.iter().enumerate() {
+        let data = captures[&i].last().unwrap();
+        let e = &check.equirects[shot.hdri];
+        let n = shot.size;
+        save_png(&check.out.join(format!("{}.png", shot.name())), data, n);
+        let label = format!("{} {}", shot.hdri, shot.format);
+        match shot.view {
+            View::Sky => {
+                let mut want = vec![0.0f32; data.len()];
+                let mut diff = 0.0;
+                for y in 0..n {
+                    for x in 0..n {
+                        let w = e.lookup(shot.ray(x as f32, y as f32));
+                        let g = pixel(data, n, x, y);
+                        let k = 4 * (y * n + x) as usize;
+                        want[k..k + 3].copy_from_slice(&w);
+                        for c in 0..3 {
+                            diff += ((1.0 + g[c]).ln() - (1.0 + w[c]).ln()).abs();
+                        }
+                    }
+                }
+                diff /= (3 * n * n) as f32;
+                save_png(
+                    &check.out.join(format!("{}_equirect.png", shot.name())),
+                    &want,
+                    n,
+                );
+                let (gx, gy) = bright_centroid(data, n, |_, _| true);
+                let (wx, wy) = bright_centroid(&want, n, |_, _| true);
+                let angle = shot
+                    .ray(gx, gy)
+                    .angle_between(shot.ray(wx, wy))
+                    .to_degrees();
+                report(
+                    angle <= SUN_DEGREES && diff <= SKY_LOG_DIFF,
+                    format!("{label}: skybox sun {angle:.2}° from the equirect lookup's (bar {SUN_DEGREES}°), mean |Δ ln(1+L)| {diff:.4} (bar {SKY_LOG_DIFF})"),
+                );
+            }
+            View::Mirror => {
+                let on = |x: u32, y: u32| {
+                    shot.sphere_hit(x as f32, y as f32)
+                        .is_some_and(|(p, d)| -d.dot(p) > 0.2)
+                };
+                let (cx, cy) = bright_centroid(data, n, on);
+                let reflected = shot
+                    .sphere_hit(cx, cy)
+                    .map(|(p, d)| d - 2.0 * d.dot(p) * p)
+                    .unwrap_or(Vec3::ZERO);
+                let angle = reflected.angle_between(e.sun()).to_degrees();
+                report(
+                    angle <= SUN_DEGREES,
+                    format!("{label}: mirror sphere reflects the sun {angle:.2}° from the HDRI's sun (bar {SUN_DEGREES}°)"),
+                );
+            }
+            View::Rough => {
+                let r = &reduced[shot.hdri];
+                let (mut got, mut want) = (Vec::new(), Vec::new());
+                for y in 0..n {
+                    for x in 0..n {
+                        if let Some((p, d)) = shot.sphere_hit(x as f32, y as f32) {
+                            // Away from the silhouette, where a pixel straddles the edge.
+                            if -d.dot(p) > 0.2 {
+                                got.push(luminance(pixel(data, n, x, y)));
+                                want.push(luminance(r.irradiance_over_pi(p)));
+                            }
+                        }
+                    }
+                }
+                let ratio = got.iter().sum::<f32>() / want.iter().sum::<f32>();
+                let corr = correlation(&got, &want);
+                report(
+                    (ratio - 1.0).abs() <= DIFFUSE_BRIGHTNESS && corr >= DIFFUSE_CORRELATION,
+                    format!(
+                        "{label}: white dielectric r = 1 is {:+.2} % from E/π (bar {:.0} %), correlation {corr:.4} (bar {DIFFUSE_CORRELATION}), {} pixels",
+                        100.0 * (ratio - 1.0),
+                        100.0 * DIFFUSE_BRIGHTNESS,
+                        got.len()
+                    ),
+                );
+            }
+        }
+    }
+    let text = lines.join("\n") + "\n";
+    std::fs::write(check.out.join("results.txt"), text).unwrap();
+    println!("renders and results.txt in {}", check.out.display());
+    u8::from(failed)
+}
