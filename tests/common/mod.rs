@@ -251,7 +251,7 @@ pub fn worst_lut_error(
     width: u32,
     height: u32,
     texels: &[(u32, u32)],
-    lut_texel: impl Fn(f32, f32) -> [f32; 2],
+    lut_texel: impl Fn(f32, f32) -> [f32; 2] + Sync,
 ) -> (f64, (u32, u32)) {
     worst_model_error(
         width,
@@ -268,19 +268,19 @@ pub fn worst_model_error(
     height: u32,
     texels: &[(u32, u32)],
     model: splitsum::lut::LutModel,
-    lut_texel: impl Fn(f32, f32) -> [f32; 2],
+    lut_texel: impl Fn(f32, f32) -> [f32; 2] + Sync,
 ) -> (f64, (u32, u32)) {
-    let mut worst = (0.0f64, (0, 0));
-    for &(i, j) in texels {
-        let (nv, r) = splitsum::lut::lut_texel_coords(i, j, width, height);
-        let got = lut_texel(nv, r);
-        let (ra, rb) = reference_lut_model(nv as f64, r as f64, model);
-        let err = (got[0] as f64 - ra).abs().max((got[1] as f64 - rb).abs());
-        if err > worst.0 {
-            worst = (err, (i, j));
-        }
-    }
-    worst
+    use rayon::prelude::*;
+    texels
+        .par_iter()
+        .map(|&(i, j)| {
+            let (nv, r) = splitsum::lut::lut_texel_coords(i, j, width, height);
+            let got = lut_texel(nv, r);
+            let (ra, rb) = reference_lut_model(nv as f64, r as f64, model);
+            let err = (got[0] as f64 - ra).abs().max((got[1] as f64 - rb).abs());
+            (err, (i, j))
+        })
+        .reduce(|| (0.0f64, (0, 0)), |a, b| if b.0 > a.0 { b } else { a })
 }
 
 /// An HDRI from `tests/data` as an equirect (the tests' real environments).
