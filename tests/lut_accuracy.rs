@@ -153,7 +153,10 @@ fn filament_dfg_against_cmgen() {
     let n = 128usize;
     for (model, extra) in [
         (LutModel::SmithCorrelated, None),
-        (LutModel::MultiscatterSmithCorrelated, Some("--ibl-dfg-multiscatter")),
+        (
+            LutModel::MultiscatterSmithCorrelated,
+            Some("--ibl-dfg-multiscatter"),
+        ),
     ] {
         let path = dir.join(format!("{}.exr", model.name()));
         let mut cmd = std::process::Command::new(&cmgen);

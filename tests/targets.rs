@@ -288,7 +288,13 @@ fn cubemap_targets_mirror_and_refuse_an_equirect() {
 fn bevy_warns_about_rgba32f() {
     let dir = common::output_dir("targets-bevy-32f");
     let o = splitsum()
-        .args(["bake", "tests/data/venice_sunset_1k.hdr", "--backend", "cpu", "-q"])
+        .args([
+            "bake",
+            "tests/data/venice_sunset_1k.hdr",
+            "--backend",
+            "cpu",
+            "-q",
+        ])
         .args(["--specular-size", "16", "--irradiance-size", "8"])
         .args(["--target", "bevy", "--pixel-format", "rgba32f", "-o"])
         .arg(&dir)
@@ -296,6 +302,9 @@ fn bevy_warns_about_rgba32f() {
         .unwrap();
     assert!(o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("warning: --target bevy: rgba32f is not filterable"), "{err}");
+    assert!(
+        err.contains("warning: --target bevy: rgba32f is not filterable"),
+        "{err}"
+    );
     assert!(dir.join("venice_sunset_1k/specular.ktx2").exists());
 }
