@@ -11,7 +11,8 @@ struct LutParams {
     panel_growth: f32,
     max_panels: u32,
     visibility: u32,          // 0 Schlick-GGX, 1 height-correlated Smith (src/lut.rs)
-    channel_layout: u32,      // 0 (A, B), 1 multiscatter (B, A + B)
+    channel_layout: u32,      // 0 (A, B), 1 multiscatter (B, A + B), 2 albedo (A + B, 0)
+    distribution: u32,        // 0 GGX, 1 Charlie
 }
 
 @group(0) @binding(0) var<uniform> params: LutParams;
@@ -26,12 +27,34 @@ struct LutTexel {
     k: f32,
     g_vis: f32,
     visibility: u32,
+    alpha: f32,
+    distribution: u32,
+}
+
+// q at polar angle theta of the half vector, in the texel's distribution.
+fn lut_q_at_theta(tx: LutTexel, theta: f32) -> f32 {
+    if (tx.distribution == 1u) {
+        let c = cos(theta);
+        return charlie_q_from_theta(c * c, tx.alpha);
+    }
+    return ggx_q_at_theta(theta, tx.alpha2);
+}
+
+// (cos^2, sin^2) of the half vector at q, in the texel's distribution.
+fn lut_theta_from_q(tx: LutTexel, q: f32) -> vec2<f32> {
+    if (tx.distribution == 1u) {
+        return charlie_theta_from_q(q, tx.alpha);
+    }
+    return ggx_theta_from_q(q, tx.alpha2);
 }
 
 // 4 V (n.l): f (n.l) / pdf(l) = 4 V (n.l) F (v.h)/(n.h) for pdf(l) = D (n.h) / (4 v.h).
 fn lut_visibility(tx: LutTexel, n_dot_l: f32) -> f32 {
     if (tx.visibility == 1u) {
         return smith_correlated_4v_n_dot_l(tx.cos_v, n_dot_l, tx.alpha2, tx.g_vis);
+    }
+    if (tx.visibility == 2u) {
+        return ashikhmin_4v_n_dot_l(tx.cos_v, n_dot_l);
     }
     return g1_schlick_ggx(n_dot_l, tx.k) * tx.g_vis;
 }
@@ -40,6 +63,9 @@ fn lut_visibility(tx: LutTexel, n_dot_l: f32) -> f32 {
 fn arrange(channel_layout: u32, ab: vec2<f32>) -> vec2<f32> {
     if (channel_layout == 1u) {
         return vec2<f32>(ab.y, ab.x + ab.y);
+    }
+    if (channel_layout == 2u) {
+        return vec2<f32>(ab.x + ab.y, 0.0);
     }
     return ab;
 }
@@ -87,7 +113,7 @@ fn integrate_panel(tx: LutTexel, q_a: f32, q_b: f32, full: bool, lower_singular:
         let xm = panel_map(node.x, lower_singular, upper_singular);
         let q = q_a - width * xm.x;
         let weight_q = width * node.y * xm.y;
-        let cs2 = ggx_theta_from_q(q, tx.alpha2);
+        let cs2 = lut_theta_from_q(tx, q);
         let cos_h = sqrt(cs2.x);
         let sin_h = sqrt(cs2.y);
         var phi_max = PI;
@@ -120,16 +146,18 @@ fn brdf_lut_texel(n_dot_v: f32, roughness: f32) -> vec2<f32> {
     var g_vis = g1_over_n_dot_v(n_dot_v, k);
     if (params.visibility == 1u) {
         g_vis = smith_correlated_lambda(n_dot_v, alpha2);
+    } else if (params.visibility == 2u) {
+        g_vis = 0.0;
     }
     let tx = LutTexel(n_dot_v, sqrt(max(1.0 - n_dot_v * n_dot_v, 0.0)), alpha2, k, g_vis,
-                      params.visibility);
+                      params.visibility, alpha, params.distribution);
     let theta_v = acos_precise(n_dot_v);
     // Horizon breakpoints in theta_h.
     let theta_full = 0.5 * (FRAC_PI_2 - theta_v);
     let theta_end = 0.5 * (FRAC_PI_2 + theta_v);
 
-    let q_full = ggx_q_at_theta(theta_full, alpha2);
-    let q_mid = ggx_q_at_theta(theta_full / params.panel_growth, alpha2);
+    let q_full = lut_q_at_theta(tx, theta_full);
+    let q_mid = lut_q_at_theta(tx, theta_full / params.panel_growth);
     var ab = integrate_panel(tx, 1.0, q_mid, true, false, false, params.full_rule);
     ab += integrate_panel(tx, q_mid, q_full, true, false, false, params.full_rule);
     var t0 = theta_full;
@@ -144,7 +172,7 @@ fn brdf_lut_texel(n_dot_v: f32, roughness: f32) -> vec2<f32> {
         if (last) {
             t1 = theta_end;
         }
-        let q1 = ggx_q_at_theta(t1, alpha2);
+        let q1 = lut_q_at_theta(tx, t1);
         ab += integrate_panel(tx, q0, q1, false, panel == 0u, last, params.partial_rule);
         t0 = t1;
         q0 = q1;

@@ -85,7 +85,7 @@ impl Backend for CpuBackend {
         Ok(cpu::brdf_lut::brdf_lut(
             width,
             height,
-            &LutQuadrature::default(),
+            &LutQuadrature::for_model(model),
             model,
         ))
     }
@@ -142,7 +142,7 @@ impl Backend for GpuBackend {
     fn brdf_lut_model(&self, width: u32, height: u32, model: LutModel) -> Result<BrdfLut> {
         validate_lut_size(width, height)?;
         self.ctx.run_kernel("brdf_lut", |device, queue| {
-            let quad = LutQuadrature::default();
+            let quad = LutQuadrature::for_model(model);
             gpu::brdf_lut::brdf_lut(device, queue, width, height, &quad, model)
         })
     }

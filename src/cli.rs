@@ -219,6 +219,9 @@ pub enum LutModelArg {
     MultiscatterSchlickGgx,
     /// (∫Fc·V, ∫V), height-correlated Smith: Filament's DFG (R, G).
     MultiscatterSmithCorrelated,
+    /// (E, 0): the Charlie sheen albedo with the Ashikhmin visibility (Filament's cloth
+    /// DFG channel, glTF-IBL-Sampler's lut_charlie); exceeds 1 near grazing: use .exr or .ktx2.
+    Charlie,
 }
 
 impl From<LutModelArg> for splitsum::lut::LutModel {
@@ -229,6 +232,7 @@ impl From<LutModelArg> for splitsum::lut::LutModel {
             LutModelArg::SmithCorrelated => M::SmithCorrelated,
             LutModelArg::MultiscatterSchlickGgx => M::MultiscatterSchlickGgx,
             LutModelArg::MultiscatterSmithCorrelated => M::MultiscatterSmithCorrelated,
+            LutModelArg::Charlie => M::Charlie,
         }
     }
 }

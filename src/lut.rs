@@ -63,6 +63,18 @@ pub enum Visibility {
     /// Height-correlated Smith-GGX (Heitz 2014): V = 0.5 / (n·l Λ'(v) + n·v Λ'(l)), what
     /// Filament, three.js and the glTF Sample Viewer use.
     SmithCorrelated = 1,
+    /// Ashikhmin / Neubelt (Neubelt & Pettineo 2013): V = 1 / (4 (n·l + n·v − n·l n·v)),
+    /// the sheen visibility of Filament's cloth and glTF-IBL-Sampler's Charlie LUT.
+    Ashikhmin = 2,
+}
+
+/// The microfacet distribution D of a LUT's integrand (the quadrature runs in its CDF).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LutDistribution {
+    /// GGX / Trowbridge-Reitz, α = r².
+    Ggx = 0,
+    /// Charlie sheen (Estevez & Kulla 2017), α = r²: D = (2 + 1/α) sin^(1/α)θ / (2π).
+    Charlie = 1,
 }
 
 /// How a LUT stores its two integrals A = ∫ f/F (1 − Fc)(n·l) and B = ∫ f/F Fc (n·l).
@@ -74,6 +86,9 @@ pub enum LutLayout {
     /// 2019): specular ≈ prefiltered · mix(x, y, F0), and the multiple-scattering energy
     /// compensation is 1 + F0 (1/y − 1).
     Multiscatter = 1,
+    /// (A + B, 0) = (∫ f (n·l) with F = 1, 0): a directional albedo, for models without
+    /// Fresnel (the Charlie sheen LUT).
+    Albedo = 2,
 }
 
 /// A LUT model: which integrand and which layout (`splitsum lut --model`).
@@ -89,15 +104,19 @@ pub enum LutModel {
     /// (∫ Fc V', ∫ V') with the height-correlated Smith visibility: Filament's DFG (its R
     /// and G channels).
     MultiscatterSmithCorrelated,
+    /// (E, 0), E = ∫ D_Charlie V_Ashikhmin (n·l) dl: the sheen LUT of Filament's cloth DFG
+    /// (its B channel, `DFV_Charlie_Uniform`) and glTF-IBL-Sampler's `lut_charlie` (B).
+    Charlie,
 }
 
 impl LutModel {
     /// Every model, in the command line's order.
-    pub const ALL: [LutModel; 4] = [
+    pub const ALL: [LutModel; 5] = [
         LutModel::SchlickGgx,
         LutModel::SmithCorrelated,
         LutModel::MultiscatterSchlickGgx,
         LutModel::MultiscatterSmithCorrelated,
+        LutModel::Charlie,
     ];
 
     /// The name on the command line.
@@ -107,6 +126,15 @@ impl LutModel {
             LutModel::SmithCorrelated => "smith-correlated",
             LutModel::MultiscatterSchlickGgx => "multiscatter-schlick-ggx",
             LutModel::MultiscatterSmithCorrelated => "multiscatter-smith-correlated",
+            LutModel::Charlie => "charlie",
+        }
+    }
+
+    /// The distribution.
+    pub fn distribution(self) -> LutDistribution {
+        match self {
+            LutModel::Charlie => LutDistribution::Charlie,
+            _ => LutDistribution::Ggx,
         }
     }
 
@@ -114,6 +142,7 @@ impl LutModel {
     pub fn visibility(self) -> Visibility {
         match self {
             LutModel::SchlickGgx | LutModel::MultiscatterSchlickGgx => Visibility::SchlickGgx,
+            LutModel::Charlie => Visibility::Ashikhmin,
             _ => Visibility::SmithCorrelated,
         }
     }
@@ -122,6 +151,7 @@ impl LutModel {
     pub fn layout(self) -> LutLayout {
         match self {
             LutModel::SchlickGgx | LutModel::SmithCorrelated => LutLayout::ScaleBias,
+            LutModel::Charlie => LutLayout::Albedo,
             _ => LutLayout::Multiscatter,
         }
     }
@@ -133,6 +163,7 @@ impl LutLayout {
         match self {
             LutLayout::ScaleBias => ab,
             LutLayout::Multiscatter => [ab[1], ab[0] + ab[1]],
+            LutLayout::Albedo => [ab[0] + ab[1], 0.0],
         }
     }
 }
@@ -215,7 +246,24 @@ impl Default for LutQuadrature {
     }
 }
 
+/// Rules of the Charlie model: its albedo reaches 22 near grazing n·v and varies faster
+/// there (the 1/(n·h) of the half-vector Jacobian where the distribution's mass lies flat),
+/// so the 10/6/5 rules leave 1.2e-4 relative error; 12/8/6 with growth 2.5 bring it within
+/// 1e-4 (tests/lut_accuracy.rs).
+pub const CHARLIE_RULES: (usize, usize, usize, f32) = (12, 8, 6, 2.5);
+
 impl LutQuadrature {
+    /// The tables `model` is integrated with: the defaults, or [`CHARLIE_RULES`].
+    pub fn for_model(model: LutModel) -> Self {
+        match model.distribution() {
+            LutDistribution::Ggx => Self::default(),
+            LutDistribution::Charlie => {
+                let (full, partial, phi, growth) = CHARLIE_RULES;
+                Self::with_rules(full, partial, phi, growth)
+            }
+        }
+    }
+
     /// Tables with `full` and `partial` Gauss-Legendre nodes in q, `phi` nodes in φ and
     /// partial panels growing by `growth` (the default uses the constants above; other
     /// values are for accuracy-versus-cost studies).
@@ -256,6 +304,8 @@ impl LutQuadrature {
             max_panels: self.max_panels,
             visibility: model.visibility() as u32,
             channel_layout: model.layout() as u32,
+            distribution: model.distribution() as u32,
+            _pad: [0; 3],
         }
     }
 }
@@ -281,4 +331,8 @@ pub struct LutParams {
     pub visibility: u32,
     /// [`LutLayout`] as u32 (`layout` is a reserved word in WGSL).
     pub channel_layout: u32,
+    /// [`LutDistribution`] as u32.
+    pub distribution: u32,
+    /// Pads the block to 16 bytes as uniform buffers require.
+    pub _pad: [u32; 3],
 }

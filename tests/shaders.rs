@@ -55,6 +55,7 @@ fn lut_params_layout_matches_rust() {
         ("max_panels", offset_of!(LutParams, max_panels)),
         ("visibility", offset_of!(LutParams, visibility)),
         ("channel_layout", offset_of!(LutParams, channel_layout)),
+        ("distribution", offset_of!(LutParams, distribution)),
     ];
     assert_eq!(members.len(), rust.len());
     for ((wname, woff), (rname, roff)) in members.iter().zip(rust) {

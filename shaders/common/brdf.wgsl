@@ -41,6 +41,11 @@ fn smith_correlated_4v_n_dot_l(n_dot_v: f32, n_dot_l: f32, alpha2: f32, lambda_v
     return 2.0 * n_dot_l / (n_dot_l * lambda_v + n_dot_v * smith_correlated_lambda(n_dot_l, alpha2));
 }
 
+// 4 V (n.l) for the Ashikhmin / Neubelt visibility V = 1 / (4 (n.l + n.v - n.l n.v)).
+fn ashikhmin_4v_n_dot_l(n_dot_v: f32, n_dot_l: f32) -> f32 {
+    return n_dot_l / (n_dot_l + n_dot_v - n_dot_l * n_dot_v);
+}
+
 // Fresnel-Schlick weight (1 - v.h)^5: F = F0 (1 - w) + w (Schlick 1994).
 fn fresnel_schlick_weight(v_dot_h: f32) -> f32 {
     let m = clamp(1.0 - v_dot_h, 0.0, 1.0);

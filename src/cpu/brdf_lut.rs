@@ -6,12 +6,14 @@ use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
 use rayon::prelude::*;
 
-use crate::lut::{lut_texel_coords, BrdfLut, LutModel, LutQuadrature, Visibility};
+use crate::lut::{lut_texel_coords, BrdfLut, LutDistribution, LutModel, LutQuadrature, Visibility};
 use crate::math::brdf::{
-    alpha_from_roughness, fresnel_schlick_weight, g1_over_n_dot_v, g1_schlick_ggx, k_ibl,
-    smith_correlated_4v_n_dot_l, smith_correlated_lambda,
+    alpha_from_roughness, ashikhmin_4v_n_dot_l, fresnel_schlick_weight, g1_over_n_dot_v,
+    g1_schlick_ggx, k_ibl, smith_correlated_4v_n_dot_l, smith_correlated_lambda,
 };
-use crate::math::sampling::{ggx_q_from_theta, ggx_theta_from_q};
+use crate::math::sampling::{
+    charlie_q_from_theta, charlie_theta_from_q, ggx_q_from_theta, ggx_theta_from_q,
+};
 use crate::math::trig::acos_precise;
 
 /// Per-texel constants of the integrand. `g_vis` is the view-side factor of the
@@ -23,6 +25,27 @@ struct LutTexel {
     k: f32,
     g_vis: f32,
     visibility: Visibility,
+    alpha: f32,
+    distribution: LutDistribution,
+}
+
+/// q at polar angle θ of the half vector, in the texel's distribution.
+fn lut_q_at_theta(tx: &LutTexel, theta: f32) -> f32 {
+    match tx.distribution {
+        LutDistribution::Ggx => ggx_q_at_theta(theta, tx.alpha2),
+        LutDistribution::Charlie => {
+            let c = theta.cos();
+            charlie_q_from_theta(c * c, tx.alpha)
+        }
+    }
+}
+
+/// (cos²θ, sin²θ) of the half vector at q, in the texel's distribution.
+fn lut_theta_from_q(tx: &LutTexel, q: f32) -> (f32, f32) {
+    match tx.distribution {
+        LutDistribution::Ggx => ggx_theta_from_q(q, tx.alpha2),
+        LutDistribution::Charlie => charlie_theta_from_q(q, tx.alpha),
+    }
 }
 
 /// 4 V (n·l): f (n·l) / pdf(l) = 4 V (n·l) · F · (v·h)/(n·h) for pdf(l) = D (n·h) / (4 v·h).
@@ -32,6 +55,7 @@ fn lut_visibility(tx: &LutTexel, n_dot_l: f32) -> f32 {
         Visibility::SmithCorrelated => {
             smith_correlated_4v_n_dot_l(tx.cos_v, n_dot_l, tx.alpha2, tx.g_vis)
         }
+        Visibility::Ashikhmin => ashikhmin_4v_n_dot_l(tx.cos_v, n_dot_l),
     }
 }
 
@@ -90,7 +114,7 @@ fn integrate_panel(
         let (x, dx) = panel_map(t, lower_singular, upper_singular);
         let q = q_a - width * x;
         let weight_q = width * w * dx;
-        let (cos2_h, sin2_h) = ggx_theta_from_q(q, tx.alpha2);
+        let (cos2_h, sin2_h) = lut_theta_from_q(tx, q);
         let cos_h = cos2_h.sqrt();
         let sin_h = sin2_h.sqrt();
         let phi_max = if full {
@@ -137,8 +161,11 @@ pub fn brdf_lut_texel(
         g_vis: match visibility {
             Visibility::SchlickGgx => g1_over_n_dot_v(n_dot_v, k),
             Visibility::SmithCorrelated => smith_correlated_lambda(n_dot_v, alpha2),
+            Visibility::Ashikhmin => 0.0,
         },
         visibility,
+        alpha,
+        distribution: model.distribution(),
     };
     let theta_v = acos_precise(n_dot_v);
     // Horizon breakpoints in θh (see crate::lut).
@@ -149,8 +176,8 @@ pub fn brdf_lut_texel(
     let partial_rule = quad.rule(quad.partial);
     let phi_rule = quad.rule(quad.phi);
 
-    let q_full = ggx_q_at_theta(theta_full, alpha2);
-    let q_mid = ggx_q_at_theta(theta_full / quad.panel_growth, alpha2);
+    let q_full = lut_q_at_theta(&tx, theta_full);
+    let q_mid = lut_q_at_theta(&tx, theta_full / quad.panel_growth);
     let mut ab = integrate_panel(&tx, 1.0, q_mid, true, false, false, full_rule, phi_rule);
     let ab2 = integrate_panel(&tx, q_mid, q_full, true, false, false, full_rule, phi_rule);
     ab[0] += ab2[0];
@@ -164,7 +191,7 @@ pub fn brdf_lut_texel(
         let next = next_panel_end(t0, quad.panel_growth);
         let last = panel + 1 == quad.max_panels || next >= theta_end;
         let t1 = if last { theta_end } else { next };
-        let q1 = ggx_q_at_theta(t1, alpha2);
+        let q1 = lut_q_at_theta(&tx, t1);
         let part = integrate_panel(&tx, q0, q1, false, panel == 0, last, partial_rule, phi_rule);
         ab[0] += part[0];
         ab[1] += part[1];

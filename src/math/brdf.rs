@@ -51,6 +51,13 @@ pub fn smith_correlated_4v_n_dot_l(n_dot_v: f32, n_dot_l: f32, alpha2: f32, lamb
     2.0 * n_dot_l / (n_dot_l * lambda_v + n_dot_v * smith_correlated_lambda(n_dot_l, alpha2))
 }
 
+/// 4 V (n·l) for the Ashikhmin / Neubelt visibility V = 1 / (4 (n·l + n·v − n·l n·v))
+/// (Neubelt & Pettineo 2013), the sheen visibility of Filament's cloth model and of
+/// glTF-IBL-Sampler's Charlie LUT: n·l / (n·l + n·v − n·l n·v).
+pub fn ashikhmin_4v_n_dot_l(n_dot_v: f32, n_dot_l: f32) -> f32 {
+    n_dot_l / (n_dot_l + n_dot_v - n_dot_l * n_dot_v)
+}
+
 /// The Fresnel-Schlick weight (1 − v·h)⁵: F = F0 + (1 − F0)·w = F0 (1 − w) + w (Schlick 1994).
 pub fn fresnel_schlick_weight(v_dot_h: f32) -> f32 {
     let m = (1.0 - v_dot_h).clamp(0.0, 1.0);

@@ -22,6 +22,54 @@ pub fn ggx_theta_from_q(q: f32, alpha2: f32) -> (f32, f32) {
     (q / den, s / den)
 }
 
+/// ln(1 + x) to about 1e-7 relative, identical on every driver: for |x| < ½ the series
+/// 2 atanh(s) = 2 (s + s³/3 + … + s¹⁵/15), s = x / (2 + x) (|s| ≤ ⅓, the first term left
+/// out is below 2e-8), else ln(1 + x). Vulkan only bounds `log` to 2⁻²¹ absolute near 1,
+/// which is no relative accuracy at all for the small arguments the Charlie mapping needs.
+pub fn log1p_accurate(x: f32) -> f32 {
+    if x.abs() >= 0.5 {
+        return (1.0 + x).ln();
+    }
+    let s = x / (2.0 + x);
+    let s2 = s * s;
+    let mut p = 1.0 / 15.0;
+    for k in [13.0f32, 11.0, 9.0, 7.0, 5.0, 3.0, 1.0] {
+        p = p * s2 + 1.0 / k;
+    }
+    2.0 * s * p
+}
+
+/// eˣ − 1 to about 1e-7 relative, identical on every driver: for |x| < ½ the Taylor
+/// series to x¹⁰/10! (the first term left out is below 3e-10 relative), else eˣ − 1.
+pub fn expm1_accurate(x: f32) -> f32 {
+    if x.abs() >= 0.5 {
+        return x.exp() - 1.0;
+    }
+    // x (1 + x/2 (1 + x/3 (1 + … (1 + x/10)))) by Horner.
+    let mut p = 1.0f32;
+    for k in [10.0f32, 9.0, 8.0, 7.0, 6.0, 5.0, 4.0, 3.0, 2.0] {
+        p = 1.0 + x / k * p;
+    }
+    x * p
+}
+
+/// The Charlie sheen distribution (Estevez & Kulla 2017, "Production Friendly Microfacet
+/// Sheen BRDF"): D(h) = (2 + 1/α) sin^(1/α)θ / (2π), α = r². Its half-vector density
+/// D(h)(n·h) has the θ marginal CDF u(θ) = sin^(2 + 1/α)θ = (1 − cos²θ)^e, e = 1 + 1/(2α);
+/// q = 1 − u as for GGX, computed through log1p/expm1 so that θ near π/2 (where the
+/// distribution puts its mass for small α) keeps its precision.
+pub fn charlie_q_from_theta(cos2_theta: f32, alpha: f32) -> f32 {
+    let e = 1.0 + 0.5 / alpha;
+    -expm1_accurate(e * log1p_accurate(-cos2_theta))
+}
+
+/// Inverse of [`charlie_q_from_theta`]: (cos²θ, sin²θ) = (−expm1(ln(1 − q)/e), exp(ln(1 − q)/e)).
+pub fn charlie_theta_from_q(q: f32, alpha: f32) -> (f32, f32) {
+    let e = 1.0 + 0.5 / alpha;
+    let l = log1p_accurate(-q) / e;
+    (-expm1_accurate(l), l.exp())
+}
+
 /// Van der Corput radical inverse in base 2 (bit reversal), in [0, 1).
 pub fn radical_inverse_vdc(bits: u32) -> f32 {
     bits.reverse_bits() as f32 * (1.0 / 4_294_967_296.0)
@@ -43,6 +91,25 @@ pub fn importance_sample_ggx(xi: [f32; 2], alpha: f32) -> [f32; 3] {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn log1p_and_expm1_are_accurate_across_the_switch() {
+        for k in -2000..=2000 {
+            let x = k as f64 / 2000.0 * 0.99; // (−0.99, 0.99)
+            for x in [x, x * 1e-6] {
+                let l = log1p_accurate(x as f32) as f64;
+                let e = expm1_accurate(x as f32) as f64;
+                let (tl, te) = ((x as f32 as f64).ln_1p(), (x as f32 as f64).exp_m1());
+                assert!(
+                    (l - tl).abs() <= 4e-7 * tl.abs().max(1e-30),
+                    "log1p({x}) {l} vs {tl}"
+                );
+                assert!(
+                    (e - te).abs() <= 4e-7 * te.abs().max(1e-30),
+                    "expm1({x}) {e} vs {te}"
+                );
+            }
+        }
+    }
     use super::*;
 
     #[test]
