@@ -322,6 +322,17 @@ fn run_lut(args: LutArgs) -> anyhow::Result<()> {
             start.elapsed().as_secs_f64()
         );
     }
+    if splitsum::io::extension_of(&args.output) == "png" {
+        let clipped = lut.data.iter().flatten().filter(|&&v| v > 1.0).count();
+        if clipped > 0 {
+            eprintln!(
+                "warning: {}: {clipped} values above 1 (the {} model's largest is {:.2}) are clipped in a PNG; write .exr or .ktx2 to keep them",
+                args.output.display(),
+                splitsum::lut::LutModel::from(args.model).name(),
+                lut.data.iter().flatten().fold(0.0f32, |a, &b| a.max(b))
+            );
+        }
+    }
     write_lut(&args.output, &lut, LutWriteOptions { f32: args.f32 })?;
     if args.common.verbose {
         eprintln!("wrote {}", args.output.display());

@@ -254,3 +254,41 @@ fn output_path_problems_are_clean_errors() {
     assert!(err.contains("file") && !err.contains("panicked"), "{err}");
     assert_eq!(err.trim_end().lines().count(), 1, "{err}");
 }
+
+/// A Charlie LUT holds values above 1 near grazing: a PNG clips them, with a warning.
+#[test]
+fn a_png_that_clips_the_lut_says_so() {
+    let dir = common::output_dir("cli-charlie-png");
+    let o = splitsum()
+        .args([
+            "lut",
+            "--model",
+            "charlie",
+            "--size",
+            "32",
+            "--backend",
+            "cpu",
+            "-o",
+        ])
+        .arg(dir.join("charlie.png"))
+        .output()
+        .unwrap();
+    assert!(o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("are clipped in a PNG"), "{err}");
+    let o = splitsum()
+        .args([
+            "lut",
+            "--model",
+            "charlie",
+            "--size",
+            "32",
+            "--backend",
+            "cpu",
+            "-o",
+        ])
+        .arg(dir.join("charlie.exr"))
+        .output()
+        .unwrap();
+    assert!(o.status.success() && o.stderr.is_empty());
+}
