@@ -225,3 +225,47 @@ fn which_cmgen() -> Result<std::path::PathBuf, ()> {
         })
         .ok_or(())
 }
+
+/// three.js r187's DFG (`src/renderers/shaders/DFGLUTData.js`: 16×16 RG16F, 4096 samples per
+/// texel, sampled at uv = (roughness, n·v), so texel (i, j) holds r = (i + ½)/16 and
+/// n·v = (j + ½)/16) against splitsum's `smith-correlated` model and the converged reference.
+/// Runs where `engines/three` has its npm packages (`npm ci`): `cargo test --release --test
+/// lut_accuracy three_dfg -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn three_dfg_against_splitsum() {
+    let path = "engines/three/node_modules/three/src/renderers/shaders/DFGLUTData.js";
+    let Ok(js) = std::fs::read_to_string(path) else {
+        eprintln!("{path} not found (npm ci in engines/three); skipping");
+        return;
+    };
+    let start = js.find("new Uint16Array( [").expect("the DATA array");
+    let end = start + js[start..].find("] )").unwrap();
+    let halves: Vec<f32> = js[start..end]
+        .split(|c: char| c == ',' || c == '[')
+        .filter_map(|t| t.trim().strip_prefix("0x"))
+        .map(|h| half::f16::from_bits(u16::from_str_radix(h, 16).unwrap()).to_f32())
+        .collect();
+    assert_eq!(halves.len(), 16 * 16 * 2);
+    let quad = LutQuadrature::default();
+    let model = LutModel::SmithCorrelated;
+    let (mut vs_ours, mut vs_ref, mut ours_vs_ref) = (0.0f64, 0.0f64, 0.0f64);
+    for j in 0..16 {
+        for i in 0..16 {
+            let (r, nv) = ((i as f32 + 0.5) / 16.0, (j as f32 + 0.5) / 16.0);
+            let theirs = [halves[2 * (j * 16 + i)], halves[2 * (j * 16 + i) + 1]];
+            let ours = brdf_lut_texel(nv, r, &quad, model);
+            let (ra, rb) = common::reference_lut_model(nv as f64, r as f64, model);
+            for c in 0..2 {
+                let reference = [ra, rb][c];
+                vs_ours = vs_ours.max((theirs[c] - ours[c]).abs() as f64);
+                vs_ref = vs_ref.max((theirs[c] as f64 - reference).abs());
+                ours_vs_ref = ours_vs_ref.max((ours[c] as f64 - reference).abs());
+            }
+        }
+    }
+    println!(
+        "three.js DFG vs splitsum smith-correlated max |Δ| {vs_ours:.2e}, three vs converged {vs_ref:.2e}, splitsum vs converged {ours_vs_ref:.2e}"
+    );
+    assert!(vs_ours <= vs_ref + ours_vs_ref + 1e-6);
+}
