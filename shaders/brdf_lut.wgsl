@@ -10,7 +10,7 @@ struct LutParams {
     phi_rule: vec2<u32>,
     panel_growth: f32,
     max_panels: u32,
-    visibility: u32,          // 0 Schlick-GGX, 1 height-correlated Smith (src/lut.rs)
+    visibility: u32,          // 0 Schlick-GGX, 1 correlated Smith, 2 Ashikhmin, 3 sheen
     channel_layout: u32,      // 0 (A, B), 1 multiscatter (B, A + B), 2 albedo (A + B, 0)
     distribution: u32,        // 0 GGX, 1 Charlie
 }
@@ -19,7 +19,8 @@ struct LutParams {
 @group(0) @binding(1) var<storage, read> rules: array<vec2<f32>>;   // (x, w) on [0, 1]
 @group(0) @binding(2) var output: texture_storage_2d<rgba32float, write>;
 
-// g_vis: G1(n.v)/(n.v) for Schlick-GGX, Lambda'(v) for the correlated visibility.
+// g_vis: G1(n.v)/(n.v) for Schlick-GGX, Lambda'(v) for the correlated visibility, the
+// sheen Lambda(v) for V_Sheen.
 struct LutTexel {
     cos_v: f32,
     sin_v: f32,
@@ -55,6 +56,9 @@ fn lut_visibility(tx: LutTexel, n_dot_l: f32) -> f32 {
     }
     if (tx.visibility == 2u) {
         return ashikhmin_4v_n_dot_l(tx.cos_v, n_dot_l);
+    }
+    if (tx.visibility == 3u) {
+        return sheen_4v_n_dot_l(tx.cos_v, n_dot_l, tx.alpha, tx.g_vis);
     }
     return g1_schlick_ggx(n_dot_l, tx.k) * tx.g_vis;
 }
@@ -148,6 +152,8 @@ fn brdf_lut_texel(n_dot_v: f32, roughness: f32) -> vec2<f32> {
         g_vis = smith_correlated_lambda(n_dot_v, alpha2);
     } else if (params.visibility == 2u) {
         g_vis = 0.0;
+    } else if (params.visibility == 3u) {
+        g_vis = lambda_sheen(n_dot_v, alpha);
     }
     let tx = LutTexel(n_dot_v, sqrt(max(1.0 - n_dot_v * n_dot_v, 0.0)), alpha2, k, g_vis,
                       params.visibility, alpha, params.distribution);

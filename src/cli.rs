@@ -222,6 +222,9 @@ pub enum LutModelArg {
     /// (E, 0): the Charlie sheen albedo with the Ashikhmin visibility (Filament's cloth
     /// DFG channel, glTF-IBL-Sampler's lut_charlie); exceeds 1 near grazing: use .exr or .ktx2.
     Charlie,
+    /// (E, 0): the KHR_materials_sheen albedo (Charlie D, V_Sheen), the glTF Sample
+    /// Viewer's lut_sheen_E quantity.
+    SheenAlbedo,
 }
 
 impl From<LutModelArg> for splitsum::lut::LutModel {
@@ -233,6 +236,7 @@ impl From<LutModelArg> for splitsum::lut::LutModel {
             LutModelArg::MultiscatterSchlickGgx => M::MultiscatterSchlickGgx,
             LutModelArg::MultiscatterSmithCorrelated => M::MultiscatterSmithCorrelated,
             LutModelArg::Charlie => M::Charlie,
+            LutModelArg::SheenAlbedo => M::SheenAlbedo,
         }
     }
 }

@@ -66,6 +66,9 @@ pub enum Visibility {
     /// Ashikhmin / Neubelt (Neubelt & Pettineo 2013): V = 1 / (4 (n·l + n·v − n·l n·v)),
     /// the sheen visibility of Filament's cloth and glTF-IBL-Sampler's Charlie LUT.
     Ashikhmin = 2,
+    /// KHR_materials_sheen's V = clamp(1 / ((1 + Λ(v) + Λ(l)) 4 n·v n·l), 0, 1) with the
+    /// fitted Charlie Λ (Estevez & Kulla 2017), the glTF Sample Viewer's `V_Sheen`.
+    Sheen = 3,
 }
 
 /// The microfacet distribution D of a LUT's integrand (the quadrature runs in its CDF).
@@ -107,16 +110,21 @@ pub enum LutModel {
     /// (E, 0), E = ∫ D_Charlie V_Ashikhmin (n·l) dl: the sheen LUT of Filament's cloth DFG
     /// (its B channel, `DFV_Charlie_Uniform`) and glTF-IBL-Sampler's `lut_charlie` (B).
     Charlie,
+    /// (E, 0), E = ∫ D_Charlie V_Sheen (n·l) dl: the directional albedo of the
+    /// KHR_materials_sheen BRDF, the quantity of the glTF Sample Viewer's `lut_sheen_E`
+    /// (its R), which scales the base layer by 1 − max(sheen colour)·E.
+    SheenAlbedo,
 }
 
 impl LutModel {
     /// Every model, in the command line's order.
-    pub const ALL: [LutModel; 5] = [
+    pub const ALL: [LutModel; 6] = [
         LutModel::SchlickGgx,
         LutModel::SmithCorrelated,
         LutModel::MultiscatterSchlickGgx,
         LutModel::MultiscatterSmithCorrelated,
         LutModel::Charlie,
+        LutModel::SheenAlbedo,
     ];
 
     /// The name on the command line.
@@ -127,13 +135,14 @@ impl LutModel {
             LutModel::MultiscatterSchlickGgx => "multiscatter-schlick-ggx",
             LutModel::MultiscatterSmithCorrelated => "multiscatter-smith-correlated",
             LutModel::Charlie => "charlie",
+            LutModel::SheenAlbedo => "sheen-albedo",
         }
     }
 
     /// The distribution.
     pub fn distribution(self) -> LutDistribution {
         match self {
-            LutModel::Charlie => LutDistribution::Charlie,
+            LutModel::Charlie | LutModel::SheenAlbedo => LutDistribution::Charlie,
             _ => LutDistribution::Ggx,
         }
     }
@@ -143,6 +152,7 @@ impl LutModel {
         match self {
             LutModel::SchlickGgx | LutModel::MultiscatterSchlickGgx => Visibility::SchlickGgx,
             LutModel::Charlie => Visibility::Ashikhmin,
+            LutModel::SheenAlbedo => Visibility::Sheen,
             _ => Visibility::SmithCorrelated,
         }
     }
@@ -151,7 +161,7 @@ impl LutModel {
     pub fn layout(self) -> LutLayout {
         match self {
             LutModel::SchlickGgx | LutModel::SmithCorrelated => LutLayout::ScaleBias,
-            LutModel::Charlie => LutLayout::Albedo,
+            LutModel::Charlie | LutModel::SheenAlbedo => LutLayout::Albedo,
             _ => LutLayout::Multiscatter,
         }
     }
@@ -252,16 +262,22 @@ impl Default for LutQuadrature {
 /// 1e-4 (tests/lut_accuracy.rs).
 pub const CHARLIE_RULES: (usize, usize, usize, f32) = (12, 8, 6, 2.5);
 
+/// Rules of the sheen-albedo model: its fitted Λ(n·l) grows like exp(a / (1 + b (n·l)^0.19))
+/// towards the horizon, which ends each φ range, so φ needs more nodes: the Charlie rules
+/// leave 9e-4, 12/8/12 leave 7e-5, 16/12/16 with growth 2 leave 4e-5 at the worst texels
+/// tried (tests/lut_accuracy.rs).
+pub const SHEEN_RULES: (usize, usize, usize, f32) = (16, 12, 16, 2.0);
+
 impl LutQuadrature {
-    /// The tables `model` is integrated with: the defaults, or [`CHARLIE_RULES`].
+    /// The tables `model` is integrated with: the defaults, [`CHARLIE_RULES`] or
+    /// [`SHEEN_RULES`].
     pub fn for_model(model: LutModel) -> Self {
-        match model.distribution() {
-            LutDistribution::Ggx => Self::default(),
-            LutDistribution::Charlie => {
-                let (full, partial, phi, growth) = CHARLIE_RULES;
-                Self::with_rules(full, partial, phi, growth)
-            }
-        }
+        let (full, partial, phi, growth) = match model {
+            LutModel::Charlie => CHARLIE_RULES,
+            LutModel::SheenAlbedo => SHEEN_RULES,
+            _ => return Self::default(),
+        };
+        Self::with_rules(full, partial, phi, growth)
     }
 
     /// Tables with `full` and `partial` Gauss-Legendre nodes in q, `phi` nodes in φ and

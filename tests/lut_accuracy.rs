@@ -33,7 +33,8 @@ fn cpu_lut_matches_converged_integral() {
 }
 
 /// A denser scan (every 8th texel of the 512² table, plus all edge texels); slow, so run on
-/// demand: `cargo test --release --test lut_accuracy -- --ignored --nocapture`.
+/// demand: `cargo test --release --test lut_accuracy -- --ignored --nocapture`
+/// (`SPLITSUM_LUT_MODELS=name,name` for some models only).
 #[test]
 #[ignore]
 fn dense_scan_512() {
@@ -45,7 +46,13 @@ fn dense_scan_512() {
     for t in 0..w {
         texels.extend([(0, t), (w - 1, t), (t, 0), (t, h - 1)]);
     }
-    for model in LutModel::ALL {
+    // SPLITSUM_LUT_MODELS="charlie,sheen-albedo" scans only those.
+    let only = std::env::var("SPLITSUM_LUT_MODELS").ok();
+    let wanted = |m: &LutModel| {
+        only.as_deref()
+            .is_none_or(|o| o.split(',').any(|n| n == m.name()))
+    };
+    for model in LutModel::ALL.into_iter().filter(wanted) {
         let quad = LutQuadrature::for_model(model);
         let worst = common::worst_model_error(w, h, &texels, model, |nv, r| {
             brdf_lut_texel(nv, r, &quad, model)
@@ -101,7 +108,7 @@ fn every_model_keeps_the_albedo_identities() {
     for model in LutModel::ALL {
         let quad = LutQuadrature::for_model(model);
         let lut = splitsum::cpu::brdf_lut::brdf_lut(w, h, &quad, model);
-        if model == LutModel::Charlie {
+        if model.distribution() == splitsum::lut::LutDistribution::Charlie {
             // Sheen: E ≥ 0 and finite (not ≤ 1: the Ashikhmin visibility is not derived
             // from the Charlie distribution, and E reaches 22 at grazing n·v and small r),
             // and a mirror's Charlie D lies flat at θh = π/2, where every reflection is
@@ -110,7 +117,11 @@ fn every_model_keeps_the_albedo_identities() {
                 let e = lut.get(i, j)[0];
                 assert!(e.is_finite() && e >= 0.0, "charlie ({i}, {j}): {e}");
             }
-            assert!((w / 4..w).all(|i| lut.get(i, 0)[0] < 1e-3));
+            assert!(
+                (w / 4..w).all(|i| lut.get(i, 0)[0] < 1e-3),
+                "{}",
+                model.name()
+            );
             continue;
         }
         // Back to (A, B) whatever the layout.
@@ -119,7 +130,7 @@ fn every_model_keeps_the_albedo_identities() {
             match model.layout() {
                 splitsum::lut::LutLayout::ScaleBias => v,
                 splitsum::lut::LutLayout::Multiscatter => [v[1] - v[0], v[0]],
-                splitsum::lut::LutLayout::Albedo => unreachable!("only the Charlie model"),
+                splitsum::lut::LutLayout::Albedo => unreachable!("only the Charlie models"),
             }
         };
         for j in (0..h).step_by(7) {

@@ -46,6 +46,31 @@ fn ashikhmin_4v_n_dot_l(n_dot_v: f32, n_dot_l: f32) -> f32 {
     return n_dot_l / (n_dot_l + n_dot_v - n_dot_l * n_dot_v);
 }
 
+// The KHR_materials_sheen fit of the Charlie Lambda (Estevez & Kulla 2017).
+fn lambda_sheen_numeric_helper(x: f32, alpha: f32) -> f32 {
+    let t = (1.0 - alpha) * (1.0 - alpha);
+    let a = mix(21.5473, 25.3245, t);
+    let b = mix(3.82987, 3.32435, t);
+    let c = mix(0.19823, 0.16801, t);
+    let d = mix(-1.97760, -1.27393, t);
+    let e = mix(-4.32054, -4.85967, t);
+    return a / (1.0 + b * pow(x, c)) + d * x + e;
+}
+
+fn lambda_sheen(cos_theta: f32, alpha: f32) -> f32 {
+    if (abs(cos_theta) < 0.5) {
+        return exp(lambda_sheen_numeric_helper(cos_theta, alpha));
+    }
+    return exp(2.0 * lambda_sheen_numeric_helper(0.5, alpha)
+        - lambda_sheen_numeric_helper(1.0 - cos_theta, alpha));
+}
+
+// 4 V (n.l) for V = clamp(1 / ((1 + Lambda(v) + Lambda(l)) 4 n.v n.l), 0, 1).
+fn sheen_4v_n_dot_l(n_dot_v: f32, n_dot_l: f32, alpha: f32, lambda_v: f32) -> f32 {
+    let unclamped = 1.0 / ((1.0 + lambda_v + lambda_sheen(n_dot_l, alpha)) * n_dot_v);
+    return min(unclamped, 4.0 * n_dot_l);
+}
+
 // Fresnel-Schlick weight (1 - v.h)^5: F = F0 (1 - w) + w (Schlick 1994).
 fn fresnel_schlick_weight(v_dot_h: f32) -> f32 {
     let m = clamp(1.0 - v_dot_h, 0.0, 1.0);

@@ -9,7 +9,8 @@ use rayon::prelude::*;
 use crate::lut::{lut_texel_coords, BrdfLut, LutDistribution, LutModel, LutQuadrature, Visibility};
 use crate::math::brdf::{
     alpha_from_roughness, ashikhmin_4v_n_dot_l, fresnel_schlick_weight, g1_over_n_dot_v,
-    g1_schlick_ggx, k_ibl, smith_correlated_4v_n_dot_l, smith_correlated_lambda,
+    g1_schlick_ggx, k_ibl, lambda_sheen, sheen_4v_n_dot_l, smith_correlated_4v_n_dot_l,
+    smith_correlated_lambda,
 };
 use crate::math::sampling::{
     charlie_q_from_theta, charlie_theta_from_q, ggx_q_from_theta, ggx_theta_from_q,
@@ -17,7 +18,8 @@ use crate::math::sampling::{
 use crate::math::trig::acos_precise;
 
 /// Per-texel constants of the integrand. `g_vis` is the view-side factor of the
-/// visibility: G1(n·v)/(n·v) for Schlick-GGX, Λ'(v) for the correlated form.
+/// visibility: G1(n·v)/(n·v) for Schlick-GGX, Λ'(v) for the correlated form, the sheen
+/// Λ(v) for the KHR_materials_sheen visibility.
 struct LutTexel {
     cos_v: f32,
     sin_v: f32,
@@ -56,6 +58,7 @@ fn lut_visibility(tx: &LutTexel, n_dot_l: f32) -> f32 {
             smith_correlated_4v_n_dot_l(tx.cos_v, n_dot_l, tx.alpha2, tx.g_vis)
         }
         Visibility::Ashikhmin => ashikhmin_4v_n_dot_l(tx.cos_v, n_dot_l),
+        Visibility::Sheen => sheen_4v_n_dot_l(tx.cos_v, n_dot_l, tx.alpha, tx.g_vis),
     }
 }
 
@@ -162,6 +165,7 @@ pub fn brdf_lut_texel(
             Visibility::SchlickGgx => g1_over_n_dot_v(n_dot_v, k),
             Visibility::SmithCorrelated => smith_correlated_lambda(n_dot_v, alpha2),
             Visibility::Ashikhmin => 0.0,
+            Visibility::Sheen => lambda_sheen(n_dot_v, alpha),
         },
         visibility,
         alpha,

@@ -58,6 +58,39 @@ pub fn ashikhmin_4v_n_dot_l(n_dot_v: f32, n_dot_l: f32) -> f32 {
     n_dot_l / (n_dot_l + n_dot_v - n_dot_l * n_dot_v)
 }
 
+/// The KHR_materials_sheen fit of the Charlie Λ (Estevez & Kulla 2017, their table of
+/// a..e interpolated in (1 − α)²; the glTF Sample Viewer's `lambdaSheenNumericHelper`).
+pub fn lambda_sheen_numeric_helper(x: f32, alpha: f32) -> f32 {
+    let t = (1.0 - alpha) * (1.0 - alpha);
+    let mix = |p: f32, q: f32| p + (q - p) * t;
+    let a = mix(21.5473, 25.3245);
+    let b = mix(3.82987, 3.32435);
+    let c = mix(0.19823, 0.16801);
+    let d = mix(-1.97760, -1.27393);
+    let e = mix(-4.32054, -4.85967);
+    a / (1.0 + b * x.powf(c)) + d * x + e
+}
+
+/// Λ(cos θ) of the Charlie sheen (KHR_materials_sheen, `lambdaSheen`): exp(L(cos θ)) below
+/// cos θ = ½, exp(2 L(½) − L(1 − cos θ)) above.
+pub fn lambda_sheen(cos_theta: f32, alpha: f32) -> f32 {
+    if cos_theta.abs() < 0.5 {
+        lambda_sheen_numeric_helper(cos_theta, alpha).exp()
+    } else {
+        (2.0 * lambda_sheen_numeric_helper(0.5, alpha)
+            - lambda_sheen_numeric_helper(1.0 - cos_theta, alpha))
+        .exp()
+    }
+}
+
+/// 4 V (n·l) for the sheen visibility of KHR_materials_sheen,
+/// V = clamp(1 / ((1 + Λ(v) + Λ(l)) 4 n·v n·l), 0, 1) (`V_Sheen`), with `lambda_v` = Λ(v):
+/// min(4 n·l, 1 / ((1 + Λ(v) + Λ(l)) n·v)).
+pub fn sheen_4v_n_dot_l(n_dot_v: f32, n_dot_l: f32, alpha: f32, lambda_v: f32) -> f32 {
+    let unclamped = 1.0 / ((1.0 + lambda_v + lambda_sheen(n_dot_l, alpha)) * n_dot_v);
+    unclamped.min(4.0 * n_dot_l)
+}
+
 /// The Fresnel-Schlick weight (1 − v·h)⁵: F = F0 + (1 − F0)·w = F0 (1 − w) + w (Schlick 1994).
 pub fn fresnel_schlick_weight(v_dot_h: f32) -> f32 {
     let m = (1.0 - v_dot_h).clamp(0.0, 1.0);

@@ -84,8 +84,11 @@ pub fn reference_lut_model(
     roughness: f64,
     model: splitsum::lut::LutModel,
 ) -> (f64, f64) {
-    if model == splitsum::lut::LutModel::Charlie {
-        return (reference_charlie(n_dot_v, roughness), 0.0);
+    if model.distribution() == splitsum::lut::LutDistribution::Charlie {
+        return (
+            reference_charlie(n_dot_v, roughness, model.visibility()),
+            0.0,
+        );
     }
     let (a, b) = reference_integrals(n_dot_v, roughness, model.visibility());
     match model.layout() {
@@ -96,13 +99,39 @@ pub fn reference_lut_model(
 }
 
 /// The Charlie sheen albedo E = ∫ D V (n·l) dl with D = (2 + 1/α) sin^(1/α)θh / (2π)
-/// (Estevez & Kulla 2017), α = r², and V = 1 / (4 (n·l + n·v − n·l n·v)) (Neubelt &
-/// Pettineo 2013), in f64: over h, dl = 4 (v·h) dh, written as ∫ du dφ/(2π) · 4 V (n·l)
+/// (Estevez & Kulla 2017), α = r², and V either Ashikhmin's 1 / (4 (n·l + n·v − n·l n·v))
+/// (Neubelt & Pettineo 2013) or KHR_materials_sheen's clamp(1 / ((1 + Λ(v) + Λ(l))
+/// 4 n·v n·l), 0, 1) with the spec's fitted Λ, in f64: over h, dl = 4 (v·h) dh, written as ∫ du dφ/(2π) · 4 V (n·l)
 /// (v·h)/(n·h) in the CDF variable u = sin^(2 + 1/α)θh of D (n·h), by nested adaptive
 /// Gauss-Kronrod with the φ range cut at the horizon (bisection), the u range at the
 /// horizon breakpoints θh = (π/2 ∓ θv)/2.
-pub fn reference_charlie(n_dot_v: f64, roughness: f64) -> f64 {
+pub fn reference_charlie(
+    n_dot_v: f64,
+    roughness: f64,
+    visibility: splitsum::lut::Visibility,
+) -> f64 {
     let alpha = (roughness * roughness).max(1e-12);
+    // The KHR_materials_sheen Λ (spec, "Sheen BRDF"), in f64.
+    let helper = |x: f64| {
+        let t = (1.0 - alpha) * (1.0 - alpha);
+        let lerp = |p: f64, q: f64| p * (1.0 - t) + q * t;
+        lerp(21.5473, 25.3245) / (1.0 + lerp(3.82987, 3.32435) * x.powf(lerp(0.19823, 0.16801)))
+            + lerp(-1.97760, -1.27393) * x
+            + lerp(-4.32054, -4.85967)
+    };
+    let lambda = |c: f64| {
+        if c < 0.5 {
+            helper(c).exp()
+        } else {
+            (2.0 * helper(0.5) - helper(1.0 - c)).exp()
+        }
+    };
+    let vis = |n_dot_l: f64| match visibility {
+        splitsum::lut::Visibility::Sheen => (1.0
+            / ((1.0 + lambda(n_dot_v) + lambda(n_dot_l)) * 4.0 * n_dot_v * n_dot_l))
+            .clamp(0.0, 1.0),
+        _ => 1.0 / (4.0 * (n_dot_l + n_dot_v - n_dot_l * n_dot_v)),
+    };
     let e = 2.0 + 1.0 / alpha; // u = sin^e θ
     let v = [(1.0 - n_dot_v * n_dot_v).sqrt(), 0.0, n_dot_v];
     // (cos θ, sin θ) at u, with cos² = 1 − u^(2/e) computed without cancellation.
@@ -122,8 +151,7 @@ pub fn reference_charlie(n_dot_v: f64, roughness: f64) -> f64 {
         if n_dot_l <= 0.0 || v_dot_h <= 0.0 || ct <= 0.0 {
             return 0.0;
         }
-        let vis = 1.0 / (4.0 * (n_dot_l + n_dot_v - n_dot_l * n_dot_v));
-        4.0 * vis * n_dot_l * v_dot_h / ct
+        4.0 * vis(n_dot_l) * n_dot_l * v_dot_h / ct
     };
     let phi_limit = |u: f64| {
         if n_dot_l_at(u, PI) >= 0.0 {
@@ -178,8 +206,8 @@ fn reference_integrals(
             let vis = 0.5 / (n_dot_l * lv + n_dot_v * ll);
             4.0 * vis * n_dot_l * n_dot_v
         }
-        splitsum::lut::Visibility::Ashikhmin => {
-            n_dot_l * n_dot_v / (n_dot_l + n_dot_v - n_dot_l * n_dot_v)
+        splitsum::lut::Visibility::Ashikhmin | splitsum::lut::Visibility::Sheen => {
+            unreachable!("the sheen visibilities go with the Charlie distribution")
         }
     };
     let integrand = |u: f64, phi: f64| -> (f64, f64) {
