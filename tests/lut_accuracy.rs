@@ -253,7 +253,7 @@ fn three_dfg_against_splitsum() {
     let start = js.find("new Uint16Array( [").expect("the DATA array");
     let end = start + js[start..].find("] )").unwrap();
     let halves: Vec<f32> = js[start..end]
-        .split(|c: char| c == ',' || c == '[')
+        .split([',', '['])
         .filter_map(|t| t.trim().strip_prefix("0x"))
         .map(|h| half::f16::from_bits(u16::from_str_radix(h, 16).unwrap()).to_f32())
         .collect();
