@@ -71,28 +71,79 @@ fn process_versus_cmgen() {
         c
     };
     println!("\n## The whole default bake process vs cmgen (cube 256 + GGX 256 + SH3), CPU s\n");
-    let (mut ours, mut theirs) = (Vec::new(), Vec::new());
+    compare_processes(
+        &mut [
+            ("splitsum bake (auto)", &mut splitsum()),
+            ("cmgen", &mut cmgen()),
+        ],
+        1,
+    );
+}
+
+/// `splitsum lut` (512², default model; auto and CPU backends) against cmgen's DFG LUT at
+/// 128² and 512², the processes timed in one run.
+fn lut_versus_cmgen() {
+    let out = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench-lut-vs-cmgen");
+    let _ = std::fs::create_dir_all(&out);
+    let splitsum = |backend: &str| {
+        let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_splitsum"));
+        c.args(["lut", "--size", "512", "--backend", backend, "-o"])
+            .arg(out.join(format!("splitsum-{backend}.png")));
+        c
+    };
+    let cmgen = |size: u32| {
+        let mut c = std::process::Command::new("cmgen");
+        c.arg(format!(
+            "--ibl-dfg={}",
+            out.join(format!("cmgen{size}.png")).display()
+        ))
+        .arg(format!("--size={size}"));
+        c
+    };
+    println!("\n## `splitsum lut` 512² vs cmgen's DFG LUT, whole processes, CPU s\n");
+    compare_processes(
+        &mut [
+            ("splitsum lut 512² (auto)", &mut splitsum("auto")),
+            ("splitsum lut 512² (cpu)", &mut splitsum("cpu")),
+            ("cmgen --ibl-dfg 128²", &mut cmgen(128)),
+            ("cmgen --ibl-dfg 512²", &mut cmgen(512)),
+        ],
+        2,
+    );
+}
+
+/// Runs each command three times, interleaved, and prints each one's CPU seconds and its
+/// ratio to command `reference`; says so and stops if a command (cmgen, from Debian's
+/// `libfilament-tools`) is not installed.
+fn compare_processes(commands: &mut [(&str, &mut std::process::Command)], reference: usize) {
+    let mut times: Vec<Vec<f64>> = vec![Vec::new(); commands.len()];
     for _ in 0..3 {
-        ours.extend(child_cpu(&mut splitsum()));
-        match child_cpu(&mut cmgen()) {
-            Some(t) => theirs.push(t),
-            None => {
-                println!("(cmgen is not installed: `apt-get install libfilament-tools`)");
-                return;
+        for (k, (name, cmd)) in commands.iter_mut().enumerate() {
+            match child_cpu(cmd) {
+                Some(t) => times[k].push(t),
+                None => {
+                    println!("({name} could not run; cmgen: `apt-get install libfilament-tools`)");
+                    return;
+                }
             }
         }
     }
     let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
-    println!("| tool | runs (CPU s) | mean |");
-    println!("|---|---|---|");
-    for (name, v) in [("splitsum bake (auto)", &ours), ("cmgen", &theirs)] {
-        let runs: Vec<String> = v.iter().map(|t| format!("{t:.2}")).collect();
-        println!("| {name} | {} | {:.2} |", runs.join(", "), mean(v));
-    }
     println!(
-        "\nratio splitsum / cmgen: {:.2}",
-        mean(&ours) / mean(&theirs)
+        "| process | runs (CPU s) | mean | / {} |",
+        commands[reference].0
     );
+    println!("|---|---|---|---|");
+    let first = mean(&times[reference]);
+    for ((name, _), v) in commands.iter().zip(&times) {
+        let runs: Vec<String> = v.iter().map(|t| format!("{t:.2}")).collect();
+        println!(
+            "| {name} | {} | {:.2} | {:.2} |",
+            runs.join(", "),
+            mean(v),
+            mean(v) / first
+        );
+    }
 }
 
 /// Runs `f` `runs` times; returns (median wall s, mean CPU s).
@@ -389,6 +440,7 @@ fn main() {
     }
     if run("lut") {
         lut_benchmarks();
+        lut_versus_cmgen();
     }
 }
 
