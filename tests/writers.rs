@@ -148,3 +148,78 @@ fn unknown_extension_is_refused_without_output() {
     );
     assert!(!p.exists());
 }
+
+/// Every LUT model, as written to PNG (16-bit), OpenEXR (f32) and KTX2 (`--f32`: R32G32),
+/// read back by the independent readers and held to 1e-4 (relative to max(1, reference))
+/// against the converged reference at the spread check texels of a 64² table. PNG stores
+/// [0, 1] only, so texels of the sheen models above 1 are left to the float formats; RG16F
+/// (the KTX2/DDS default) quantises to 2.4e-4 near 1 and needs `--f32` for this bar.
+#[test]
+fn every_model_keeps_1e4_in_every_float_file() {
+    use exr::prelude::*;
+    use splitsum::lut::LutModel;
+    let n = 64u32;
+    let texels = common::check_texels(n, n);
+    for model in LutModel::ALL {
+        let lut = splitsum::cpu::brdf_lut::brdf_lut(n, n, &LutQuadrature::for_model(model), model);
+        let dir = common::output_dir(&format!("writers-models-{}", model.name()));
+        // PNG, R and G in 16 bits.
+        let png = dir.join("lut.png");
+        write_lut(&png, &lut, LutWriteOptions::default()).unwrap();
+        let img = image::open(&png).unwrap().into_rgb16();
+        // OpenEXR, float32 R and G.
+        let exr_path = dir.join("lut.exr");
+        write_lut(&exr_path, &lut, LutWriteOptions::default()).unwrap();
+        let exr_image = read_first_flat_layer_from_file(&exr_path).unwrap();
+        let mut exr_data = vec![[0f32; 2]; (n * n) as usize];
+        for (ch, c) in exr_image.layer_data.channel_data.list.iter().enumerate() {
+            let FlatSamples::F32(values) = &c.sample_data else {
+                panic!("channel {} is not float32", c.name)
+            };
+            for (k, v) in values.iter().enumerate() {
+                exr_data[k][1 - ch] = *v; // sorted: G first
+            }
+        }
+        // KTX2, R32G32_SFLOAT.
+        let ktx_bytes =
+            encode_lut(&dir.join("lut.ktx2"), &lut, LutWriteOptions { f32: true }).unwrap();
+        let reader = ktx2::Reader::new(&ktx_bytes[..]).unwrap();
+        let level = reader.levels().next().unwrap();
+        let ktx: Vec<f32> = level
+            .data
+            .chunks_exact(4)
+            .map(|c| f32::from_le_bytes(c.try_into().unwrap()))
+            .collect();
+        for &(i, j) in &texels {
+            let (nv, r) = splitsum::lut::lut_texel_coords(i, j, n, n);
+            let (ra, rb) = common::reference_lut_model(nv as f64, r as f64, model);
+            let k = (j * n + i) as usize;
+            let files: [(&str, [f32; 2]); 3] = [
+                (
+                    "png",
+                    img.get_pixel(i, j).0[..2]
+                        .iter()
+                        .map(|&v| v as f32 / 65535.0)
+                        .collect::<Vec<_>>()
+                        .try_into()
+                        .unwrap(),
+                ),
+                ("exr", exr_data[k]),
+                ("ktx2", [ktx[2 * k], ktx[2 * k + 1]]),
+            ];
+            for (format, got) in files {
+                for (g, want) in got.iter().zip([ra, rb]) {
+                    if format == "png" && want > 1.0 {
+                        continue; // clipped, with a warning from `splitsum lut`
+                    }
+                    let err = (*g as f64 - want).abs() / want.abs().max(1.0);
+                    assert!(
+                        err <= 1e-4,
+                        "{} {format} ({i}, {j}): {g} vs {want}",
+                        model.name()
+                    );
+                }
+            }
+        }
+    }
+}
