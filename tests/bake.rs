@@ -4,17 +4,9 @@ mod common;
 use std::path::Path;
 use std::process::Command;
 
-fn splitsum() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_splitsum"))
-}
+use common::splitsum;
 
-fn sha256_hex(bytes: &[u8]) -> String {
-    use sha2::Digest;
-    sha2::Sha256::digest(bytes)
-        .iter()
-        .map(|b| format!("{b:02x}"))
-        .collect()
-}
+use common::sha256_hex;
 
 /// `splitsum bake` of `inputs` into `out` with small sizes, no LUT and `extra` options.
 fn bake_command(inputs: &[&Path], out: &Path, extra: &[&str]) -> Command {

@@ -3,14 +3,11 @@
 mod common;
 
 use std::path::Path;
-use std::process::Command;
 
 /// DESIGN.md quality bar for the LUT in float32 (and 16-bit PNG) output.
 const LUT_TOLERANCE: f64 = 1e-4;
 
-fn splitsum() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_splitsum"))
-}
+use common::splitsum;
 
 /// Max |error| of a decoded LUT (row-major [A, B]) against the reference at check texels.
 fn max_error(width: u32, height: u32, data: &[[f32; 2]]) -> f64 {

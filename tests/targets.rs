@@ -5,17 +5,9 @@ mod common;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn splitsum() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_splitsum"))
-}
+use common::splitsum;
 
-fn sha256_hex(bytes: &[u8]) -> String {
-    use sha2::Digest;
-    sha2::Sha256::digest(bytes)
-        .iter()
-        .map(|b| format!("{b:02x}"))
-        .collect()
-}
+use common::sha256_hex;
 
 fn run(cmd: &mut Command) {
     let o = cmd.output().unwrap();

@@ -153,24 +153,7 @@ pub fn reference_charlie(
         }
         4.0 * vis(n_dot_l) * n_dot_l * v_dot_h / ct
     };
-    let phi_limit = |u: f64| {
-        if n_dot_l_at(u, PI) >= 0.0 {
-            return PI;
-        }
-        if n_dot_l_at(u, 0.0) <= 0.0 {
-            return 0.0;
-        }
-        let (mut lo, mut hi) = (0.0, PI);
-        for _ in 0..80 {
-            let mid = 0.5 * (lo + hi);
-            if n_dot_l_at(u, mid) >= 0.0 {
-                lo = mid
-            } else {
-                hi = mid
-            }
-        }
-        lo
-    };
+    let phi_limit = |u: f64| horizon_phi(|phi| n_dot_l_at(u, phi));
     let theta_v = n_dot_v.acos();
     let u_of = |th: f64| th.sin().powf(e);
     let b1 = u_of(0.5 * (PI / 2.0 - theta_v));
@@ -184,6 +167,28 @@ pub fn reference_charlie(
         adaptive(&mut inner, 0.0, pm, 1e-11) / PI
     };
     adaptive(&mut outer, 0.0, b1, 1e-10) + adaptive(&mut outer, b1, b2, 1e-10)
+}
+
+/// The largest φ ∈ [0, π] with n·l(φ) ≥ 0, by bisection (n·l decreases with φ on [0, π]
+/// for a fixed half-vector polar angle): π when the whole range is above the horizon, 0 when
+/// none of it is.
+fn horizon_phi(n_dot_l: impl Fn(f64) -> f64) -> f64 {
+    if n_dot_l(PI) >= 0.0 {
+        return PI;
+    }
+    if n_dot_l(0.0) <= 0.0 {
+        return 0.0;
+    }
+    let (mut lo, mut hi) = (0.0, PI);
+    for _ in 0..80 {
+        let mid = 0.5 * (lo + hi);
+        if n_dot_l(mid) >= 0.0 {
+            lo = mid
+        } else {
+            hi = mid
+        }
+    }
+    lo
 }
 
 /// A = ∫ f/F (1 − Fc)(n·l) dl and B = ∫ f/F Fc (n·l) dl with `visibility`.
@@ -234,25 +239,7 @@ fn reference_integrals(
         let st = (a2 * u / den).sqrt();
         2.0 * (v[0] * st * phi.cos() + v[2] * ct) * ct - v[2]
     };
-    // Largest φ with n·l ≥ 0 (n·l decreases with φ on [0, π]).
-    let phi_limit = |u: f64| {
-        if n_dot_l_at(u, PI) >= 0.0 {
-            return PI;
-        }
-        if n_dot_l_at(u, 0.0) <= 0.0 {
-            return 0.0;
-        }
-        let (mut lo, mut hi) = (0.0, PI);
-        for _ in 0..80 {
-            let mid = 0.5 * (lo + hi);
-            if n_dot_l_at(u, mid) >= 0.0 {
-                lo = mid
-            } else {
-                hi = mid
-            }
-        }
-        lo
-    };
+    let phi_limit = |u: f64| horizon_phi(|phi| n_dot_l_at(u, phi));
     let theta_v = n_dot_v.acos();
     let u_of = |th: f64| {
         let (s2, c2) = (th.sin().powi(2), th.cos().powi(2));
@@ -277,6 +264,20 @@ fn reference_integrals(
         *out = adaptive(&mut outer, 0.0, b1, 1e-10) + adaptive(&mut outer, b1, b2, 1e-10);
     }
     (result[0], result[1])
+}
+
+/// The splitsum binary of this build.
+pub fn splitsum() -> std::process::Command {
+    std::process::Command::new(env!("CARGO_BIN_EXE_splitsum"))
+}
+
+/// SHA-256 of `bytes`, lower-case hex.
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    use sha2::Digest;
+    sha2::Sha256::digest(bytes)
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
 }
 
 /// Texels to check in a W×H LUT: a spread grid plus the grazing column, the first and last
