@@ -453,28 +453,22 @@ fn lut_benchmarks() {
     for size in [128u32, 512] {
         match &ctx {
             Ok(ctx) => {
-                let t = Instant::now();
-                splitsum::gpu::brdf_lut::brdf_lut(
-                    &ctx.device,
-                    &ctx.queue,
-                    size,
-                    size,
-                    &quad,
-                    Default::default(),
-                )
-                .unwrap();
-                let first = t.elapsed().as_secs_f64();
-                let (wall, cpu) = measure(3, || {
+                let lut = || {
+                    let model = Default::default();
                     splitsum::gpu::brdf_lut::brdf_lut(
                         &ctx.device,
                         &ctx.queue,
                         size,
                         size,
                         &quad,
-                        Default::default(),
+                        model,
                     )
                     .unwrap();
-                });
+                };
+                let t = Instant::now();
+                lut();
+                let first = t.elapsed().as_secs_f64();
+                let (wall, cpu) = measure(3, lut);
                 println!(
                     "| {size} | gpu | {wall:.3} | {cpu:.3} | {}; first call {first:.3} s |",
                     ctx.adapter_description()

@@ -256,36 +256,26 @@ fn output_path_problems_are_clean_errors() {
 #[test]
 fn a_png_that_clips_the_lut_says_so() {
     let dir = common::output_dir("cli-charlie-png");
-    let o = splitsum()
-        .args([
-            "lut",
-            "--model",
-            "charlie",
-            "--size",
-            "32",
-            "--backend",
-            "cpu",
-            "-o",
-        ])
-        .arg(dir.join("charlie.png"))
-        .output()
-        .unwrap();
+    let lut_to = |file: &str| {
+        splitsum()
+            .args([
+                "lut",
+                "--model",
+                "charlie",
+                "--size",
+                "32",
+                "--backend",
+                "cpu",
+                "-o",
+            ])
+            .arg(dir.join(file))
+            .output()
+            .unwrap()
+    };
+    let o = lut_to("charlie.png");
     assert!(o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("are clipped in a PNG"), "{err}");
-    let o = splitsum()
-        .args([
-            "lut",
-            "--model",
-            "charlie",
-            "--size",
-            "32",
-            "--backend",
-            "cpu",
-            "-o",
-        ])
-        .arg(dir.join("charlie.exr"))
-        .output()
-        .unwrap();
+    let o = lut_to("charlie.exr");
     assert!(o.status.success() && o.stderr.is_empty());
 }

@@ -199,24 +199,14 @@ fn filament_dfg_against_cmgen() {
         )
         .unwrap();
         let data = image.layer_data.channel_data.pixels;
-        let quad = LutQuadrature::default();
-        let (mut vs_ours, mut vs_ref, mut ours_vs_ref) = (0.0f64, 0.0f64, 0.0f64);
-        for y in (0..n).step_by(3) {
-            let r = ((n - y) as f32 + 0.5) / n as f32;
-            let r = r.min(1.0);
-            for x in (0..n).step_by(3) {
-                let nv = (x as f32 + 0.5) / n as f32;
-                let theirs = data[y * n + x];
-                let ours = brdf_lut_texel(nv, r, &quad, model);
-                let (ra, rb) = common::reference_lut_model(nv as f64, r as f64, model);
-                for c in 0..2 {
-                    let reference = [ra, rb][c];
-                    vs_ours = vs_ours.max((theirs[c] - ours[c]).abs() as f64);
-                    vs_ref = vs_ref.max((theirs[c] as f64 - reference).abs());
-                    ours_vs_ref = ours_vs_ref.max((ours[c] as f64 - reference).abs());
-                }
-            }
-        }
+        let texels = (0..n).step_by(3).flat_map(|y| {
+            let r = (((n - y) as f32 + 0.5) / n as f32).min(1.0);
+            let data = &data;
+            (0..n)
+                .step_by(3)
+                .map(move |x| ((x as f32 + 0.5) / n as f32, r, data[y * n + x]))
+        });
+        let (vs_ours, vs_ref, ours_vs_ref) = peer_errors(model, texels);
         println!(
             "{}: cmgen vs splitsum max |Δ| {vs_ours:.2e}, cmgen vs converged {vs_ref:.2e}, splitsum vs converged {ours_vs_ref:.2e}",
             model.name()
@@ -225,6 +215,27 @@ fn filament_dfg_against_cmgen() {
         // own error plus splitsum's.
         assert!(vs_ours <= vs_ref + ours_vs_ref + 1e-6);
     }
+}
+
+/// Max |Δ| of a peer's LUT values (n·v, r, [x, y]) against splitsum's `model`, of the
+/// peer against the converged reference, and of splitsum against it.
+fn peer_errors(
+    model: LutModel,
+    texels: impl Iterator<Item = (f32, f32, [f32; 2])>,
+) -> (f64, f64, f64) {
+    let quad = LutQuadrature::for_model(model);
+    let (mut vs_ours, mut vs_ref, mut ours_vs_ref) = (0.0f64, 0.0f64, 0.0f64);
+    for (nv, r, theirs) in texels {
+        let ours = brdf_lut_texel(nv, r, &quad, model);
+        let (ra, rb) = common::reference_lut_model(nv as f64, r as f64, model);
+        for c in 0..2 {
+            let reference = [ra, rb][c];
+            vs_ours = vs_ours.max((theirs[c] - ours[c]).abs() as f64);
+            vs_ref = vs_ref.max((theirs[c] as f64 - reference).abs());
+            ours_vs_ref = ours_vs_ref.max((ours[c] as f64 - reference).abs());
+        }
+    }
+    (vs_ours, vs_ref, ours_vs_ref)
 }
 
 fn which_cmgen() -> Result<std::path::PathBuf, ()> {
@@ -258,23 +269,15 @@ fn three_dfg_against_splitsum() {
         .map(|h| half::f16::from_bits(u16::from_str_radix(h, 16).unwrap()).to_f32())
         .collect();
     assert_eq!(halves.len(), 16 * 16 * 2);
-    let quad = LutQuadrature::default();
-    let model = LutModel::SmithCorrelated;
-    let (mut vs_ours, mut vs_ref, mut ours_vs_ref) = (0.0f64, 0.0f64, 0.0f64);
-    for j in 0..16 {
-        for i in 0..16 {
+    let texels = (0..16).flat_map(|j| {
+        let halves = &halves;
+        (0..16).map(move |i| {
             let (r, nv) = ((i as f32 + 0.5) / 16.0, (j as f32 + 0.5) / 16.0);
-            let theirs = [halves[2 * (j * 16 + i)], halves[2 * (j * 16 + i) + 1]];
-            let ours = brdf_lut_texel(nv, r, &quad, model);
-            let (ra, rb) = common::reference_lut_model(nv as f64, r as f64, model);
-            for c in 0..2 {
-                let reference = [ra, rb][c];
-                vs_ours = vs_ours.max((theirs[c] - ours[c]).abs() as f64);
-                vs_ref = vs_ref.max((theirs[c] as f64 - reference).abs());
-                ours_vs_ref = ours_vs_ref.max((ours[c] as f64 - reference).abs());
-            }
-        }
-    }
+            let k = 2 * (j * 16 + i);
+            (nv, r, [halves[k], halves[k + 1]])
+        })
+    });
+    let (vs_ours, vs_ref, ours_vs_ref) = peer_errors(LutModel::SmithCorrelated, texels);
     println!(
         "three.js DFG vs splitsum smith-correlated max |Δ| {vs_ours:.2e}, three vs converged {vs_ref:.2e}, splitsum vs converged {ours_vs_ref:.2e}"
     );

@@ -227,21 +227,10 @@ fn gpu_prefilter_and_irradiance_match_cpu() {
     let Some(ctx) = common::gpu() else { return };
     let gpu = GpuBackend { ctx };
     let env = quarry_cube(128);
-    let a = gpu
-        .prefilter_specular(
-            &env,
-            None,
-            SpecularChain::linear(env.levels.len() as u32),
-            32,
-        )
-        .unwrap();
+    let chain = SpecularChain::linear(env.levels.len() as u32);
+    let a = gpu.prefilter_specular(&env, None, chain, 32).unwrap();
     let b = CpuBackend
-        .prefilter_specular(
-            &env,
-            None,
-            SpecularChain::linear(env.levels.len() as u32),
-            32,
-        )
+        .prefilter_specular(&env, None, chain, 32)
         .unwrap();
     let ia = gpu
         .irradiance(&IrradianceSource::from_cube(&env), 16)
