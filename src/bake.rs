@@ -326,7 +326,7 @@ pub fn bake(
     let done = timed(Stage::Load, progress);
     let LoadedEnvironment {
         env: source,
-        warnings,
+        mut warnings,
     } = load_input(
         input,
         &InputOptions {
@@ -348,7 +348,7 @@ pub fn bake(
 
     let done = timed(Stage::Specular, progress);
     let chain = opts.specular_chain();
-    let specular =
+    let mut specular =
         backend.prefilter_specular(&env, Some(&irradiance_source), chain, opts.samples)?;
     done(&mut timings);
 
@@ -356,7 +356,6 @@ pub fn bake(
     let irradiance = backend.irradiance(&irradiance_source, opts.irradiance_size)?;
     // The r = 1 level is E/π; its texels are fitted to the finer irradiance cube for the
     // bilinear lookup a shader makes (see `cpu::roughest_level`).
-    let mut specular = specular;
     fit_roughest_level(&mut specular, &irradiance);
     done(&mut timings);
 
@@ -366,7 +365,6 @@ pub fn bake(
 
     let done = timed(Stage::Write, progress);
     let target = opts.target;
-    let mut warnings = warnings;
     if opts.container != Container::Exr {
         if let Some(w) = target.format_warning(opts.pixel_format) {
             warnings.push(format!("--target {}: {w}", target.name));

@@ -323,13 +323,17 @@ fn run_lut(args: LutArgs) -> anyhow::Result<()> {
         );
     }
     if splitsum::io::extension_of(&args.output) == "png" {
-        let clipped = lut.data.iter().flatten().filter(|&&v| v > 1.0).count();
+        let (clipped, largest) = lut
+            .data
+            .iter()
+            .flatten()
+            .filter(|&&v| v > 1.0)
+            .fold((0usize, 0.0f32), |(n, m), &v| (n + 1, m.max(v)));
         if clipped > 0 {
             eprintln!(
-                "warning: {}: {clipped} values above 1 (the {} model's largest is {:.2}) are clipped in a PNG; write .exr or .ktx2 to keep them",
+                "warning: {}: {clipped} values above 1 (the {} model's largest is {largest:.2}) are clipped in a PNG; write .exr or .ktx2 to keep them",
                 args.output.display(),
                 splitsum::lut::LutModel::from(args.model).name(),
-                lut.data.iter().flatten().fold(0.0f32, |a, &b| a.max(b))
             );
         }
     }

@@ -206,12 +206,6 @@ impl Target {
     }
 }
 
-impl Default for &'static Target {
-    fn default() -> Self {
-        &GENERIC
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -262,6 +256,14 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn every_target_is_found_by_its_name() {
+        for t in TARGETS {
+            assert_eq!(Target::by_name(t.name), Some(t));
+        }
+        assert_eq!(Target::by_name("unity"), None);
     }
 
     #[test]
