@@ -39,16 +39,6 @@ fn hot_texels_sum(n: vec3<f32>, alpha: f32) -> vec3<f32> {
     return sum;
 }
 
-// Orthonormal tangent frame around unit n (columns t, b).
-fn tangent_frame(n: vec3<f32>) -> mat2x3<f32> {
-    var up = vec3<f32>(1.0, 0.0, 0.0);
-    if (abs(n.z) < 0.999) {
-        up = vec3<f32>(0.0, 0.0, 1.0);
-    }
-    let t = normalize(cross(up, n));
-    return mat2x3<f32>(t, cross(n, t));
-}
-
 fn prefilter_texel(n: vec3<f32>) -> vec4<f32> {
     let tb = tangent_frame(n);
     var sum = vec3<f32>(0.0);

@@ -3,9 +3,12 @@
 
 use crate::cpu::equirect_to_cube::EquirectToCubeParams;
 use crate::cpu::prefilter_specular::SpecularChain;
+use crate::cpu::preview_split_sum::SplitSumInputs;
+use crate::cpu::preview_truth::TruthInputs;
 use crate::environment::{Cubemap, EquirectIntegral, IrradianceSource};
 use crate::gpu::GpuContext;
 use crate::lut::{validate_lut_size, BrdfLut, LutModel, LutQuadrature};
+use crate::preview::scene::SceneUniform;
 use crate::{cpu, gpu, Error, Result};
 
 /// Which backend the user asked for.
@@ -65,6 +68,17 @@ pub trait Backend {
     /// The irradiance cube (E/π) of edge `size` from the split source, see
     /// [`crate::cpu::irradiance`] and [`crate::environment::hot`].
     fn irradiance(&self, source: &IrradianceSource, size: u32) -> Result<Cubemap>;
+
+    /// The preview's split-sum panel (row-major linear RGB), see
+    /// [`crate::cpu::preview_split_sum`].
+    fn preview_split_sum(
+        &self,
+        scene: &SceneUniform,
+        inputs: &SplitSumInputs,
+    ) -> Result<Vec<[f32; 3]>>;
+
+    /// The preview's ground-truth panel, see [`crate::cpu::preview_truth`].
+    fn preview_truth(&self, scene: &SceneUniform, inputs: &TruthInputs) -> Result<Vec<[f32; 3]>>;
 }
 
 /// The CPU reference backend.
@@ -115,6 +129,18 @@ impl Backend for CpuBackend {
 
     fn irradiance(&self, source: &IrradianceSource, size: u32) -> Result<Cubemap> {
         Ok(cpu::irradiance::irradiance(source, size))
+    }
+
+    fn preview_split_sum(
+        &self,
+        scene: &SceneUniform,
+        inputs: &SplitSumInputs,
+    ) -> Result<Vec<[f32; 3]>> {
+        Ok(cpu::preview_split_sum::render_split_sum(scene, inputs))
+    }
+
+    fn preview_truth(&self, scene: &SceneUniform, inputs: &TruthInputs) -> Result<Vec<[f32; 3]>> {
+        Ok(cpu::preview_truth::render_truth(scene, inputs))
     }
 }
 
@@ -175,6 +201,22 @@ impl Backend for GpuBackend {
             gpu::prefilter::irradiance(device, queue, source, size)
         })
     }
+
+    fn preview_split_sum(
+        &self,
+        scene: &SceneUniform,
+        inputs: &SplitSumInputs,
+    ) -> Result<Vec<[f32; 3]>> {
+        self.ctx.run_kernel("preview_split_sum", |device, queue| {
+            gpu::preview::preview_split_sum(device, queue, scene, inputs)
+        })
+    }
+
+    fn preview_truth(&self, scene: &SceneUniform, inputs: &TruthInputs) -> Result<Vec<[f32; 3]>> {
+        self.ctx.run_kernel("preview_truth", |device, queue| {
+            gpu::preview::preview_truth(device, queue, scene, inputs)
+        })
+    }
 }
 
 /// What `--backend auto` uses on a software adapter (Mesa's lavapipe and the like): the
@@ -230,6 +272,18 @@ impl Backend for SoftwareAdapterBackend {
 
     fn irradiance(&self, source: &IrradianceSource, size: u32) -> Result<Cubemap> {
         CpuBackend.irradiance(source, size)
+    }
+
+    fn preview_split_sum(
+        &self,
+        scene: &SceneUniform,
+        inputs: &SplitSumInputs,
+    ) -> Result<Vec<[f32; 3]>> {
+        CpuBackend.preview_split_sum(scene, inputs)
+    }
+
+    fn preview_truth(&self, scene: &SceneUniform, inputs: &TruthInputs) -> Result<Vec<[f32; 3]>> {
+        CpuBackend.preview_truth(scene, inputs)
     }
 }
 

@@ -12,14 +12,15 @@ use crate::convert::environment_into_cube_with_irradiance;
 use crate::cpu::prefilter_specular::{chain_levels, SpecularChain};
 use crate::cpu::roughest_level::fit_roughest_level;
 use crate::cpu::sh_project::{sh_project, ShCoefficients};
-use crate::environment::Cubemap;
+use crate::environment::{Cubemap, Environment};
 use crate::io::atomic::write_all_atomic;
 use crate::io::cubemap::{encode_texture, to_cross};
 use crate::io::input::{load_input, InputOptions, LoadedEnvironment};
 use crate::io::lut::{encode_lut, LutWriteOptions};
 use crate::io::{dds, exr, ktx2, PixelFormat};
-use crate::lut::BrdfLut;
+use crate::lut::{BrdfLut, DEFAULT_LUT_SIZE};
 use crate::math::sh::SH_ORDER;
+use crate::preview::{render_preview, BakedLight, Preview, PreviewOptions, SphereStats};
 use crate::target::{Target, GENERIC};
 use crate::{Backend, Error, Result};
 
@@ -74,6 +75,8 @@ pub struct BakeOptions {
     pub exposure_ev: f32,
     /// Write sh.json.
     pub sh: bool,
+    /// Render `preview.png` (split-sum against ground truth, see [`crate::preview`]).
+    pub preview: Option<PreviewOptions>,
 }
 
 impl BakeOptions {
@@ -92,6 +95,7 @@ impl BakeOptions {
             rotate_degrees: 0.0,
             exposure_ev: 0.0,
             sh: target.sh,
+            preview: None,
         }
     }
 
@@ -125,6 +129,8 @@ pub enum Stage {
     Irradiance,
     /// Projecting onto spherical harmonics.
     Sh,
+    /// Rendering the preview.
+    Preview,
     /// Encoding and writing the outputs.
     Write,
 }
@@ -138,17 +144,19 @@ impl Stage {
             Stage::Specular => "specular",
             Stage::Irradiance => "irradiance",
             Stage::Sh => "sh",
+            Stage::Preview => "preview",
             Stage::Write => "write",
         }
     }
 
     /// All stages in order.
-    pub const ALL: [Stage; 6] = [
+    pub const ALL: [Stage; 7] = [
         Stage::Load,
         Stage::Cubemap,
         Stage::Specular,
         Stage::Irradiance,
         Stage::Sh,
+        Stage::Preview,
         Stage::Write,
     ];
 }
@@ -183,6 +191,120 @@ pub struct BakeReport {
     pub timings: Vec<(Stage, f64)>,
     /// Warnings from loading the input.
     pub warnings: Vec<String>,
+    /// The preview, when asked for.
+    pub preview: Option<Preview>,
+}
+
+/// The light of one environment baked in memory, in the generic orientation (before a
+/// target's): what `bake` writes and `preview` renders.
+#[derive(Clone, Debug)]
+pub struct BakedEnvironment {
+    /// The prefiltered specular chain (level 0 is the environment cube).
+    pub specular: Cubemap,
+    /// Its layout.
+    pub chain: SpecularChain,
+    /// The irradiance cube (E/π).
+    pub irradiance: Cubemap,
+    /// The SH projection, when asked for.
+    pub sh: Option<ShCoefficients>,
+}
+
+impl BakedEnvironment {
+    /// What the preview reads of it, with `lut`.
+    pub fn light<'a>(&'a self, lut: &'a BrdfLut) -> BakedLight<'a> {
+        BakedLight {
+            specular: &self.specular,
+            chain: self.chain,
+            irradiance: &self.irradiance,
+            lut,
+        }
+    }
+}
+
+/// Runs `f` as `stage`: reports it to `progress` and records its wall time.
+fn timed_stage<T>(
+    stage: Stage,
+    progress: &mut dyn FnMut(Stage),
+    timings: &mut Vec<(Stage, f64)>,
+    f: impl FnOnce() -> Result<T>,
+) -> Result<T> {
+    progress(stage);
+    let t = Instant::now();
+    let out = f()?;
+    timings.push((stage, t.elapsed().as_secs_f64()));
+    Ok(out)
+}
+
+/// Checks the sizes and counts of `opts` before any work.
+pub fn validate_options(opts: &BakeOptions) -> Result<()> {
+    crate::convert::validate_cube_size(opts.specular_size)?;
+    crate::convert::validate_cube_size(opts.irradiance_size).map_err(|_| {
+        Error::InvalidParameter {
+            name: "--irradiance-size",
+            message: format!(
+                "{} must be a power of two in 1..=8192",
+                opts.irradiance_size
+            ),
+        }
+    })?;
+    if !opts.min_mip_size.is_power_of_two() {
+        return Err(Error::InvalidParameter {
+            name: "--min-mip-size",
+            message: format!("{} is not a power of two", opts.min_mip_size),
+        });
+    }
+    if opts.samples == 0 || opts.samples > 65536 {
+        return Err(Error::InvalidParameter {
+            name: "--samples",
+            message: format!("{} is outside 1..=65536", opts.samples),
+        });
+    }
+    if let Some(p) = &opts.preview {
+        crate::preview::validate_options(p)?;
+    }
+    Ok(())
+}
+
+/// Bakes a loaded environment in memory: cube conversion, specular chain (its last level
+/// fitted for bilinear lookups), irradiance and SH. `progress` is called as each stage
+/// starts, and each stage's wall time is pushed onto `timings`.
+pub fn bake_environment(
+    backend: &dyn Backend,
+    source: Environment,
+    opts: &BakeOptions,
+    progress: &mut dyn FnMut(Stage),
+    timings: &mut Vec<(Stage, f64)>,
+) -> Result<BakedEnvironment> {
+    validate_options(opts)?;
+    let (env, irradiance_source) = timed_stage(Stage::Cubemap, progress, timings, || {
+        environment_into_cube_with_irradiance(
+            backend,
+            source,
+            opts.specular_size,
+            true,
+            opts.rotate_degrees,
+        )
+    })?;
+    let chain = opts.specular_chain();
+    let mut specular = timed_stage(Stage::Specular, progress, timings, || {
+        backend.prefilter_specular(&env, Some(&irradiance_source), chain, opts.samples)
+    })?;
+    let irradiance = timed_stage(Stage::Irradiance, progress, timings, || {
+        let irradiance = backend.irradiance(&irradiance_source, opts.irradiance_size)?;
+        // The r = 1 level is E/π; its texels are fitted to the finer irradiance cube for
+        // the bilinear lookup a shader makes (see `cpu::roughest_level`).
+        fit_roughest_level(&mut specular, &irradiance);
+        Ok(irradiance)
+    })?;
+    let sh = timed_stage(Stage::Sh, progress, timings, || {
+        Ok(opts.sh.then(|| sh_project(&irradiance_source)))
+    })?;
+    Ok(BakedEnvironment {
+        specular,
+        chain,
+        irradiance,
+        sh,
+    })
 }
 
 /// `sh.json`: the coefficient order, the radiance projection and the E/π coefficients.
@@ -294,76 +416,44 @@ pub fn bake(
     lut: Option<&BrdfLut>,
     progress: &mut dyn FnMut(Stage),
 ) -> Result<BakeReport> {
-    crate::convert::validate_cube_size(opts.specular_size)?;
-    crate::convert::validate_cube_size(opts.irradiance_size).map_err(|_| {
-        Error::InvalidParameter {
-            name: "--irradiance-size",
-            message: format!(
-                "{} must be a power of two in 1..=8192",
-                opts.irradiance_size
-            ),
-        }
-    })?;
-    if !opts.min_mip_size.is_power_of_two() {
-        return Err(Error::InvalidParameter {
-            name: "--min-mip-size",
-            message: format!("{} is not a power of two", opts.min_mip_size),
-        });
-    }
-    if opts.samples == 0 || opts.samples > 65536 {
-        return Err(Error::InvalidParameter {
-            name: "--samples",
-            message: format!("{} is outside 1..=65536", opts.samples),
-        });
-    }
+    validate_options(opts)?;
     let mut timings = Vec::new();
-    let timed = |stage: Stage, progress: &mut dyn FnMut(Stage)| {
-        progress(stage);
-        let t = Instant::now();
-        move |timings: &mut Vec<(Stage, f64)>| timings.push((stage, t.elapsed().as_secs_f64()))
-    };
-
-    let done = timed(Stage::Load, progress);
     let LoadedEnvironment {
         env: source,
         mut warnings,
-    } = load_input(
-        input,
-        &InputOptions {
-            exposure_ev: opts.exposure_ev,
-            cube_size: Some(opts.specular_size),
-        },
-    )?;
-    done(&mut timings);
+    } = timed_stage(Stage::Load, progress, &mut timings, || {
+        load_input(
+            input,
+            &InputOptions {
+                exposure_ev: opts.exposure_ev,
+                cube_size: Some(opts.specular_size),
+            },
+        )
+    })?;
+    let baked = bake_environment(backend, source, opts, progress, &mut timings)?;
+    let preview = match &opts.preview {
+        None => None,
+        Some(p) => Some(timed_stage(Stage::Preview, progress, &mut timings, || {
+            let own;
+            let lut = match lut {
+                Some(l) => l,
+                None => {
+                    own = backend.brdf_lut(DEFAULT_LUT_SIZE, DEFAULT_LUT_SIZE)?;
+                    &own
+                }
+            };
+            render_preview(backend, &baked.light(lut), p)
+        })?),
+    };
+    let BakedEnvironment {
+        specular,
+        irradiance,
+        sh,
+        ..
+    } = baked;
 
-    let done = timed(Stage::Cubemap, progress);
-    let (env, irradiance_source) = environment_into_cube_with_irradiance(
-        backend,
-        source,
-        opts.specular_size,
-        true,
-        opts.rotate_degrees,
-    )?;
-    done(&mut timings);
-
-    let done = timed(Stage::Specular, progress);
-    let chain = opts.specular_chain();
-    let mut specular =
-        backend.prefilter_specular(&env, Some(&irradiance_source), chain, opts.samples)?;
-    done(&mut timings);
-
-    let done = timed(Stage::Irradiance, progress);
-    let irradiance = backend.irradiance(&irradiance_source, opts.irradiance_size)?;
-    // The r = 1 level is E/π; its texels are fitted to the finer irradiance cube for the
-    // bilinear lookup a shader makes (see `cpu::roughest_level`).
-    fit_roughest_level(&mut specular, &irradiance);
-    done(&mut timings);
-
-    let done = timed(Stage::Sh, progress);
-    let sh = opts.sh.then(|| sh_project(&irradiance_source));
-    done(&mut timings);
-
-    let done = timed(Stage::Write, progress);
+    progress(Stage::Write);
+    let write_start = Instant::now();
     let target = opts.target;
     if opts.container != Container::Exr {
         if let Some(w) = target.format_warning(opts.pixel_format) {
@@ -403,8 +493,22 @@ pub fn bake(
             ("brdf_lut", target.lut_file.format(), lut.width, 1),
         );
     }
+    if let Some(p) = &preview {
+        out.add(
+            dir.join("preview.png"),
+            p.png.clone(),
+            ("preview", "png (8-bit sRGB)", p.width, 1),
+        );
+    }
     // The manifest lists every other file (it cannot hold its own hash).
-    let manifest = manifest_json(input, backend, opts, lut.map(|l| l.width), &out.outputs);
+    let manifest = manifest_json(
+        input,
+        backend,
+        opts,
+        lut.map(|l| l.width),
+        preview.as_ref(),
+        &out.outputs,
+    );
     let manifest_path = dir.join("manifest.json");
     out.add(
         manifest_path,
@@ -412,13 +516,14 @@ pub fn bake(
         ("manifest", "json", 0, 0),
     );
     write_all_atomic(&out.staged)?;
-    done(&mut timings);
+    timings.push((Stage::Write, write_start.elapsed().as_secs_f64()));
 
     Ok(BakeReport {
         out_dir: dir,
         outputs: out.outputs,
         timings,
         warnings,
+        preview,
     })
 }
 
@@ -431,7 +536,22 @@ struct Manifest<'a> {
     backend: String,
     target: TargetRecord<'a>,
     parameters: Parameters<'a>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    preview: Option<PreviewRecord<'a>>,
     outputs: Vec<OutputEntry<'a>>,
+}
+
+/// How preview.png was made and what it measured.
+#[derive(Serialize)]
+struct PreviewRecord<'a> {
+    cell: u32,
+    exposure: f32,
+    tone_mapping: &'a str,
+    truth_samples: u32,
+    split_sum: &'a str,
+    truth: &'a str,
+    relative_difference: &'a str,
+    spheres: &'a [SphereStats],
 }
 
 /// What the target implies, so a reader of the manifest knows how to sample the files.
@@ -481,6 +601,7 @@ fn manifest_json(
     backend: &dyn Backend,
     opts: &BakeOptions,
     lut_size: Option<u32>,
+    preview: Option<&Preview>,
     outputs: &[OutputRecord],
 ) -> String {
     let target = opts.target;
@@ -510,6 +631,16 @@ fn manifest_json(
             exposure_ev: opts.exposure_ev,
             lut_size,
         },
+        preview: preview.zip(opts.preview.as_ref()).map(|(p, o)| PreviewRecord {
+            cell: o.cell,
+            exposure: p.exposure,
+            tone_mapping: "Khronos PBR Neutral, then sRGB",
+            truth_samples: o.truth_samples,
+            split_sum: "prefiltered(reflect(-v, n), lod(r)) * (F0 * A + B) + irradiance(n) * albedo * (1 - F_roughness(n.v)) * (1 - metallic)",
+            truth: "the integral of the same BRDF over the specular chain's level 0 with the real view direction: hot texels summed exactly, the rest by GGX visible-normal and cosine quasi-Monte Carlo",
+            relative_difference: "on each pixel's luminance Y: mean_relative = sum |Y_split_sum - Y_truth| / sum Y_truth over the sphere, worst_relative = the largest |Y_split_sum - Y_truth| / Y_truth of one pixel",
+            spheres: &p.stats,
+        }),
         outputs: outputs
             .iter()
             .map(|o| OutputEntry {
@@ -527,4 +658,71 @@ fn manifest_json(
             })
             .collect(),
     })
+}
+
+/// Reads back the light a generic-target KTX2 bake wrote into `dir`: the specular chain,
+/// the irradiance cube and, when it was written, the LUT (`None` otherwise). Other targets'
+/// files are mirrored and laid out for one engine; [`bake`] previews those in memory.
+pub fn read_bake_dir(dir: &Path) -> Result<(BakedEnvironment, Option<BrdfLut>)> {
+    let manifest_path = dir.join("manifest.json");
+    let text = std::fs::read_to_string(&manifest_path).map_err(|e| Error::io(&manifest_path, e))?;
+    let bad = |message: String| Error::Decode {
+        path: manifest_path.clone(),
+        format: "JSON",
+        message,
+    };
+    let manifest: serde_json::Value =
+        serde_json::from_str(&text).map_err(|e| bad(e.to_string()))?;
+    let field = |pointer: &str| {
+        manifest.pointer(pointer).ok_or_else(|| {
+            bad(format!(
+                "no {pointer} (not a manifest splitsum bake wrote?)"
+            ))
+        })
+    };
+    let target = field("/target/name")?.as_str().unwrap_or_default();
+    let container = field("/parameters/container")?.as_str().unwrap_or_default();
+    if target != GENERIC.name || container != Container::Ktx2.extension() {
+        return Err(Error::UnsupportedInput {
+            path: dir.to_path_buf(),
+            message: format!(
+                "a preview reads bakes made with --target generic --container ktx2; this one is --target {target} --container {container}: add --preview to that bake instead"
+            ),
+        });
+    }
+    let levels = field("/parameters/specular_levels")?
+        .as_u64()
+        .ok_or_else(|| bad("/parameters/specular_levels is not a number".into()))?;
+    let specular_path = dir.join("specular.ktx2");
+    let specular = crate::io::input::read_ktx2_cube_chain(&specular_path)?;
+    if specular.levels.len() as u64 != levels {
+        return Err(Error::Decode {
+            path: specular_path,
+            format: "KTX2",
+            message: format!(
+                "{} levels, the manifest says {levels}",
+                specular.levels.len()
+            ),
+        });
+    }
+    let irradiance = crate::io::input::read_ktx2_cube(&dir.join("irradiance.ktx2"))?;
+    let lut_path = dir.join("brdf_lut.png");
+    let lut = if lut_path.exists() {
+        Some(crate::io::lut::read_lut_png(&lut_path)?)
+    } else {
+        None
+    };
+    let chain = SpecularChain {
+        levels: levels as u32,
+        roughness: GENERIC.roughness,
+    };
+    Ok((
+        BakedEnvironment {
+            specular,
+            chain,
+            irradiance,
+            sh: None,
+        },
+        lut,
+    ))
 }

@@ -62,6 +62,19 @@ pub enum Command {
     /// exit code is 1 if any failed.
     Bake(BakeArgs),
 
+    /// Renders the seed materials under a bake: split-sum against ground truth.
+    ///
+    /// A grid of spheres (rows gold, copper, aluminium, titanium, silver and a dielectric
+    /// with F0 0.04 and albedo 0.8; columns roughness 0, 0.25, 0.5, 0.75, 1) over the
+    /// environment, twice: split-sum (prefiltered specular at the documented lod, the LUT,
+    /// irradiance × albedo × kD, as the README tells engines to) and ground truth (the full
+    /// reflectance integral of the same BRDF over the same environment per pixel), with a
+    /// heat map of |split-sum − truth| / truth. Tone-mapped with Khronos PBR Neutral, 8-bit
+    /// sRGB PNG. Prints per material and roughness the mean and worst relative difference.
+    /// INPUT is an environment (baked in memory with the bake defaults) or a folder that
+    /// `bake` wrote (--target generic, KTX2).
+    Preview(PreviewArgs),
+
     /// Runs every kernel on the GPU and on the CPU reference on a reduced problem and
     /// prints their differences; exits 1 when one is out of tolerance.
     Verify(VerifyArgs),
@@ -132,12 +145,67 @@ pub struct BakeArgs {
     #[arg(long, default_value_t = splitsum::cpu::prefilter_specular::DEFAULT_SAMPLES)]
     pub samples: u32,
 
+    /// Also render preview.png into each output folder (see `splitsum preview`).
+    #[arg(long)]
+    pub preview: bool,
+
+    /// The preview's exposure in stops [default: from the environment].
+    #[arg(
+        long,
+        value_name = "EV",
+        allow_hyphen_values = true,
+        requires = "preview"
+    )]
+    pub preview_exposure: Option<f32>,
+
+    #[command(flatten)]
+    pub preview_render: PreviewRenderArgs,
+
     /// No progress bars.
     #[arg(short, long)]
     pub quiet: bool,
 
     #[command(flatten)]
     pub input_opts: InputArgs,
+
+    #[command(flatten)]
+    pub common: CommonArgs,
+}
+
+/// How a preview is rendered (shared by `preview` and `bake --preview`).
+#[derive(Debug, Args)]
+pub struct PreviewRenderArgs {
+    /// Quasi-Monte Carlo points per lobe and pixel of the ground truth (its cost grows
+    /// with them; the split-sum render does not depend on them).
+    #[arg(long, default_value_t = splitsum::cpu::preview_truth::DEFAULT_TRUTH_SAMPLES)]
+    pub truth_samples: u32,
+
+    /// Edge of one sphere's cell in pixels.
+    #[arg(long, default_value_t = splitsum::preview::scene::DEFAULT_CELL)]
+    pub preview_cell: u32,
+}
+
+/// `splitsum preview`.
+#[derive(Debug, Args)]
+pub struct PreviewArgs {
+    /// An environment (as `bake` reads) or a folder `bake` wrote.
+    pub input: PathBuf,
+
+    /// Output PNG [default: <folder>/preview.png for a bake folder, out/<stem>_preview.png
+    /// for an environment].
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+
+    /// Exposure in stops [default: the environment's log-average luminance maps to 0.18].
+    #[arg(long, value_name = "EV", allow_hyphen_values = true)]
+    pub exposure: Option<f32>,
+
+    /// Specular cube edge when INPUT is an environment (power of two).
+    #[arg(long, default_value_t = 256)]
+    pub specular_size: u32,
+
+    #[command(flatten)]
+    pub render: PreviewRenderArgs,
 
     #[command(flatten)]
     pub common: CommonArgs,

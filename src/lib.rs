@@ -41,6 +41,7 @@ pub mod gpu;
 pub mod io;
 pub mod lut;
 pub mod math;
+pub mod preview;
 pub mod target;
 pub mod verify;
 

@@ -29,6 +29,9 @@
 //! over every 8th texel and every edge texel of 512², grazing column and roughness ≈ 0
 //! and ≈ 1 included (bar 1e-4).
 
+/// Edge of the LUT `splitsum lut` and `bake` write by default.
+pub const DEFAULT_LUT_SIZE: u32 = 512;
+
 use crate::math::quadrature::{gauss_legendre_even_half, gauss_legendre_unit, Node};
 
 // The rule sizes below trade accuracy for time, measured by `quadrature_scan` in

@@ -10,7 +10,10 @@ use std::time::Instant;
 use anyhow::Context;
 use clap::Parser;
 
-use cli::{BakeArgs, Cli, Command, CommonArgs, CubemapArgs, LutArgs, VerifyArgs};
+use cli::{
+    BakeArgs, Cli, Command, CommonArgs, CubemapArgs, LutArgs, PreviewArgs, PreviewRenderArgs,
+    VerifyArgs,
+};
 use splitsum::io::lut::{check_lut_path, write_lut, LutWriteOptions};
 
 /// Exit code after Ctrl-C or SIGTERM (128 + SIGINT, the shell convention).
@@ -30,6 +33,7 @@ fn main() -> ExitCode {
         Command::Lut(args) => run_lut(args),
         Command::Cubemap(args) => run_cubemap(args),
         Command::Bake(args) => run_bake(args),
+        Command::Preview(args) => run_preview(args),
         Command::Verify(args) => run_verify(args),
     };
     match result {
@@ -184,6 +188,9 @@ fn run_bake(args: BakeArgs) -> anyhow::Result<()> {
         rotate_degrees: args.input_opts.rotate,
         exposure_ev: args.input_opts.exposure,
         sh: (defaults.sh || args.sh) && !args.no_sh,
+        preview: args
+            .preview
+            .then(|| preview_options(&args.preview_render, args.preview_exposure)),
         target,
     };
     let write_lut = (target.lut || args.lut) && !args.no_lut;
@@ -201,7 +208,7 @@ fn run_bake(args: BakeArgs) -> anyhow::Result<()> {
             false
         }
     };
-    let lut_size = 512;
+    let lut_size = splitsum::lut::DEFAULT_LUT_SIZE;
     let compute_lut = |backend: &dyn splitsum::Backend| backend.brdf_lut(lut_size, lut_size);
     let mut lut = if !write_lut {
         None
@@ -253,6 +260,9 @@ fn run_bake(args: BakeArgs) -> anyhow::Result<()> {
                 for w in &report.warnings {
                     eprintln!("warning: {w}");
                 }
+                if let Some(p) = &report.preview {
+                    print_preview(&report.out_dir.join("preview.png"), p, args.common.verbose);
+                }
                 if args.common.verbose {
                     let stages: Vec<String> = report
                         .timings
@@ -276,6 +286,109 @@ fn run_bake(args: BakeArgs) -> anyhow::Result<()> {
     if failed > 0 {
         anyhow::bail!("{failed} of {} inputs failed", args.inputs.len());
     }
+    Ok(())
+}
+
+fn preview_options(
+    render: &PreviewRenderArgs,
+    exposure_ev: Option<f32>,
+) -> splitsum::preview::PreviewOptions {
+    splitsum::preview::PreviewOptions {
+        cell: render.preview_cell,
+        exposure_ev,
+        truth_samples: render.truth_samples,
+    }
+}
+
+/// Prints a preview's table: per material and roughness, mean / worst relative difference
+/// of split-sum against truth; with `verbose`, what each render cost.
+fn print_preview(path: &std::path::Path, p: &splitsum::preview::Preview, verbose: bool) {
+    use splitsum::preview::scene::ROUGHNESS;
+    println!(
+        "{}: split-sum against ground truth per sphere, luminance: Σ|ΔY| / ΣY and worst pixel |ΔY| / Y, %",
+        path.display()
+    );
+    let header: Vec<String> = ROUGHNESS
+        .iter()
+        .map(|r| format!("{:>13}", format!("r = {r}")))
+        .collect();
+    println!("{:<11}{}", "", header.join(""));
+    for row in p.stats.chunks(ROUGHNESS.len()) {
+        let cells: Vec<String> = row
+            .iter()
+            .map(|s| {
+                let cell = format!(
+                    "{:.2} / {:.1}",
+                    100.0 * s.mean_relative,
+                    100.0 * s.worst_relative
+                );
+                format!("{cell:>13}")
+            })
+            .collect();
+        println!("{:<11}{}", row[0].material, cells.join(""));
+    }
+    if verbose {
+        eprintln!(
+            "preview: split-sum {:.3} s, truth {:.3} s, exposure ×{:.3}",
+            p.split_sum_seconds, p.truth_seconds, p.exposure
+        );
+    }
+}
+
+fn run_preview(args: PreviewArgs) -> anyhow::Result<()> {
+    use splitsum::bake::{bake_environment, read_bake_dir, BakeOptions};
+    let popts = preview_options(&args.render, args.exposure);
+    splitsum::preview::validate_options(&popts)?;
+    let output = args.output.clone().unwrap_or_else(|| {
+        if args.input.is_dir() {
+            args.input.join("preview.png")
+        } else {
+            let stem = splitsum::io::input::input_stem(&args.input);
+            std::path::PathBuf::from("out").join(format!("{stem}_preview.png"))
+        }
+    });
+    splitsum::io::check_output_extension(&output, "a preview", &["png"])?;
+    let backend = open_backend(&args.common)?;
+    let (baked, lut) = if args.input.is_dir() {
+        read_bake_dir(&args.input)?
+    } else {
+        let opts = BakeOptions {
+            specular_size: args.specular_size,
+            ..BakeOptions::default()
+        };
+        splitsum::bake::validate_options(&opts)?;
+        let loaded = splitsum::io::input::load_input(
+            &args.input,
+            &splitsum::io::input::InputOptions {
+                exposure_ev: 0.0,
+                cube_size: Some(opts.specular_size),
+            },
+        )?;
+        for w in &loaded.warnings {
+            eprintln!("warning: {w}");
+        }
+        let mut timings = Vec::new();
+        let baked = bake_environment(
+            backend.as_ref(),
+            loaded.env,
+            &opts,
+            &mut |_| {},
+            &mut timings,
+        )?;
+        (baked, None)
+    };
+    let lut = match lut {
+        Some(l) => l,
+        None => backend
+            .brdf_lut(
+                splitsum::lut::DEFAULT_LUT_SIZE,
+                splitsum::lut::DEFAULT_LUT_SIZE,
+            )
+            .context("computing the BRDF LUT")?,
+    };
+    let preview = splitsum::preview::render_preview(backend.as_ref(), &baked.light(&lut), &popts)?;
+    splitsum::io::atomic::write_atomic(&output, &preview.png)?;
+    print_preview(&output, &preview, args.common.verbose);
     Ok(())
 }
 

@@ -154,6 +154,54 @@ fn kernel_uniforms_match_rust() {
     );
 }
 
+#[test]
+fn preview_uniforms_match_rust() {
+    use splitsum::gpu::preview::{SplitSumUniform, TruthUniform};
+    use splitsum::gpu::shaders::{PREVIEW_SPLIT_SUM, PREVIEW_TRUTH};
+    use splitsum::preview::scene::SceneUniform;
+    for source in [PREVIEW_SPLIT_SUM, PREVIEW_TRUTH] {
+        assert_layout!(
+            source,
+            "SceneParams",
+            SceneUniform,
+            [
+                width,
+                height,
+                cell,
+                columns,
+                radius,
+                tan_half_x,
+                tan_half_y,
+                min_n_dot_v,
+                right,
+                up,
+                forward
+            ]
+        );
+    }
+    assert_layout!(
+        PREVIEW_SPLIT_SUM,
+        "SplitSumParams",
+        SplitSumUniform,
+        [
+            specular_size,
+            specular_levels,
+            irradiance_size,
+            lut_width,
+            lut_height,
+            _pad0,
+            _pad1,
+            _pad2
+        ]
+    );
+    assert_layout!(
+        PREVIEW_TRUTH,
+        "TruthParams",
+        TruthUniform,
+        [env_size, hot_count, point_count, _pad]
+    );
+}
+
 /// The exact kernels read the source arrays as vec4s; the Rust structs are whole vec4s.
 #[test]
 fn source_texel_structs_are_whole_vec4s() {

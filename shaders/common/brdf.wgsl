@@ -83,3 +83,14 @@ fn fresnel_schlick(f0: f32, v_dot_h: f32) -> f32 {
     let w = fresnel_schlick_weight(v_dot_h);
     return f0 * (1.0 - w) + w;
 }
+
+// Fresnel-Schlick at n.v with Lagarde's (2011) roughness-dependent grazing value:
+// F0 + (max(1 - r, F0) - F0)(1 - n.v)^5 (LearnOpenGL's fresnelSchlickRoughness).
+fn fresnel_schlick_roughness(f0: f32, n_dot_v: f32, roughness: f32) -> f32 {
+    return f0 + (max(1.0 - roughness, f0) - f0) * fresnel_schlick_weight(n_dot_v);
+}
+
+// Exact Smith masking of GGX, G1(x) = 2 n.x / (n.x + Lambda'(x)) (Walter et al. 2007, eq. 34).
+fn g1_smith_ggx(n_dot_x: f32, alpha2: f32) -> f32 {
+    return 2.0 * n_dot_x / (n_dot_x + smith_correlated_lambda(n_dot_x, alpha2));
+}

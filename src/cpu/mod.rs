@@ -8,5 +8,7 @@ pub mod cube_sample;
 pub mod equirect_to_cube;
 pub mod irradiance;
 pub mod prefilter_specular;
+pub mod preview_split_sum;
+pub mod preview_truth;
 pub mod roughest_level;
 pub mod sh_project;

@@ -19,8 +19,8 @@ use crate::cpu::equirect_to_cube::fill_cube_level;
 use crate::cpu::irradiance::{source_texels, SourceTexel};
 use crate::environment::{Cubemap, IrradianceSource};
 use crate::math::brdf::{alpha_from_roughness, d_ggx};
-use crate::math::cubemap::{cube_texel_direction, normalize};
-use crate::math::sampling::{hammersley, importance_sample_ggx};
+use crate::math::cubemap::cube_texel_direction;
+use crate::math::sampling::{hammersley, importance_sample_ggx, tangent_frame};
 
 /// Lod bias of filtered importance sampling. Colbert & Křivánek add +1 (one level blurrier
 /// than the pdf suggests) to hide sample structure; against a brute-force convolution of
@@ -107,25 +107,6 @@ impl SpecularChain {
 /// Roughness of mip `m` of a linear chain of `levels` (DESIGN.md: r = m / (M − 1)).
 pub fn mip_roughness(m: u32, levels: u32) -> f32 {
     MipRoughness::Linear.roughness(m, levels)
-}
-
-/// An orthonormal tangent frame (t, b) around unit `n`.
-pub fn tangent_frame(n: [f32; 3]) -> ([f32; 3], [f32; 3]) {
-    let up = if n[2].abs() < 0.999 {
-        [0.0, 0.0, 1.0]
-    } else {
-        [1.0, 0.0, 0.0]
-    };
-    let t = normalize(cross(up, n));
-    (t, cross(n, t))
-}
-
-fn cross(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 /// A texel is "hot" when its radiance exceeds this multiple of the environment's mean.

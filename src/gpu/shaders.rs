@@ -37,6 +37,29 @@ pub const PREFILTER_SAMPLED: &str = kernel_source!(
 pub const CONVOLVE_EXACT: &str =
     kernel_source!("convolve_exact.wgsl", ["brdf.wgsl", "cubemap.wgsl"]);
 
+/// `shaders/preview_split_sum.wgsl` with brdf, cubemap, cube_sample, preview_scene.
+pub const PREVIEW_SPLIT_SUM: &str = kernel_source!(
+    "preview_split_sum.wgsl",
+    [
+        "brdf.wgsl",
+        "cubemap.wgsl",
+        "cube_sample.wgsl",
+        "preview_scene.wgsl"
+    ]
+);
+
+/// `shaders/preview_truth.wgsl` with brdf, sampling, cubemap, cube_sample, preview_scene.
+pub const PREVIEW_TRUTH: &str = kernel_source!(
+    "preview_truth.wgsl",
+    [
+        "brdf.wgsl",
+        "sampling.wgsl",
+        "cubemap.wgsl",
+        "cube_sample.wgsl",
+        "preview_scene.wgsl"
+    ]
+);
+
 /// Every assembled kernel by name, for validation.
 pub const ALL: &[(&str, &str)] = &[
     ("prefilter_sampled", PREFILTER_SAMPLED),
@@ -44,4 +67,6 @@ pub const ALL: &[(&str, &str)] = &[
     ("brdf_lut", BRDF_LUT),
     ("equirect_to_cube", EQUIRECT_TO_CUBE),
     ("cube_downsample", CUBE_DOWNSAMPLE),
+    ("preview_split_sum", PREVIEW_SPLIT_SUM),
+    ("preview_truth", PREVIEW_TRUTH),
 ];

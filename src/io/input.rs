@@ -529,6 +529,17 @@ pub fn read_ktx2_cube(path: &Path) -> Result<Cubemap> {
 
 /// Decodes level 0 of a KTX2 cubemap from `bytes` (`path` names it in errors).
 pub fn decode_ktx2_cube(path: &Path, bytes: &[u8]) -> Result<Cubemap> {
+    decode_ktx2_levels(path, bytes, 1)
+}
+
+/// Reads every level of a KTX2 cubemap (a prefiltered chain, as `bake` writes it).
+pub fn read_ktx2_cube_chain(path: &Path) -> Result<Cubemap> {
+    decode_ktx2_levels(path, &read_file(path)?, u32::MAX)
+}
+
+/// Decodes the first `max_levels` levels of a KTX2 cubemap from `bytes`; each level must
+/// be the full mip size of level 0 (a chain may stop before 1×1).
+fn decode_ktx2_levels(path: &Path, bytes: &[u8], max_levels: u32) -> Result<Cubemap> {
     const F: &str = "KTX2";
     let bad = |message: String| Error::Decode {
         path: path.to_path_buf(),
@@ -561,39 +572,46 @@ pub fn decode_ktx2_cube(path: &Path, bytes: &[u8]) -> Result<Cubemap> {
                 h.format
             ))
         })?;
-    let level = reader
-        .levels()
-        .next()
-        .ok_or_else(|| bad("no mip levels".into()))?;
-    let data = match h.supercompression_scheme {
-        None => level.data.to_vec(),
-        Some(::ktx2::SupercompressionScheme::Zstandard) => {
-            // The header's uncompressed length must be exactly level 0's size: it sizes the
-            // decompression buffer, so an absurd value must never reach the allocator.
-            check_dimensions(path, h.pixel_width, h.pixel_width)?;
-            let exact = Cubemap::level_len(h.pixel_width) * pf.texel_bytes() as usize;
-            if level.uncompressed_byte_length != exact as u64 {
-                let (claimed, n, format) =
-                    (level.uncompressed_byte_length, h.pixel_width, pf.name());
-                return Err(bad(format!(
-                    "level 0 claims {claimed} uncompressed bytes; a {n}×{n} {format} cube has {exact}"
-                )));
+    let n0 = h.pixel_width;
+    check_dimensions(path, n0, n0)?;
+    let mut levels = Vec::new();
+    for (m, level) in reader.levels().enumerate().take(max_levels as usize) {
+        let n = (n0 >> m).max(1);
+        let exact = Cubemap::level_len(n) * pf.texel_bytes() as usize;
+        let data = match h.supercompression_scheme {
+            None => level.data.to_vec(),
+            Some(::ktx2::SupercompressionScheme::Zstandard) => {
+                // The header's uncompressed length must be exactly the level's size: it
+                // sizes the decompression buffer, so an absurd value must never reach the
+                // allocator.
+                if level.uncompressed_byte_length != exact as u64 {
+                    let (claimed, format) = (level.uncompressed_byte_length, pf.name());
+                    return Err(bad(format!(
+                        "level {m} claims {claimed} uncompressed bytes; a {n}×{n} {format} cube has {exact}"
+                    )));
+                }
+                zstd::bulk::decompress(level.data, exact).map_err(|e| bad(format!("zstd: {e}")))?
             }
-            zstd::bulk::decompress(level.data, exact).map_err(|e| bad(format!("zstd: {e}")))?
+            Some(other) => {
+                return Err(unsupported(format!(
+                    "KTX2 supercompression {other:?} is not supported"
+                )))
+            }
+        };
+        if m == 0 {
+            check_cube_level0(path, F, n, data.len(), pf)?;
+        } else if data.len() < exact {
+            return Err(bad(format!(
+                "level {m} holds {} bytes, {exact} expected (truncated?)",
+                data.len()
+            )));
         }
-        Some(other) => {
-            return Err(unsupported(format!(
-                "KTX2 supercompression {other:?} is not supported"
-            )))
-        }
-    };
-    check_cube_level0(path, F, h.pixel_width, data.len(), pf)?;
-    let n = h.pixel_width;
-    let texels = pf.decode(&data[..Cubemap::level_len(n) * pf.texel_bytes() as usize]);
-    Ok(Cubemap {
-        size: n,
-        levels: vec![texels],
-    })
+        levels.push(pf.decode(&data[..exact]));
+    }
+    if levels.is_empty() {
+        return Err(bad("no mip levels".into()));
+    }
+    Ok(Cubemap { size: n0, levels })
 }
 
 /// Reads level 0 of a DX10 DDS cubemap in one of splitsum's formats.

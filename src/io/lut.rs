@@ -1,4 +1,5 @@
-//! Writes a BRDF LUT in the format its path's extension names.
+//! Writes a BRDF LUT in the format its path's extension names, and reads back the PNG
+//! one a bake writes.
 
 use std::path::Path;
 
@@ -65,4 +66,20 @@ pub fn encode_lut(path: &Path, lut: &BrdfLut, opts: LutWriteOptions) -> Result<V
 pub fn write_lut(path: &Path, lut: &BrdfLut, opts: LutWriteOptions) -> Result<()> {
     let bytes = encode_lut(path, lut, opts)?;
     write_atomic(path, &bytes)
+}
+
+/// Reads a LUT PNG as `encode_lut` writes it (R = A, G = B, 16 bits: within 1/131070).
+pub fn read_lut_png(path: &Path) -> Result<BrdfLut> {
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let (width, height, rgb) = png::decode_rgb(&bytes).map_err(|message| Error::Decode {
+        path: path.to_path_buf(),
+        format: "PNG",
+        message,
+    })?;
+    crate::lut::validate_lut_size(width, height)?;
+    Ok(BrdfLut {
+        width,
+        height,
+        data: rgb.iter().map(|t| [t[0], t[1]]).collect(),
+    })
 }

@@ -1,4 +1,4 @@
-//! 16-bit PNG writer (RGB, values clamped to [0, 1] and rounded to 1/65535).
+//! 16-bit PNG writer (RGB, values clamped to [0, 1] and rounded to 1/65535) and its reader.
 
 use std::io::Cursor;
 
@@ -14,4 +14,14 @@ pub fn encode_rgb16(width: u32, height: u32, rgb: &[f32]) -> Result<Vec<u8>, Str
     img.write_to(&mut out, image::ImageFormat::Png)
         .map_err(|e| e.to_string())?;
     Ok(out.into_inner())
+}
+
+/// Decodes a PNG as RGB values in [0, 1] (8- or 16-bit, any colour type the `image` crate
+/// reads; alpha dropped): width, height, row-major texels.
+pub fn decode_rgb(bytes: &[u8]) -> Result<(u32, u32, Vec<[f32; 3]>), String> {
+    let img = image::load_from_memory_with_format(bytes, image::ImageFormat::Png)
+        .map_err(|e| e.to_string())?;
+    let rgb = img.to_rgb32f();
+    let (w, h) = rgb.dimensions();
+    Ok((w, h, rgb.pixels().map(|p| p.0).collect()))
 }

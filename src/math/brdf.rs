@@ -104,6 +104,21 @@ pub fn fresnel_schlick(f0: f32, v_dot_h: f32) -> f32 {
     f0 * (1.0 - w) + w
 }
 
+/// Fresnel-Schlick at n·v with the roughness-dependent grazing value of Lagarde (2011,
+/// "Adopting a physically based shading model"; LearnOpenGL's `fresnelSchlickRoughness`):
+/// F0 + (max(1 − r, F0) − F0)(1 − n·v)⁵. The Fresnel of the split-sum diffuse weight
+/// kD = (1 − F)(1 − metallic), where no single half vector exists.
+pub fn fresnel_schlick_roughness(f0: f32, n_dot_v: f32, roughness: f32) -> f32 {
+    f0 + ((1.0 - roughness).max(f0) - f0) * fresnel_schlick_weight(n_dot_v)
+}
+
+/// The exact Smith masking of GGX for one direction, G1(x) = 2 n·x / (n·x + Λ'(x))
+/// (Walter et al. 2007, eq. 34; Λ' as [`smith_correlated_lambda`]): the normalisation of
+/// the distribution of visible normals that `math::sampling::sample_ggx_vndf` draws from.
+pub fn g1_smith_ggx(n_dot_x: f32, alpha2: f32) -> f32 {
+    2.0 * n_dot_x / (n_dot_x + smith_correlated_lambda(n_dot_x, alpha2))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -127,5 +142,10 @@ mod tests {
         assert_eq!(fresnel_schlick(0.04, 1.0), 0.04);
         assert!((fresnel_schlick(0.04, 0.0) - 1.0).abs() < 1e-6);
         assert!((g1_over_n_dot_v(0.5, 0.25) * 0.5 - g1_schlick_ggx(0.5, 0.25)).abs() < 1e-7);
+        // Lagarde's grazing value: 1 − r for a dielectric, F0 at normal incidence.
+        assert!((fresnel_schlick_roughness(0.04, 0.0, 0.25) - 0.75).abs() < 1e-6);
+        assert_eq!(fresnel_schlick_roughness(0.04, 1.0, 0.5), 0.04);
+        assert!((fresnel_schlick_roughness(0.9, 0.0, 0.5) - 0.9).abs() < 1e-6);
+        assert!((g1_smith_ggx(1.0, 0.3) - 1.0).abs() < 1e-6);
     }
 }

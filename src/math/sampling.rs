@@ -7,6 +7,8 @@
 //! The functions below work with q = 1 − u instead of u: for small α nearly all of the mass
 //! sits at q ≪ 1 where u = 1 − q would round to 1 in f32, while q keeps full precision.
 
+use crate::math::cubemap::normalize;
+
 /// q(θ) = 1 − u(θ) = α² cos²θ / (sin²θ + α² cos²θ), from cos²θ and sin²θ.
 /// It falls from 1 at θ = 0 to 0 at θ = π/2.
 pub fn ggx_q_from_theta(cos2_theta: f32, sin2_theta: f32, alpha2: f32) -> f32 {
@@ -87,6 +89,85 @@ pub fn importance_sample_ggx(xi: [f32; 2], alpha: f32) -> [f32; 3] {
     let (cos2, sin2) = ggx_theta_from_q(1.0 - xi[0], alpha * alpha);
     let (c, s) = (cos2.sqrt(), sin2.sqrt());
     [s * phi.cos(), s * phi.sin(), c]
+}
+
+/// An orthonormal tangent frame (t, b) around unit `n`: t = normalize(up × n) with up = +Z,
+/// or +X where n is within 2.6° of ±Z; b = n × t.
+pub fn tangent_frame(n: [f32; 3]) -> ([f32; 3], [f32; 3]) {
+    let up = if n[2].abs() < 0.999 {
+        [0.0, 0.0, 1.0]
+    } else {
+        [1.0, 0.0, 0.0]
+    };
+    let t = normalize(cross(up, n));
+    (t, cross(n, t))
+}
+
+/// The cross product a × b.
+pub fn cross(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// A point of the unit disk from a point of [0, 1)²: (√u₁ cos 2πu₂, √u₁ sin 2πu₂), the
+/// concentric-free polar map both sphere samplers below start from. The kernels read these
+/// points from a table built here (GPU sin/cos are only accurate to ~1e-3 absolute).
+pub fn unit_disk_point(xi: [f32; 2]) -> [f32; 2] {
+    let r = xi[0].sqrt();
+    let phi = 2.0 * std::f32::consts::PI * xi[1];
+    [r * phi.cos(), r * phi.sin()]
+}
+
+/// Cosine-weighted direction in tangent space (z = n) from a unit-disk point: the disk
+/// point lifted to the hemisphere (Malley's method).
+// pdf(l) = (n·l) / π.
+pub fn cosine_hemisphere_from_disk(p: [f32; 2]) -> [f32; 3] {
+    [
+        p[0],
+        p[1],
+        (1.0 - p[0] * p[0] - p[1] * p[1]).max(0.0).sqrt(),
+    ]
+}
+
+/// A GGX visible normal for the view direction `v` (tangent space, z = n, v.z > 0) from a
+/// unit-disk point `p` (Heitz 2018, "Sampling the GGX Distribution of Visible Normals",
+/// listing 1, isotropic α): the disk is warped onto the projected hemisphere of the
+/// stretched view, and the normal unstretched.
+// pdf(h) = G1(v) max(0, v·h) D(h) / (n·v), G1 the exact Smith masking
+// (`brdf::g1_smith_ggx`); for l = reflect(−v, h), pdf(l) = pdf(h) / (4 v·h).
+pub fn sample_ggx_vndf(v: [f32; 3], alpha: f32, p: [f32; 2]) -> [f32; 3] {
+    let vh = normalize([alpha * v[0], alpha * v[1], v[2]]);
+    let lensq = vh[0] * vh[0] + vh[1] * vh[1];
+    let t1 = if lensq > 0.0 {
+        let inv = 1.0 / lensq.sqrt();
+        [-vh[1] * inv, vh[0] * inv, 0.0]
+    } else {
+        [1.0, 0.0, 0.0]
+    };
+    let t2 = cross(vh, t1);
+    let s = 0.5 * (1.0 + vh[2]);
+    let d1 = p[0];
+    let d2 = (1.0 - s) * (1.0 - d1 * d1).max(0.0).sqrt() + s * p[1];
+    let dz = (1.0 - d1 * d1 - d2 * d2).max(0.0).sqrt();
+    let nh = [0, 1, 2].map(|c| d1 * t1[c] + d2 * t2[c] + dz * vh[c]);
+    normalize([alpha * nh[0], alpha * nh[1], nh[2].max(0.0)])
+}
+
+/// PCG hash of a 32-bit integer (Jarzynski & Olano 2020, "Hash Functions for GPU
+/// Rendering"): decorrelates per-pixel sample sets with integer operations only, so both
+/// backends draw the same points.
+pub fn pcg_hash(x: u32) -> u32 {
+    let state = x.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+    let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277_803_737);
+    (word >> 22) ^ word
+}
+
+/// A 32-bit integer as a float in [0, 1) (its top 24 bits, exactly representable).
+pub fn unit_float(bits: u32) -> f32 {
+    (bits >> 8) as f32 * (1.0 / 16_777_216.0)
 }
 
 #[cfg(test)]

@@ -1,0 +1,107 @@
+//! The preview's split-sum render: every sphere pixel shaded exactly as the README tells an
+//! engine to, from the baked files' contents. CPU mirror of
+//! `shaders/preview_split_sum.wgsl` (same function names).
+//!
+//! For normal n, view v, roughness r and a material (F0, albedo c, metallic m):
+//!
+//! L = prefiltered(reflect(−v, n), lod(r)) · (F0·A + B) + E/π(n) · c · kD,
+//! kD = (1 − F_r)(1 − m),
+//!
+//! with (A, B) the LUT at uv = (n·v, r) sampled bilinearly with clamp-to-edge,
+//! prefiltered a seamless trilinear lookup at the chain's lod for r, E/π a seamless
+//! bilinear lookup of the irradiance cube, and F_r Lagarde's roughness-aware Fresnel at n·v
+//! (`brdf::fresnel_schlick_roughness`). Background pixels read level 0 of the chain (the
+//! environment itself).
+
+use glam::Vec3;
+use rayon::prelude::*;
+
+use crate::cpu::cube_sample::sample_cube_lod;
+use crate::environment::Cubemap;
+use crate::lut::BrdfLut;
+use crate::math::brdf::fresnel_schlick_roughness;
+use crate::preview::scene::{pixel_geometry, PixelGeometry, SceneUniform, MIN_N_DOT_V};
+
+/// What the split-sum render reads.
+#[derive(Clone, Copy, Debug)]
+pub struct SplitSumInputs<'a> {
+    /// The prefiltered specular chain (level 0: the environment), generic orientation.
+    pub specular: &'a Cubemap,
+    /// The irradiance cube (E/π).
+    pub irradiance: &'a Cubemap,
+    /// The split-sum LUT (scale A, bias B).
+    pub lut: &'a BrdfLut,
+    /// Per roughness column: (roughness, the chain's lod for it, 0, 0).
+    pub columns: &'a [[f32; 4]],
+    /// Per material: (F0, metallic), (albedo, 0) (`scene::material_table`).
+    pub materials: &'a [[f32; 4]],
+}
+
+/// Bilinear lookup of the LUT at uv = (n·v, r) with clamp-to-edge addressing and texel
+/// centres at ((i + ½)/W, (j + ½)/H), as a GPU sampler reads it.
+pub fn sample_lut(lut: &BrdfLut, n_dot_v: f32, roughness: f32) -> [f32; 2] {
+    let (w, h) = (lut.width, lut.height);
+    let x = (n_dot_v * w as f32 - 0.5).clamp(0.0, (w - 1) as f32);
+    let y = (roughness * h as f32 - 0.5).clamp(0.0, (h - 1) as f32);
+    let (x0, y0) = (x.floor(), y.floor());
+    let (fx, fy) = (x - x0, y - y0);
+    let (i0, j0) = (x0 as u32, y0 as u32);
+    let (i1, j1) = ((i0 + 1).min(w - 1), (j0 + 1).min(h - 1));
+    let (a, b, c, d) = (
+        lut.get(i0, j0),
+        lut.get(i1, j0),
+        lut.get(i0, j1),
+        lut.get(i1, j1),
+    );
+    [0, 1].map(|k| {
+        (a[k] * (1.0 - fx) + b[k] * fx) * (1.0 - fy) + (c[k] * (1.0 - fx) + d[k] * fx) * fy
+    })
+}
+
+/// The split-sum radiance towards the camera of one sphere point.
+pub fn split_sum_shade(
+    inputs: &SplitSumInputs,
+    n: Vec3,
+    v: Vec3,
+    material: usize,
+    column: usize,
+) -> Vec3 {
+    let col = inputs.columns[column];
+    let (r, lod) = (col[0], col[1]);
+    let fm = inputs.materials[2 * material];
+    let albedo = Vec3::from_slice(&inputs.materials[2 * material + 1][..3]);
+    let (f0, metallic) = (Vec3::new(fm[0], fm[1], fm[2]), fm[3]);
+    let n_dot_v = n.dot(v).max(MIN_N_DOT_V);
+    let refl = 2.0 * n.dot(v) * n - v;
+    let prefiltered = Vec3::from(sample_cube_lod(inputs.specular, refl.into(), lod));
+    let ab = sample_lut(inputs.lut, n_dot_v, r);
+    let specular = prefiltered * (f0 * ab[0] + Vec3::splat(ab[1]));
+    let f_r = Vec3::new(
+        fresnel_schlick_roughness(f0.x, n_dot_v, r),
+        fresnel_schlick_roughness(f0.y, n_dot_v, r),
+        fresnel_schlick_roughness(f0.z, n_dot_v, r),
+    );
+    let kd = (Vec3::ONE - f_r) * (1.0 - metallic);
+    let irradiance = Vec3::from(sample_cube_lod(inputs.irradiance, n.into(), 0.0));
+    specular + irradiance * albedo * kd
+}
+
+/// The split-sum panel, row-major linear RGB.
+pub fn render_split_sum(scene: &SceneUniform, inputs: &SplitSumInputs) -> Vec<[f32; 3]> {
+    (0..scene.height)
+        .into_par_iter()
+        .flat_map_iter(|y| {
+            (0..scene.width).map(move |x| match pixel_geometry(scene, x, y) {
+                PixelGeometry::Background { dir } => {
+                    sample_cube_lod(inputs.specular, dir.into(), 0.0)
+                }
+                PixelGeometry::Sphere {
+                    n,
+                    v,
+                    material,
+                    column,
+                } => split_sum_shade(inputs, n, v, material, column).into(),
+            })
+        })
+        .collect()
+}

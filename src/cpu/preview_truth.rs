@@ -1,0 +1,223 @@
+//! The preview's ground truth: per sphere pixel, the full reflectance integral
+//! L_o(v) = ∫ f(l, v) L(l) (n·l) dl of the preview BRDF over the environment, with the real
+//! view direction (no v = n assumption, no separable product). CPU mirror of
+//! `shaders/preview_truth.wgsl` (same function names).
+//!
+//! The BRDF: f = kD(h) c/π + D(h) G(l, v) F(v·h) / (4 (n·l)(n·v)), GGX D with α = r²,
+//! G = G1(n·l) G1(n·v) Schlick-GGX with k = r²/2, F Fresnel-Schlick, and
+//! kD(h) = (1 − F(v·h))(1 − metallic) (DESIGN.md "Roughness, BRDF").
+//!
+//! The environment is the bake's own cube (level 0), split as the specular bake splits it
+//! (`prefilter_specular::split_hot_texels`): its hot texels (a sun, lamps: at most 512,
+//! each with its radiance centroid and solid angle) are summed exactly,
+//! Σ L Ω f (n·l); the cold rest, whose dynamic range is low, is integrated by
+//! quasi-Monte Carlo with one estimator per lobe:
+//! - specular: N GGX visible normals h (Heitz 2018), l = reflect(−v, h), each weighted
+//!   f (n·l) / pdf(l) = F(v·h) G1(n·l) G1(n·v) / G1_Smith(n·v) (bounded, so the estimate
+//!   converges quickly even at grazing n·v);
+//! - diffuse: N cosine-distributed l, each weighted kD(h) c.
+//!
+//! Both draw the same N Hammersley points mapped to the unit disk (a table built once,
+//! [`disk_points`]), rotated per pixel in azimuth and shifted in radius by a hash of the
+//! pixel index (Cranley-Patterson), so neighbouring pixels' quadrature errors are
+//! uncorrelated. Cold lookups are seamless bilinear reads of level 0 (no prefiltering, so
+//! no bias). At r = 0 the specular lobe is a mirror: F(n·v) L(reflect(−v, n)) from the
+//! whole cube, as the split-sum reads it.
+
+use glam::Vec3;
+use rayon::prelude::*;
+
+use crate::cpu::cube_sample::sample_cube_lod;
+use crate::cpu::irradiance::SourceTexel;
+use crate::environment::Cubemap;
+use crate::math::brdf::{
+    alpha_from_roughness, d_ggx, fresnel_schlick_weight, g1_over_n_dot_v, g1_schlick_ggx,
+    g1_smith_ggx, k_ibl,
+};
+use crate::math::sampling::{
+    cosine_hemisphere_from_disk, hammersley, pcg_hash, sample_ggx_vndf, tangent_frame, unit_float,
+};
+use crate::preview::scene::{pixel_geometry, PixelGeometry, SceneUniform, MIN_N_DOT_V};
+
+/// Default number of quasi-Monte Carlo points per lobe and pixel.
+pub const DEFAULT_TRUTH_SAMPLES: u32 = 1024;
+
+/// What the truth render reads.
+#[derive(Clone, Copy, Debug)]
+pub struct TruthInputs<'a> {
+    /// The environment (level 0 read; the split-sum chain's level 0).
+    pub env: &'a Cubemap,
+    /// The environment without its hot texels (level 0 read).
+    pub cold: &'a Cubemap,
+    /// The hot texels, summed exactly.
+    pub hot: &'a [SourceTexel],
+    /// Per roughness column: (roughness, lod, 0, 0); the lod is unused here.
+    pub columns: &'a [[f32; 4]],
+    /// Per material: (F0, metallic), (albedo, 0).
+    pub materials: &'a [[f32; 4]],
+    /// The quasi-Monte Carlo points ([`disk_points`]).
+    pub points: &'a [[f32; 4]],
+}
+
+/// The N points of the truth's quadrature: Hammersley (i/N, φ-radical-inverse) as
+/// (u₁, cos 2πu₂, sin 2πu₂, 0); a pixel maps one to the unit disk as
+/// √frac(u₁ + s) (cos, sin) rotated by its own angle.
+pub fn disk_points(samples: u32) -> Vec<[f32; 4]> {
+    (0..samples)
+        .map(|i| {
+            let [u1, u2] = hammersley(i, samples);
+            let phi = 2.0 * std::f32::consts::PI * u2;
+            [u1, phi.cos(), phi.sin(), 0.0]
+        })
+        .collect()
+}
+
+/// The pixel's quadrature shift: (radial shift s ∈ [0, 1), cos ψ, sin ψ) of its azimuthal
+/// rotation ψ, from hashes of the pixel index (the angle need not be uniform: any rotation
+/// of the point set is an equally good rule).
+pub fn pixel_shift(pixel: u32) -> [f32; 3] {
+    let h1 = pcg_hash(pixel);
+    let h2 = pcg_hash(h1);
+    let h3 = pcg_hash(h2);
+    let (x, y) = (2.0 * unit_float(h2) - 1.0, 2.0 * unit_float(h3) - 1.0);
+    let len = (x * x + y * y).sqrt();
+    if len < 1e-3 {
+        return [unit_float(h1), 1.0, 0.0];
+    }
+    [unit_float(h1), x / len, y / len]
+}
+
+/// Point `p` of the table for a pixel with shift `shift`, on the unit disk.
+pub fn shifted_disk_point(p: [f32; 4], shift: [f32; 3]) -> [f32; 2] {
+    let u = p[0] + shift[0];
+    let r = (u - u.floor()).sqrt();
+    let (c, s) = (
+        p[1] * shift[1] - p[2] * shift[2],
+        p[1] * shift[2] + p[2] * shift[1],
+    );
+    [r * c, r * s]
+}
+
+/// Fresnel-Schlick per channel: F0 + (1 − F0)(1 − v·h)⁵.
+fn fresnel3(f0: Vec3, v_dot_h: f32) -> Vec3 {
+    let w = fresnel_schlick_weight(v_dot_h);
+    f0 * (1.0 - w) + Vec3::splat(w)
+}
+
+/// The exact part: Σ L Ω f (n·l) over the hot texels, split into (specular, diffuse / c).
+/// At r = 0 (`alpha` 0) the specular part is left to the mirror lookup.
+pub fn hot_texels_shade(
+    hot: &[SourceTexel],
+    n: Vec3,
+    v: Vec3,
+    n_dot_v: f32,
+    alpha: f32,
+    f0: Vec3,
+    metallic: f32,
+) -> (Vec3, Vec3) {
+    let k = 0.5 * alpha;
+    let (mut spec, mut diff) = (Vec3::ZERO, Vec3::ZERO);
+    for t in hot {
+        let l = Vec3::from_slice(&t.dir_omega[..3]);
+        let n_dot_l = n.dot(l);
+        if n_dot_l <= 0.0 {
+            continue;
+        }
+        let radiance = Vec3::from_slice(&t.radiance[..3]) * t.dir_omega[3];
+        let h = (l + v).normalize();
+        let f = fresnel3(f0, v.dot(h).max(0.0));
+        if alpha > 0.0 {
+            // f (n·l) = D F G1(n·l) (G1(n·v)/(n·v)) / 4
+            let w = d_ggx(n.dot(h).max(0.0), alpha)
+                * g1_schlick_ggx(n_dot_l, k)
+                * g1_over_n_dot_v(n_dot_v, k)
+                * 0.25;
+            spec += radiance * f * w;
+        }
+        if metallic < 1.0 {
+            diff +=
+                radiance * (Vec3::ONE - f) * ((1.0 - metallic) * n_dot_l / std::f32::consts::PI);
+        }
+    }
+    (spec, diff)
+}
+
+/// The truth's radiance towards the camera of one sphere point (`pixel` seeds its
+/// quadrature).
+pub fn truth_shade(
+    inputs: &TruthInputs,
+    n: Vec3,
+    v: Vec3,
+    material: usize,
+    column: usize,
+    pixel: u32,
+) -> Vec3 {
+    let r = inputs.columns[column][0];
+    let fm = inputs.materials[2 * material];
+    let albedo = Vec3::from_slice(&inputs.materials[2 * material + 1][..3]);
+    let (f0, metallic) = (Vec3::new(fm[0], fm[1], fm[2]), fm[3]);
+    let alpha = alpha_from_roughness(r);
+    let k = k_ibl(r);
+    let n_dot_v = n.dot(v).max(MIN_N_DOT_V);
+    let (t0, b0) = tangent_frame(n.into());
+    let (t0, b0) = (Vec3::from(t0), Vec3::from(b0));
+    let shift = pixel_shift(pixel);
+    let vt = Vec3::new(v.dot(t0), v.dot(b0), n_dot_v);
+    let count = inputs.points.len() as f32;
+
+    let (mut spec, mut diff) = hot_texels_shade(inputs.hot, n, v, n_dot_v, alpha, f0, metallic);
+    if alpha > 0.0 {
+        let view_term = g1_schlick_ggx(n_dot_v, k) / g1_smith_ggx(n_dot_v, alpha * alpha);
+        let mut sum = Vec3::ZERO;
+        for &p in inputs.points {
+            let h = Vec3::from(sample_ggx_vndf(
+                vt.into(),
+                alpha,
+                shifted_disk_point(p, shift),
+            ));
+            let v_dot_h = vt.dot(h);
+            let lt = 2.0 * v_dot_h * h - vt;
+            if lt.z > 0.0 {
+                let l = lt.x * t0 + lt.y * b0 + lt.z * n;
+                let radiance = Vec3::from(sample_cube_lod(inputs.cold, l.into(), 0.0));
+                sum += radiance
+                    * fresnel3(f0, v_dot_h.max(0.0))
+                    * (g1_schlick_ggx(lt.z, k) * view_term);
+            }
+        }
+        spec += sum / count;
+    } else {
+        let refl = 2.0 * n.dot(v) * n - v;
+        spec = Vec3::from(sample_cube_lod(inputs.env, refl.into(), 0.0)) * fresnel3(f0, n_dot_v);
+    }
+    if metallic < 1.0 {
+        let mut sum = Vec3::ZERO;
+        for &p in inputs.points {
+            let lt = Vec3::from(cosine_hemisphere_from_disk(shifted_disk_point(p, shift)));
+            let h = (vt + lt).normalize();
+            let l = lt.x * t0 + lt.y * b0 + lt.z * n;
+            let radiance = Vec3::from(sample_cube_lod(inputs.cold, l.into(), 0.0));
+            sum += radiance * (Vec3::ONE - fresnel3(f0, vt.dot(h).max(0.0)));
+        }
+        diff += sum * ((1.0 - metallic) / count);
+    }
+    spec + diff * albedo
+}
+
+/// The truth panel, row-major linear RGB.
+pub fn render_truth(scene: &SceneUniform, inputs: &TruthInputs) -> Vec<[f32; 3]> {
+    (0..scene.height)
+        .into_par_iter()
+        .flat_map_iter(|y| {
+            (0..scene.width).map(move |x| match pixel_geometry(scene, x, y) {
+                PixelGeometry::Background { dir } => sample_cube_lod(inputs.env, dir.into(), 0.0),
+                PixelGeometry::Sphere {
+                    n,
+                    v,
+                    material,
+                    column,
+                } => truth_shade(inputs, n, v, material, column, y * scene.width + x).into(),
+            })
+        })
+        .collect()
+}

@@ -1,0 +1,242 @@
+//! GPU preview renders: binds `shaders/preview_split_sum.wgsl` and
+//! `shaders/preview_truth.wgsl` (CPU mirrors in `cpu/preview_split_sum.rs` and
+//! `cpu/preview_truth.rs`). Each writes one panel into an `Rgba32Float` 2D texture that is
+//! read back as row-major RGB.
+
+use crate::cpu::irradiance::SourceTexel;
+use crate::cpu::preview_split_sum::SplitSumInputs;
+use crate::cpu::preview_truth::TruthInputs;
+use crate::environment::Cubemap;
+use crate::gpu::compute::{buffer_with_data, read_texture_level, with_error_scope, ComputeKernel};
+use crate::gpu::prefilter::upload_cube;
+use crate::gpu::shaders;
+use crate::gpu::texture::upload_rgb_texture;
+use crate::preview::scene::SceneUniform;
+use crate::Result;
+
+/// Workgroup of both kernels (x, y over the panel).
+pub const WORKGROUP: [u32; 3] = [8, 8, 1];
+
+/// Uniform block of `preview_split_sum.wgsl` (layout checked in tests/shaders.rs).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct SplitSumUniform {
+    /// Specular chain level-0 edge.
+    pub specular_size: u32,
+    /// Specular chain levels.
+    pub specular_levels: u32,
+    /// Irradiance cube edge.
+    pub irradiance_size: u32,
+    /// LUT width (n·v).
+    pub lut_width: u32,
+    /// LUT height (roughness).
+    pub lut_height: u32,
+    /// Padding to a whole 16-byte block.
+    pub _pad0: u32,
+    /// Padding.
+    pub _pad1: u32,
+    /// Padding.
+    pub _pad2: u32,
+}
+
+/// Uniform block of `preview_truth.wgsl` (layout checked in tests/shaders.rs).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct TruthUniform {
+    /// Environment level-0 edge.
+    pub env_size: u32,
+    /// Number of hot texels.
+    pub hot_count: u32,
+    /// Number of quadrature points.
+    pub point_count: u32,
+    /// Padding.
+    pub _pad: u32,
+}
+
+/// A storage buffer of `data`, or of one zero vec4 when it is empty (a storage binding
+/// cannot be empty).
+fn storage<T: bytemuck::Pod>(device: &wgpu::Device, label: &str, data: &[T]) -> wgpu::Buffer {
+    let none = [0.0f32; 8];
+    let bytes: &[u8] = if data.is_empty() {
+        bytemuck::cast_slice(&none)
+    } else {
+        bytemuck::cast_slice(data)
+    };
+    buffer_with_data(device, label, bytes, wgpu::BufferUsages::STORAGE)
+}
+
+fn uniform<T: bytemuck::Pod>(device: &wgpu::Device, label: &str, value: &T) -> wgpu::Buffer {
+    buffer_with_data(
+        device,
+        label,
+        bytemuck::bytes_of(value),
+        wgpu::BufferUsages::UNIFORM,
+    )
+}
+
+/// The panel's output texture.
+fn panel_texture(device: &wgpu::Device, scene: &SceneUniform) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("preview panel"),
+        size: wgpu::Extent3d {
+            width: scene.width,
+            height: scene.height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba32Float,
+        usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    })
+}
+
+fn array_view(texture: &wgpu::Texture) -> wgpu::TextureView {
+    texture.create_view(&wgpu::TextureViewDescriptor {
+        dimension: Some(wgpu::TextureViewDimension::D2Array),
+        ..Default::default()
+    })
+}
+
+/// Level 0 of `cube` as a one-level cube texture.
+fn upload_level0(device: &wgpu::Device, queue: &wgpu::Queue, cube: &Cubemap) -> wgpu::Texture {
+    upload_cube(device, queue, cube, 1)
+}
+
+/// Runs `kernel` over the panel with `resources` followed by the output, and reads it back.
+fn run_panel(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    kernel: &ComputeKernel,
+    scene: &SceneUniform,
+    resources: &[wgpu::BindingResource<'_>],
+    stage: &str,
+) -> Result<Vec<[f32; 3]>> {
+    let out = with_error_scope(device, stage, || {
+        let out = panel_texture(device, scene);
+        let view = out.create_view(&Default::default());
+        let mut all = resources.to_vec();
+        all.push(wgpu::BindingResource::TextureView(&view));
+        let mut encoder = device.create_command_encoder(&Default::default());
+        kernel.dispatch(device, &mut encoder, &all, [scene.width, scene.height, 1]);
+        queue.submit([encoder.finish()]);
+        out
+    })?;
+    let flat = read_texture_level(device, queue, &out, 0)?;
+    Ok(flat.chunks_exact(4).map(|t| [t[0], t[1], t[2]]).collect())
+}
+
+/// The split-sum panel, as `cpu::preview_split_sum::render_split_sum`.
+pub fn preview_split_sum(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    scene: &SceneUniform,
+    inputs: &SplitSumInputs,
+) -> Result<Vec<[f32; 3]>> {
+    let kernel = ComputeKernel::new(
+        device,
+        "preview_split_sum",
+        shaders::PREVIEW_SPLIT_SUM,
+        WORKGROUP,
+    )?;
+    let (spec, irr, lut) = (inputs.specular, inputs.irradiance, inputs.lut);
+    let params = SplitSumUniform {
+        specular_size: spec.size,
+        specular_levels: spec.levels.len() as u32,
+        irradiance_size: irr.size,
+        lut_width: lut.width,
+        lut_height: lut.height,
+        _pad0: 0,
+        _pad1: 0,
+        _pad2: 0,
+    };
+    let lut_rgb: Vec<[f32; 3]> = lut.data.iter().map(|&[a, b]| [a, b, 0.0]).collect();
+    let lut_tex = upload_rgb_texture(
+        device,
+        queue,
+        "preview lut",
+        lut.width,
+        lut.height,
+        &lut_rgb,
+    )?;
+    let (spec_tex, irr_tex, buffers) =
+        with_error_scope(device, "preview_split_sum upload", || {
+            (
+                upload_cube(device, queue, spec, spec.levels.len() as u32),
+                upload_level0(device, queue, irr),
+                [
+                    uniform(device, "preview scene", scene),
+                    uniform(device, "preview split-sum params", &params),
+                    storage(device, "preview columns", inputs.columns),
+                    storage(device, "preview materials", inputs.materials),
+                ],
+            )
+        })?;
+    let (spec_view, irr_view) = (array_view(&spec_tex), array_view(&irr_tex));
+    let lut_view = lut_tex.create_view(&Default::default());
+    run_panel(
+        device,
+        queue,
+        &kernel,
+        scene,
+        &[
+            buffers[0].as_entire_binding(),
+            buffers[1].as_entire_binding(),
+            wgpu::BindingResource::TextureView(&spec_view),
+            wgpu::BindingResource::TextureView(&irr_view),
+            wgpu::BindingResource::TextureView(&lut_view),
+            buffers[2].as_entire_binding(),
+            buffers[3].as_entire_binding(),
+        ],
+        "preview_split_sum dispatch",
+    )
+}
+
+/// The ground-truth panel, as `cpu::preview_truth::render_truth`.
+pub fn preview_truth(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    scene: &SceneUniform,
+    inputs: &TruthInputs,
+) -> Result<Vec<[f32; 3]>> {
+    let kernel = ComputeKernel::new(device, "preview_truth", shaders::PREVIEW_TRUTH, WORKGROUP)?;
+    let params = TruthUniform {
+        env_size: inputs.env.size,
+        hot_count: inputs.hot.len() as u32,
+        point_count: inputs.points.len() as u32,
+        _pad: 0,
+    };
+    let (env_tex, cold_tex, buffers) = with_error_scope(device, "preview_truth upload", || {
+        (
+            upload_level0(device, queue, inputs.env),
+            upload_level0(device, queue, inputs.cold),
+            [
+                uniform(device, "preview scene", scene),
+                uniform(device, "preview truth params", &params),
+                storage::<SourceTexel>(device, "preview hot texels", inputs.hot),
+                storage(device, "preview columns", inputs.columns),
+                storage(device, "preview materials", inputs.materials),
+                storage(device, "preview points", inputs.points),
+            ],
+        )
+    })?;
+    let (env_view, cold_view) = (array_view(&env_tex), array_view(&cold_tex));
+    run_panel(
+        device,
+        queue,
+        &kernel,
+        scene,
+        &[
+            buffers[0].as_entire_binding(),
+            buffers[1].as_entire_binding(),
+            wgpu::BindingResource::TextureView(&env_view),
+            wgpu::BindingResource::TextureView(&cold_view),
+            buffers[2].as_entire_binding(),
+            buffers[3].as_entire_binding(),
+            buffers[4].as_entire_binding(),
+            buffers[5].as_entire_binding(),
+        ],
+        "preview_truth dispatch",
+    )
+}

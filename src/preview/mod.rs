@@ -1,0 +1,252 @@
+//! `splitsum preview` and `bake --preview`: the seed materials rendered under a bake two
+//! ways, and how far apart the two are.
+//!
+//! - **split-sum** ([`crate::cpu::preview_split_sum`]): each sphere pixel shaded from the
+//!   bake's files exactly as the README tells engines to (prefiltered specular at the
+//!   documented lod, the LUT, irradiance × albedo × kD);
+//! - **ground truth** ([`crate::cpu::preview_truth`]): the full reflectance integral of the
+//!   same BRDF over the same environment (the chain's level 0) per pixel, with the real
+//!   view direction.
+//!
+//! Both run as GPU kernels with CPU references beside them (`Backend::preview_split_sum`,
+//! `Backend::preview_truth`). The picture ([`picture`]) shows them tone-mapped beside a
+//! heat map of their relative difference; [`SphereStats`] gives per material and
+//! roughness the mean and worst relative difference of the luminance.
+
+pub mod picture;
+pub mod scene;
+
+use std::time::Instant;
+
+use serde::Serialize;
+
+use crate::cpu::prefilter_specular::{split_hot_texels, SpecularChain};
+use crate::cpu::preview_split_sum::SplitSumInputs;
+use crate::cpu::preview_truth::{disk_points, TruthInputs, DEFAULT_TRUTH_SAMPLES};
+use crate::environment::Cubemap;
+use crate::lut::BrdfLut;
+use crate::preview::picture::{auto_exposure, compose, luminance};
+use crate::preview::scene::{
+    material_table, pixel_geometry, PixelGeometry, Scene, SceneUniform, MATERIALS, ROUGHNESS,
+};
+use crate::{Backend, Error, Result};
+
+/// The baked light a preview renders with, in the generic orientation.
+#[derive(Clone, Copy, Debug)]
+pub struct BakedLight<'a> {
+    /// The prefiltered specular chain (level 0 is the environment).
+    pub specular: &'a Cubemap,
+    /// Its layout: how many levels and which roughness each holds (the lod mapping).
+    pub chain: SpecularChain,
+    /// The irradiance cube (E/π).
+    pub irradiance: &'a Cubemap,
+    /// The split-sum LUT (scale, bias).
+    pub lut: &'a BrdfLut,
+}
+
+/// How the preview is made.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PreviewOptions {
+    /// Cell edge in pixels (8 ..= 512).
+    pub cell: u32,
+    /// Exposure in stops (a scale 2^EV); `None` picks it from the environment
+    /// ([`picture::auto_exposure`]).
+    pub exposure_ev: Option<f32>,
+    /// Quasi-Monte Carlo points per lobe and pixel of the ground truth (1 ..= 65536).
+    pub truth_samples: u32,
+}
+
+impl Default for PreviewOptions {
+    fn default() -> Self {
+        PreviewOptions {
+            cell: scene::DEFAULT_CELL,
+            exposure_ev: None,
+            truth_samples: DEFAULT_TRUTH_SAMPLES,
+        }
+    }
+}
+
+/// Split-sum against truth for one sphere, on each pixel's luminance Y.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SphereStats {
+    /// The material's name.
+    pub material: &'static str,
+    /// The roughness.
+    pub roughness: f32,
+    /// Σ |Y_split-sum − Y_truth| / Σ Y_truth over the sphere's pixels: the relative
+    /// difference of the light the sphere sends to the camera (near the silhouette, where
+    /// the truth goes dark, a pixel's relative difference can be large while its light is
+    /// small).
+    pub mean_relative: f32,
+    /// The largest |Y_split-sum − Y_truth| / Y_truth of one pixel.
+    pub worst_relative: f32,
+}
+
+/// A rendered preview.
+#[derive(Clone, Debug)]
+pub struct Preview {
+    /// The picture, PNG-encoded (8-bit sRGB).
+    pub png: Vec<u8>,
+    /// Its width in pixels.
+    pub width: u32,
+    /// Its height in pixels.
+    pub height: u32,
+    /// The linear exposure scale applied before tone mapping.
+    pub exposure: f32,
+    /// One entry per sphere, materials in row order, roughness in column order.
+    pub stats: Vec<SphereStats>,
+    /// The split-sum panel, row-major linear RGB (before exposure).
+    pub split_sum: Vec<[f32; 3]>,
+    /// The ground-truth panel.
+    pub truth: Vec<[f32; 3]>,
+    /// Wall-clock seconds of the split-sum render.
+    pub split_sum_seconds: f64,
+    /// Wall-clock seconds of the ground-truth render.
+    pub truth_seconds: f64,
+}
+
+/// Checks the options' ranges.
+pub fn validate_options(opts: &PreviewOptions) -> Result<()> {
+    if !(8..=512).contains(&opts.cell) {
+        return Err(Error::InvalidParameter {
+            name: "--cell",
+            message: format!("{} is outside 8..=512 pixels", opts.cell),
+        });
+    }
+    if !(1..=65536).contains(&opts.truth_samples) {
+        return Err(Error::InvalidParameter {
+            name: "--truth-samples",
+            message: format!("{} is outside 1..=65536", opts.truth_samples),
+        });
+    }
+    if let Some(ev) = opts.exposure_ev {
+        if !ev.is_finite() || ev.abs() > 64.0 {
+            return Err(Error::InvalidParameter {
+                name: "--exposure",
+                message: format!("{ev} is not a number of stops in -64..=64"),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The per-column table of the kernels: (roughness, the chain's lod for it, 0, 0).
+pub fn column_table(chain: SpecularChain) -> Vec<[f32; 4]> {
+    ROUGHNESS
+        .iter()
+        .map(|&r| [r, chain.roughness.lod(r, chain.levels), 0.0, 0.0])
+        .collect()
+}
+
+/// Each sphere pixel's relative difference (None elsewhere) and the per-sphere stats.
+pub fn compare(
+    scene: &SceneUniform,
+    split_sum: &[[f32; 3]],
+    truth: &[[f32; 3]],
+) -> (Vec<Option<f32>>, Vec<SphereStats>) {
+    let spheres = MATERIALS.len() * ROUGHNESS.len();
+    // Per sphere: Σ |ΔY|, Σ Y_truth, worst relative.
+    let mut sums = vec![(0.0f64, 0.0f64, 0.0f32); spheres];
+    let mut relative = vec![None; split_sum.len()];
+    for y in 0..scene.height {
+        for x in 0..scene.width {
+            if let PixelGeometry::Sphere {
+                material, column, ..
+            } = pixel_geometry(scene, x, y)
+            {
+                let k = (y * scene.width + x) as usize;
+                let t = luminance(truth[k]);
+                let diff = (luminance(split_sum[k]) - t).abs();
+                let d = diff / t.max(1e-30);
+                relative[k] = Some(d);
+                let s = &mut sums[material * ROUGHNESS.len() + column];
+                *s = (s.0 + diff as f64, s.1 + t as f64, s.2.max(d));
+            }
+        }
+    }
+    let stats = sums
+        .iter()
+        .enumerate()
+        .map(|(i, &(diff, truth, worst))| SphereStats {
+            material: MATERIALS[i / ROUGHNESS.len()].name,
+            roughness: ROUGHNESS[i % ROUGHNESS.len()],
+            mean_relative: (diff / truth.max(1e-30)) as f32,
+            worst_relative: worst,
+        })
+        .collect();
+    (relative, stats)
+}
+
+/// Renders the preview of `light` with `backend`.
+pub fn render_preview(
+    backend: &dyn Backend,
+    light: &BakedLight,
+    opts: &PreviewOptions,
+) -> Result<Preview> {
+    validate_options(opts)?;
+    let scene = Scene { cell: opts.cell };
+    let uniform = scene.uniform();
+    let columns = column_table(light.chain);
+    let materials = material_table();
+
+    let t = Instant::now();
+    let split_sum = backend.preview_split_sum(
+        &uniform,
+        &SplitSumInputs {
+            specular: light.specular,
+            irradiance: light.irradiance,
+            lut: light.lut,
+            columns: &columns,
+            materials: &materials,
+        },
+    )?;
+    let split_sum_seconds = t.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    let mut env = Cubemap {
+        size: light.specular.size,
+        levels: vec![light.specular.levels[0].clone()],
+    };
+    let mips = Cubemap::full_mip_count(env.size);
+    crate::cpu::cube_downsample::build_mips(&mut env, mips);
+    let split = split_hot_texels(&env);
+    let points = disk_points(opts.truth_samples);
+    let truth = backend.preview_truth(
+        &uniform,
+        &TruthInputs {
+            env: &env,
+            cold: &split.rest,
+            hot: &split.hot,
+            columns: &columns,
+            materials: &materials,
+            points: &points,
+        },
+    )?;
+    let truth_seconds = t.elapsed().as_secs_f64();
+
+    let exposure = match opts.exposure_ev {
+        Some(ev) => 2f32.powf(ev),
+        None => auto_exposure(&env),
+    };
+    let (relative, stats) = compare(&uniform, &split_sum, &truth);
+    let encode_error = |message: String| Error::Encode {
+        path: "preview.png".into(),
+        format: "PNG",
+        message,
+    };
+    let img = compose(&scene, &split_sum, &truth, &relative, exposure).map_err(encode_error)?;
+    let mut png = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut png, image::ImageFormat::Png)
+        .map_err(|e| encode_error(e.to_string()))?;
+    Ok(Preview {
+        png: png.into_inner(),
+        width: img.width(),
+        height: img.height(),
+        exposure,
+        stats,
+        split_sum,
+        truth,
+        split_sum_seconds,
+        truth_seconds,
+    })
+}

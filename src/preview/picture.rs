@@ -1,0 +1,281 @@
+//! The preview picture: the split-sum and ground-truth panels tone-mapped side by side, a
+//! heat map of their relative difference with its colour bar, and labels, as an 8-bit
+//! sRGB PNG.
+//!
+//! - Exposure: a linear scale 2^EV; by default the one that maps the environment's
+//!   log-average luminance (over the sphere of directions, each texel weighted by its
+//!   solid angle; Reinhard et al. 2002, "Photographic Tone Reproduction") to 0.18, so a
+//!   sun does not darken the picture the way an arithmetic mean would.
+//! - Tone mapping: Khronos PBR Neutral (Khronos 3D Commerce, 2024), which keeps colours
+//!   below 0.76 unchanged and compresses highlights towards white; then the sRGB
+//!   transfer function (IEC 61966-2-1).
+//! - Heat map: |Y_split-sum − Y_truth| / Y_truth of each sphere pixel's luminance
+//!   (Rec. 709 weights), on a log scale from 0.1 % to 100 % (matplotlib's inferno,
+//!   from the `colorous` crate); the background is dark grey.
+//! - Labels: DejaVu Sans (Bitstream Vera licence, `assets/fonts/`), drawn with `ab_glyph`.
+
+use ab_glyph::{Font, FontRef, PxScale, ScaleFont};
+use image::{Rgb, RgbImage};
+
+use crate::environment::Cubemap;
+use crate::math::cubemap::cube_texel_solid_angle;
+use crate::preview::scene::{Scene, MATERIALS, ROUGHNESS};
+
+/// The label font (DejaVu Sans; licence in `assets/fonts/DejaVuSans-LICENSE.txt`).
+const FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+
+/// The luminance the default exposure maps the log-average to (Reinhard's key value).
+pub const KEY_VALUE: f32 = 0.18;
+
+/// The heat map's range of relative differences: log10 of its ends (0.1 % and 100 %).
+pub const HEAT_LOG10_RANGE: [f32; 2] = [-3.0, 0.0];
+
+/// Rec. 709 luminance of linear RGB.
+pub fn luminance(c: [f32; 3]) -> f32 {
+    0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
+}
+
+/// The default exposure scale of `env` (level 0): [`KEY_VALUE`] / exp(mean ln(ε + Y)),
+/// the mean over directions, with ε = 1e-4 of the arithmetic mean so black texels stay
+/// finite.
+pub fn auto_exposure(env: &Cubemap) -> f32 {
+    let n = env.size;
+    let (mut sum_y, mut sum_w) = (0.0f64, 0.0f64);
+    let omegas: Vec<f64> = (0..n * n)
+        .map(|k| cube_texel_solid_angle(k % n, k / n, n) as f64)
+        .collect();
+    for (k, t) in env.levels[0].iter().enumerate() {
+        let w = omegas[k % omegas.len()];
+        sum_y += w * luminance([t[0], t[1], t[2]]) as f64;
+        sum_w += w;
+    }
+    let eps = 1e-4 * (sum_y / sum_w).max(1e-30);
+    let log_mean = env.levels[0]
+        .iter()
+        .enumerate()
+        .map(|(k, t)| omegas[k % omegas.len()] * (eps + luminance([t[0], t[1], t[2]]) as f64).ln())
+        .sum::<f64>()
+        / sum_w;
+    (KEY_VALUE as f64 / log_mean.exp()) as f32
+}
+
+/// Khronos PBR Neutral tone mapping of linear RGB (the reference GLSL of the
+/// specification, term for term).
+pub fn pbr_neutral(c: [f32; 3]) -> [f32; 3] {
+    const START_COMPRESSION: f32 = 0.8 - 0.04;
+    const DESATURATION: f32 = 0.15;
+    let x = c[0].min(c[1]).min(c[2]);
+    let offset = if x < 0.08 { x - 6.25 * x * x } else { 0.04 };
+    let c = c.map(|v| v - offset);
+    let peak = c[0].max(c[1]).max(c[2]);
+    if peak < START_COMPRESSION {
+        return c;
+    }
+    let d = 1.0 - START_COMPRESSION;
+    let new_peak = 1.0 - d * d / (peak + d - START_COMPRESSION);
+    let c = c.map(|v| v * new_peak / peak);
+    let g = 1.0 - 1.0 / (DESATURATION * (peak - new_peak) + 1.0);
+    c.map(|v| v + (new_peak - v) * g)
+}
+
+/// The sRGB transfer function (IEC 61966-2-1) of a linear value in [0, 1], as 8 bits.
+pub fn srgb8(v: f32) -> u8 {
+    let v = v.clamp(0.0, 1.0);
+    let e = if v <= 0.003_130_8 {
+        12.92 * v
+    } else {
+        1.055 * v.powf(1.0 / 2.4) - 0.055
+    };
+    (e * 255.0).round() as u8
+}
+
+/// A linear radiance, exposed and tone-mapped, as an sRGB pixel.
+pub fn display(c: [f32; 3], exposure: f32) -> Rgb<u8> {
+    Rgb(pbr_neutral(c.map(|v| v.max(0.0) * exposure)).map(srgb8))
+}
+
+/// The heat-map colour of a relative difference.
+pub fn heat_colour(relative: f32) -> Rgb<u8> {
+    let [lo, hi] = HEAT_LOG10_RANGE;
+    let t = ((relative.max(1e-30).log10() - lo) / (hi - lo)).clamp(0.0, 1.0);
+    let c = colorous::INFERNO.eval_continuous(t as f64);
+    Rgb([c.r, c.g, c.b])
+}
+
+/// Background of the heat-map panel.
+const HEAT_BACKGROUND: Rgb<u8> = Rgb([40, 40, 40]);
+/// Page colour around the panels.
+const PAGE: Rgb<u8> = Rgb([24, 24, 24]);
+/// Label colour.
+const INK: Rgb<u8> = Rgb([230, 230, 230]);
+
+/// Where everything goes in the picture, in pixels.
+#[derive(Clone, Copy, Debug)]
+struct Layout {
+    cell: u32,
+    font: f32,
+    left: u32,
+    top: u32,
+    gap: u32,
+    bar: u32,
+    width: u32,
+    height: u32,
+}
+
+impl Layout {
+    fn new(scene: &Scene) -> Self {
+        let c = scene.cell;
+        let font = (c as f32 * 0.22).max(9.0);
+        let left = (font * 5.5) as u32;
+        let top = (font * 3.4) as u32;
+        let gap = c / 4;
+        let bar = c / 4;
+        let width = left + 3 * scene.width() + 3 * gap + bar + (font * 3.6) as u32;
+        let height = top + scene.height() + gap;
+        Layout {
+            cell: c,
+            font,
+            left,
+            top,
+            gap,
+            bar,
+            width,
+            height,
+        }
+    }
+
+    /// Left edge of panel `k` (0 split-sum, 1 truth, 2 heat map).
+    fn panel_x(&self, scene: &Scene, k: u32) -> u32 {
+        self.left + k * (scene.width() + self.gap)
+    }
+}
+
+/// Width in pixels of `text` at `size`.
+fn text_width(font: &FontRef, size: f32, text: &str) -> f32 {
+    let f = font.as_scaled(PxScale::from(size));
+    text.chars().map(|ch| f.h_advance(f.glyph_id(ch))).sum()
+}
+
+/// Draws `text` with its baseline at `y`, starting at `x`, blending by coverage.
+fn draw_text(img: &mut RgbImage, font: &FontRef, size: f32, x: f32, y: f32, text: &str) {
+    let scaled = font.as_scaled(PxScale::from(size));
+    let mut pen = x;
+    for ch in text.chars() {
+        let id = scaled.glyph_id(ch);
+        let glyph = id.with_scale_and_position(PxScale::from(size), ab_glyph::point(pen, y));
+        pen += scaled.h_advance(id);
+        let Some(outline) = font.outline_glyph(glyph) else {
+            continue;
+        };
+        let bounds = outline.px_bounds();
+        outline.draw(|gx, gy, coverage| {
+            let (px, py) = (
+                bounds.min.x as i32 + gx as i32,
+                bounds.min.y as i32 + gy as i32,
+            );
+            if px < 0 || py < 0 || px >= img.width() as i32 || py >= img.height() as i32 {
+                return;
+            }
+            let p = img.get_pixel_mut(px as u32, py as u32);
+            for c in 0..3 {
+                p.0[c] =
+                    (p.0[c] as f32 + (INK.0[c] as f32 - p.0[c] as f32) * coverage).round() as u8;
+            }
+        });
+    }
+}
+
+/// Draws `text` centred on `cx`.
+fn draw_centred(img: &mut RgbImage, font: &FontRef, size: f32, cx: f32, y: f32, text: &str) {
+    let w = text_width(font, size, text);
+    draw_text(img, font, size, cx - 0.5 * w, y, text);
+}
+
+/// The whole picture. `split_sum` and `truth` are the panels (row-major linear RGB);
+/// `relative` holds each sphere pixel's relative difference (None off the spheres). Fails
+/// only if the bundled font does not parse.
+pub fn compose(
+    scene: &Scene,
+    split_sum: &[[f32; 3]],
+    truth: &[[f32; 3]],
+    relative: &[Option<f32>],
+    exposure: f32,
+) -> Result<RgbImage, String> {
+    let layout = Layout::new(scene);
+    let mut img = RgbImage::from_pixel(layout.width, layout.height, PAGE);
+    let (pw, ph) = (scene.width(), scene.height());
+    for y in 0..ph {
+        for x in 0..pw {
+            let k = (y * pw + x) as usize;
+            let py = layout.top + y;
+            img.put_pixel(
+                layout.panel_x(scene, 0) + x,
+                py,
+                display(split_sum[k], exposure),
+            );
+            img.put_pixel(
+                layout.panel_x(scene, 1) + x,
+                py,
+                display(truth[k], exposure),
+            );
+            let heat = relative[k].map_or(HEAT_BACKGROUND, heat_colour);
+            img.put_pixel(layout.panel_x(scene, 2) + x, py, heat);
+        }
+    }
+    // The colour bar: 100 % at the top, 0.1 % at the bottom.
+    let bar_x = layout.panel_x(scene, 3);
+    let [lo, hi] = HEAT_LOG10_RANGE;
+    for y in 0..ph {
+        let t = 1.0 - (y as f32 + 0.5) / ph as f32;
+        let c = heat_colour(10f32.powf(lo + t * (hi - lo)));
+        for x in 0..layout.bar {
+            img.put_pixel(bar_x + x, layout.top + y, c);
+        }
+    }
+
+    let font = FontRef::try_from_slice(FONT).map_err(|e| format!("the label font: {e}"))?;
+    let f = layout.font;
+    let title_y = f * 1.3;
+    let header_y = layout.top as f32 - f * 0.5;
+    let titles = ["split-sum", "ground truth", "|split-sum − truth| / truth"];
+    for (k, title) in titles.iter().enumerate() {
+        let cx = layout.panel_x(scene, k as u32) as f32 + 0.5 * pw as f32;
+        draw_centred(&mut img, &font, f * 1.1, cx, title_y, title);
+        for (c, r) in ROUGHNESS.iter().enumerate() {
+            let cx = layout.panel_x(scene, k as u32) as f32 + (c as f32 + 0.5) * layout.cell as f32;
+            let label = if c == 0 {
+                format!("r = {r}")
+            } else {
+                format!("{r}")
+            };
+            draw_centred(&mut img, &font, f * 0.9, cx, header_y, &label);
+        }
+    }
+    for (row, m) in MATERIALS.iter().enumerate() {
+        let y = layout.top as f32 + (row as f32 + 0.5) * layout.cell as f32 + 0.35 * f;
+        draw_text(&mut img, &font, f * 0.9, f * 0.4, y, m.name);
+    }
+    let steps = (hi - lo).round() as i32;
+    for s in 0..=steps {
+        let e = lo + s as f32;
+        let y = layout.top as f32 + (1.0 - (e - lo) / (hi - lo)) * ph as f32;
+        let label = match e as i32 {
+            -3 => "0.1 %".to_string(),
+            p => format!("{} %", 10f32.powi(p + 2)),
+        };
+        for x in 0..layout.bar / 2 {
+            let yy = (y.round() as u32).clamp(layout.top, layout.top + ph - 1);
+            img.put_pixel(bar_x + layout.bar + x, yy, INK);
+        }
+        let ty = (y + 0.35 * f).clamp(layout.top as f32 + f * 0.7, (layout.top + ph) as f32);
+        draw_text(
+            &mut img,
+            &font,
+            f * 0.8,
+            (bar_x + layout.bar + layout.bar / 2 + 2) as f32,
+            ty,
+            &label,
+        );
+    }
+    Ok(img)
+}
