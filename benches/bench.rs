@@ -442,6 +442,62 @@ fn main() {
         lut_benchmarks();
         lut_versus_cmgen();
     }
+    if run("preview") {
+        preview_benchmarks();
+    }
+}
+
+/// The preview's two renders on a default bake of the bundled HDRI, per backend: the
+/// split-sum render (what `bake --preview` must add ≤ 0.5 CPU-s for) and the ground truth
+/// at 256 and 1024 points.
+fn preview_benchmarks() {
+    use splitsum::bake::{bake_environment, BakeOptions};
+    use splitsum::environment::Environment;
+    use splitsum::preview::{render_preview, PreviewOptions};
+    use splitsum::Backend;
+    println!("\n## Preview of venice_sunset_1k.hdr (default bake, 64-pixel cells)\n");
+    println!("| backend | truth points | split-sum wall s | truth wall s | whole preview CPU s |");
+    println!("|---|---|---|---|---|");
+    let loaded = splitsum::io::input::load_input(
+        std::path::Path::new("tests/data/venice_sunset_1k.hdr"),
+        &Default::default(),
+    )
+    .unwrap();
+    let Environment::Equirect(e) = loaded.env else {
+        unreachable!("the bundled HDRI is an equirect")
+    };
+    let cpu = splitsum::CpuBackend;
+    let baked = bake_environment(
+        &cpu,
+        Environment::Equirect(e),
+        &BakeOptions::default(),
+        &mut |_| {},
+        &mut Vec::new(),
+    )
+    .unwrap();
+    let lut = cpu.brdf_lut(512, 512).unwrap();
+    let mut backends: Vec<(&str, Box<dyn splitsum::Backend>)> =
+        vec![("cpu", Box::new(splitsum::CpuBackend))];
+    if let Ok(g) = splitsum::GpuBackend::new() {
+        backends.push(("gpu", Box::new(g)));
+    }
+    for (label, backend) in &backends {
+        for truth_samples in [256, 1024] {
+            let opts = PreviewOptions {
+                truth_samples,
+                ..PreviewOptions::default()
+            };
+            let mut p = None;
+            let (_, cpu_s) = measure(1, || {
+                p = Some(render_preview(backend.as_ref(), &baked.light(&lut), &opts).unwrap());
+            });
+            let p = p.unwrap();
+            println!(
+                "| {label} | {truth_samples} | {:.3} | {:.2} | {cpu_s:.2} |",
+                p.split_sum_seconds, p.truth_seconds
+            );
+        }
+    }
 }
 
 fn lut_benchmarks() {

@@ -176,7 +176,7 @@ pub struct BakeArgs {
 #[derive(Debug, Args)]
 pub struct PreviewRenderArgs {
     /// Quasi-Monte Carlo points per lobe and pixel of the ground truth (its cost grows
-    /// with them; the split-sum render does not depend on them).
+    /// with them; 0 renders the split-sum alone, without the truth or the comparison).
     #[arg(long, default_value_t = splitsum::cpu::preview_truth::DEFAULT_TRUTH_SAMPLES)]
     pub truth_samples: u32,
 

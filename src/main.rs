@@ -304,6 +304,10 @@ fn preview_options(
 /// of split-sum against truth; with `verbose`, what each render cost.
 fn print_preview(path: &std::path::Path, p: &splitsum::preview::Preview, verbose: bool) {
     use splitsum::preview::scene::ROUGHNESS;
+    if p.stats.is_empty() {
+        println!("{}: split-sum only (--truth-samples 0)", path.display());
+        return;
+    }
     println!(
         "{}: split-sum against ground truth per sphere, luminance: Σ|ΔY| / ΣY and worst pixel |ΔY| / Y, %",
         path.display()
@@ -322,7 +326,7 @@ fn print_preview(path: &std::path::Path, p: &splitsum::preview::Preview, verbose
                     100.0 * s.mean_relative,
                     100.0 * s.worst_relative
                 );
-                format!("{cell:>13}")
+                format!("{cell:>15}")
             })
             .collect();
         println!("{:<11}{}", row[0].material, cells.join(""));

@@ -25,7 +25,7 @@ use crate::cpu::preview_split_sum::SplitSumInputs;
 use crate::cpu::preview_truth::{disk_points, TruthInputs, DEFAULT_TRUTH_SAMPLES};
 use crate::environment::Cubemap;
 use crate::lut::BrdfLut;
-use crate::preview::picture::{auto_exposure, compose, luminance};
+use crate::preview::picture::{auto_exposure, compose, luminance, Comparison};
 use crate::preview::scene::{
     material_table, pixel_geometry, PixelGeometry, Scene, SceneUniform, MATERIALS, ROUGHNESS,
 };
@@ -52,7 +52,8 @@ pub struct PreviewOptions {
     /// Exposure in stops (a scale 2^EV); `None` picks it from the environment
     /// ([`picture::auto_exposure`]).
     pub exposure_ev: Option<f32>,
-    /// Quasi-Monte Carlo points per lobe and pixel of the ground truth (1 ..= 65536).
+    /// Quasi-Monte Carlo points per lobe and pixel of the ground truth (0 ..= 65536; 0
+    /// renders the split-sum alone, without the truth, the heat map or the stats).
     pub truth_samples: u32,
 }
 
@@ -93,11 +94,12 @@ pub struct Preview {
     pub height: u32,
     /// The linear exposure scale applied before tone mapping.
     pub exposure: f32,
-    /// One entry per sphere, materials in row order, roughness in column order.
+    /// One entry per sphere, materials in row order, roughness in column order (empty
+    /// without the truth).
     pub stats: Vec<SphereStats>,
     /// The split-sum panel, row-major linear RGB (before exposure).
     pub split_sum: Vec<[f32; 3]>,
-    /// The ground-truth panel.
+    /// The ground-truth panel (empty with `truth_samples` 0).
     pub truth: Vec<[f32; 3]>,
     /// Wall-clock seconds of the split-sum render.
     pub split_sum_seconds: f64,
@@ -113,10 +115,10 @@ pub fn validate_options(opts: &PreviewOptions) -> Result<()> {
             message: format!("{} is outside 8..=512 pixels", opts.cell),
         });
     }
-    if !(1..=65536).contains(&opts.truth_samples) {
+    if opts.truth_samples > 65536 {
         return Err(Error::InvalidParameter {
             name: "--truth-samples",
-            message: format!("{} is outside 1..=65536", opts.truth_samples),
+            message: format!("{} is outside 0..=65536", opts.truth_samples),
         });
     }
     if let Some(ev) = opts.exposure_ev {
@@ -207,34 +209,46 @@ pub fn render_preview(
         size: light.specular.size,
         levels: vec![light.specular.levels[0].clone()],
     };
-    let mips = Cubemap::full_mip_count(env.size);
-    crate::cpu::cube_downsample::build_mips(&mut env, mips);
-    let split = split_hot_texels(&env);
-    let points = disk_points(opts.truth_samples);
-    let truth = backend.preview_truth(
-        &uniform,
-        &TruthInputs {
-            env: &env,
-            cold: &split.rest,
-            hot: &split.hot,
-            columns: &columns,
-            materials: &materials,
-            points: &points,
-        },
-    )?;
+    let truth = if opts.truth_samples == 0 {
+        Vec::new()
+    } else {
+        let mips = Cubemap::full_mip_count(env.size);
+        crate::cpu::cube_downsample::build_mips(&mut env, mips);
+        let split = split_hot_texels(&env);
+        let points = disk_points(opts.truth_samples);
+        backend.preview_truth(
+            &uniform,
+            &TruthInputs {
+                env: &env,
+                cold: &split.rest,
+                hot: &split.hot,
+                columns: &columns,
+                materials: &materials,
+                points: &points,
+            },
+        )?
+    };
     let truth_seconds = t.elapsed().as_secs_f64();
 
     let exposure = match opts.exposure_ev {
         Some(ev) => 2f32.powf(ev),
         None => auto_exposure(&env),
     };
-    let (relative, stats) = compare(&uniform, &split_sum, &truth);
+    let (relative, stats) = if truth.is_empty() {
+        (Vec::new(), Vec::new())
+    } else {
+        compare(&uniform, &split_sum, &truth)
+    };
+    let comparison = (!truth.is_empty()).then_some(Comparison {
+        truth: &truth,
+        relative: &relative,
+    });
     let encode_error = |message: String| Error::Encode {
         path: "preview.png".into(),
         format: "PNG",
         message,
     };
-    let img = compose(&scene, &split_sum, &truth, &relative, exposure).map_err(encode_error)?;
+    let img = compose(&scene, &split_sum, comparison, exposure).map_err(encode_error)?;
     let mut png = std::io::Cursor::new(Vec::new());
     img.write_to(&mut png, image::ImageFormat::Png)
         .map_err(|e| encode_error(e.to_string()))?;

@@ -123,14 +123,20 @@ struct Layout {
 }
 
 impl Layout {
-    fn new(scene: &Scene) -> Self {
+    /// Three panels and the colour bar with a comparison, the split-sum panel alone
+    /// without.
+    fn new(scene: &Scene, compared: bool) -> Self {
         let c = scene.cell;
         let font = (c as f32 * 0.22).max(9.0);
         let left = (font * 5.5) as u32;
         let top = (font * 3.4) as u32;
         let gap = c / 4;
         let bar = c / 4;
-        let width = left + 3 * scene.width() + 3 * gap + bar + (font * 3.6) as u32;
+        let width = if compared {
+            left + 3 * scene.width() + 3 * gap + bar + (font * 3.6) as u32
+        } else {
+            left + scene.width() + gap
+        };
         let height = top + scene.height() + gap;
         Layout {
             cell: c,
@@ -191,17 +197,26 @@ fn draw_centred(img: &mut RgbImage, font: &FontRef, size: f32, cx: f32, y: f32, 
     draw_text(img, font, size, cx - 0.5 * w, y, text);
 }
 
-/// The whole picture. `split_sum` and `truth` are the panels (row-major linear RGB);
-/// `relative` holds each sphere pixel's relative difference (None off the spheres). Fails
-/// only if the bundled font does not parse.
+/// The ground-truth panel and each sphere pixel's relative difference (None off the
+/// spheres), for the comparison half of the picture.
+#[derive(Clone, Copy, Debug)]
+pub struct Comparison<'a> {
+    /// The truth panel (row-major linear RGB).
+    pub truth: &'a [[f32; 3]],
+    /// Per pixel |Y_split-sum − Y_truth| / Y_truth on the spheres.
+    pub relative: &'a [Option<f32>],
+}
+
+/// The whole picture: the split-sum panel (row-major linear RGB) and, with a
+/// `comparison`, the truth panel, the heat map and its colour bar. Fails only if the
+/// bundled font does not parse.
 pub fn compose(
     scene: &Scene,
     split_sum: &[[f32; 3]],
-    truth: &[[f32; 3]],
-    relative: &[Option<f32>],
+    comparison: Option<Comparison>,
     exposure: f32,
 ) -> Result<RgbImage, String> {
-    let layout = Layout::new(scene);
+    let layout = Layout::new(scene, comparison.is_some());
     let mut img = RgbImage::from_pixel(layout.width, layout.height, PAGE);
     let (pw, ph) = (scene.width(), scene.height());
     for y in 0..ph {
@@ -213,23 +228,12 @@ pub fn compose(
                 py,
                 display(split_sum[k], exposure),
             );
-            img.put_pixel(
-                layout.panel_x(scene, 1) + x,
-                py,
-                display(truth[k], exposure),
-            );
-            let heat = relative[k].map_or(HEAT_BACKGROUND, heat_colour);
-            img.put_pixel(layout.panel_x(scene, 2) + x, py, heat);
-        }
-    }
-    // The colour bar: 100 % at the top, 0.1 % at the bottom.
-    let bar_x = layout.panel_x(scene, 3);
-    let [lo, hi] = HEAT_LOG10_RANGE;
-    for y in 0..ph {
-        let t = 1.0 - (y as f32 + 0.5) / ph as f32;
-        let c = heat_colour(10f32.powf(lo + t * (hi - lo)));
-        for x in 0..layout.bar {
-            img.put_pixel(bar_x + x, layout.top + y, c);
+            if let Some(c) = comparison {
+                let truth = display(c.truth[k], exposure);
+                img.put_pixel(layout.panel_x(scene, 1) + x, py, truth);
+                let heat = c.relative[k].map_or(HEAT_BACKGROUND, heat_colour);
+                img.put_pixel(layout.panel_x(scene, 2) + x, py, heat);
+            }
         }
     }
 
@@ -238,7 +242,8 @@ pub fn compose(
     let title_y = f * 1.3;
     let header_y = layout.top as f32 - f * 0.5;
     let titles = ["split-sum", "ground truth", "|split-sum − truth| / truth"];
-    for (k, title) in titles.iter().enumerate() {
+    let panels = if comparison.is_some() { 3 } else { 1 };
+    for (k, title) in titles.iter().enumerate().take(panels) {
         let cx = layout.panel_x(scene, k as u32) as f32 + 0.5 * pw as f32;
         draw_centred(&mut img, &font, f * 1.1, cx, title_y, title);
         for (c, r) in ROUGHNESS.iter().enumerate() {
@@ -255,6 +260,25 @@ pub fn compose(
         let y = layout.top as f32 + (row as f32 + 0.5) * layout.cell as f32 + 0.35 * f;
         draw_text(&mut img, &font, f * 0.9, f * 0.4, y, m.name);
     }
+    if comparison.is_some() {
+        draw_colour_bar(&mut img, &font, scene, &layout);
+    }
+    Ok(img)
+}
+
+/// The heat map's colour bar right of the third panel: 100 % at the top, 0.1 % at the
+/// bottom, a labelled tick per decade.
+fn draw_colour_bar(img: &mut RgbImage, font: &FontRef, scene: &Scene, layout: &Layout) {
+    let (f, ph) = (layout.font, scene.height());
+    let bar_x = layout.panel_x(scene, 3);
+    let [lo, hi] = HEAT_LOG10_RANGE;
+    for y in 0..ph {
+        let t = 1.0 - (y as f32 + 0.5) / ph as f32;
+        let c = heat_colour(10f32.powf(lo + t * (hi - lo)));
+        for x in 0..layout.bar {
+            img.put_pixel(bar_x + x, layout.top + y, c);
+        }
+    }
     let steps = (hi - lo).round() as i32;
     for s in 0..=steps {
         let e = lo + s as f32;
@@ -269,13 +293,12 @@ pub fn compose(
         }
         let ty = (y + 0.35 * f).clamp(layout.top as f32 + f * 0.7, (layout.top + ph) as f32);
         draw_text(
-            &mut img,
-            &font,
+            img,
+            font,
             f * 0.8,
             (bar_x + layout.bar + layout.bar / 2 + 2) as f32,
             ty,
             &label,
         );
     }
-    Ok(img)
 }
