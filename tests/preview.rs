@@ -81,9 +81,11 @@ fn preview(
 /// F0·A + B + c (1 − F_r(n·v))(1 − metallic), with (A, B) the converged LUT integrals at its
 /// n·v and roughness, and every pixel of the truth F0·A + B + c (1 − metallic)
 /// (1 − F0)(1 − W(n·v)): the BRDF's directional albedo. Both within 1e-3 (absolute, the
-/// environment being 1) on both backends. The split-sum's error is the LUT's bilinear
-/// interpolation and its 16-bit-free f32 texels (~1e-5) and the exact irradiance; the
-/// truth's the quadrature of its cold part (1024 points, ~1e-4 at grazing n·v).
+/// environment being 1) on both backends. The split-sum's worst, 9.1e-4, is at r = 1: the
+/// LUT's last row holds r = 1 − 1/(2·512), and a clamp-to-edge lookup at r = 1 reads it
+/// (A changes by 9e-4 over that half texel), as it does in an engine; the chain and the
+/// irradiance are within 1.5e-5 of 1. The truth's is its cold part's quadrature, 3.5e-4 at
+/// 4096 points (1.35e-3 at the default 1024, grazing n·v).
 #[test]
 fn white_furnace_matches_analytic_values() {
     let scene = Scene { cell: 32 };
