@@ -449,7 +449,7 @@ fn main() {
 
 /// The preview's two renders on a default bake of the bundled HDRI, per backend: the
 /// split-sum render (what `bake --preview` must add ≤ 0.5 CPU-s for) and the ground truth
-/// at 256 and 1024 points.
+/// at 512 and 2048 (the default) points.
 fn preview_benchmarks() {
     use splitsum::bake::{bake_environment, BakeOptions};
     use splitsum::environment::Environment;
@@ -482,7 +482,7 @@ fn preview_benchmarks() {
         backends.push(("gpu", Box::new(g)));
     }
     for (label, backend) in &backends {
-        for truth_samples in [256, 1024] {
+        for truth_samples in [512, 2048] {
             let opts = PreviewOptions {
                 truth_samples,
                 ..PreviewOptions::default()

@@ -40,7 +40,7 @@ use crate::math::sampling::{
 use crate::preview::scene::{pixel_geometry, PixelGeometry, SceneUniform, MIN_N_DOT_V};
 
 /// Default number of quasi-Monte Carlo points per lobe and pixel.
-pub const DEFAULT_TRUTH_SAMPLES: u32 = 1024;
+pub const DEFAULT_TRUTH_SAMPLES: u32 = 2048;
 
 /// What the truth render reads.
 #[derive(Clone, Copy, Debug)]
