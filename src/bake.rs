@@ -665,6 +665,12 @@ fn manifest_json(
 /// files are mirrored and laid out for one engine; [`bake`] previews those in memory.
 pub fn read_bake_dir(dir: &Path) -> Result<(BakedEnvironment, Option<BrdfLut>)> {
     let manifest_path = dir.join("manifest.json");
+    if !manifest_path.is_file() {
+        return Err(Error::UnsupportedInput {
+            path: dir.to_path_buf(),
+            message: "not a folder `splitsum bake` wrote: it has no manifest.json".into(),
+        });
+    }
     let text = std::fs::read_to_string(&manifest_path).map_err(|e| Error::io(&manifest_path, e))?;
     let bad = |message: String| Error::Decode {
         path: manifest_path.clone(),

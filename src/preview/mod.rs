@@ -111,7 +111,7 @@ pub struct Preview {
 pub fn validate_options(opts: &PreviewOptions) -> Result<()> {
     if !(8..=512).contains(&opts.cell) {
         return Err(Error::InvalidParameter {
-            name: "--cell",
+            name: "--preview-cell",
             message: format!("{} is outside 8..=512 pixels", opts.cell),
         });
     }
