@@ -1,7 +1,10 @@
 //! GPU BRDF LUT: binds `shaders/brdf_lut.wgsl` (CPU mirror: `cpu::brdf_lut`).
 
-use crate::gpu::compute::{buffer_with_data, read_texture_level, with_error_scope, ComputeKernel};
+use crate::gpu::compute::{
+    read_texture_level, storage_buffer, uniform_buffer, with_error_scope, ComputeKernel,
+};
 use crate::gpu::shaders;
+use crate::gpu::texture::create_storage_texture_2d;
 use crate::lut::{BrdfLut, LutModel, LutQuadrature};
 use crate::Result;
 
@@ -20,32 +23,9 @@ pub fn brdf_lut(
     let kernel = ComputeKernel::new(device, "brdf_lut", shaders::BRDF_LUT, WORKGROUP)?;
     let texture = with_error_scope(device, "brdf_lut dispatch", || {
         let params = quad.params(width, height, model);
-        let uniform = buffer_with_data(
-            device,
-            "lut params",
-            bytemuck::bytes_of(&params),
-            wgpu::BufferUsages::UNIFORM,
-        );
-        let rules = buffer_with_data(
-            device,
-            "lut rules",
-            bytemuck::cast_slice(&quad.nodes),
-            wgpu::BufferUsages::STORAGE,
-        );
-        let texture = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("brdf lut"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba32Float,
-            usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        let uniform = uniform_buffer(device, "lut params", &params);
+        let rules = storage_buffer(device, "lut rules", &quad.nodes);
+        let texture = create_storage_texture_2d(device, "brdf lut", width, height);
         let view = texture.create_view(&Default::default());
         let mut encoder = device.create_command_encoder(&Default::default());
         kernel.dispatch(

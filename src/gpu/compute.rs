@@ -120,6 +120,37 @@ pub fn buffer_with_data(
     })
 }
 
+/// A storage buffer holding `data`. A storage binding cannot be empty, so an empty `data`
+/// gets two zero vec4s (one hot texel's size) in its place; the kernels read none of them
+/// because their count is 0.
+pub fn storage_buffer<T: bytemuck::Pod>(
+    device: &wgpu::Device,
+    label: &str,
+    data: &[T],
+) -> wgpu::Buffer {
+    let placeholder = [0.0f32; 8];
+    let bytes: &[u8] = if data.is_empty() {
+        bytemuck::cast_slice(&placeholder)
+    } else {
+        bytemuck::cast_slice(data)
+    };
+    buffer_with_data(device, label, bytes, wgpu::BufferUsages::STORAGE)
+}
+
+/// A uniform buffer holding `value`.
+pub fn uniform_buffer<T: bytemuck::Pod>(
+    device: &wgpu::Device,
+    label: &str,
+    value: &T,
+) -> wgpu::Buffer {
+    buffer_with_data(
+        device,
+        label,
+        bytemuck::bytes_of(value),
+        wgpu::BufferUsages::UNIFORM,
+    )
+}
+
 /// Reads every array layer of one mip level of an `Rgba32Float` texture back to the CPU,
 /// tightly packed: layer-major, then rows top to bottom, 4 floats per texel. wgpu pads
 /// each row of the copy to 256 bytes; the padding is removed here.

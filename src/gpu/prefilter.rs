@@ -8,9 +8,9 @@ use crate::cpu::prefilter_specular::{
     SpecularChain,
 };
 use crate::environment::{Cubemap, IrradianceSource};
-use crate::gpu::compute::{buffer_with_data, with_error_scope, ComputeKernel};
+use crate::gpu::compute::{storage_buffer, uniform_buffer, with_error_scope, ComputeKernel};
 use crate::gpu::shaders;
-use crate::gpu::texture::{create_cube_texture, cube_mip_view, read_cubemap};
+use crate::gpu::texture::{create_cube_texture, cube_array_view, cube_mip_view, read_cubemap};
 use crate::Result;
 
 /// Workgroup of both kernels (x, y over the face, z = face).
@@ -110,8 +110,6 @@ fn record_exact(
     out_size: u32,
     target: &wgpu::TextureView,
 ) {
-    // A storage binding cannot be empty: one zero vec4 stands for no hot cells.
-    let none = [0.0f32; 4];
     let (count, mode, roughness, bytes, hot): (usize, u32, f32, &[u8], &[MomentTexel]) =
         match source {
             ExactSource::Specular(s, r) => (s.len(), 0, *r, bytemuck::cast_slice(s), &[]),
@@ -127,24 +125,9 @@ fn record_exact(
         pad1: 0,
         pad2: 0,
     };
-    let hot_bytes: &[u8] = if hot.is_empty() {
-        bytemuck::cast_slice(&none)
-    } else {
-        bytemuck::cast_slice(hot)
-    };
-    let hbuf = buffer_with_data(device, "hot cells", hot_bytes, wgpu::BufferUsages::STORAGE);
-    let ubuf = buffer_with_data(
-        device,
-        "convolve params",
-        bytemuck::bytes_of(&uniform),
-        wgpu::BufferUsages::UNIFORM,
-    );
-    let sbuf = buffer_with_data(
-        device,
-        "convolve source",
-        bytes,
-        wgpu::BufferUsages::STORAGE,
-    );
+    let hbuf = storage_buffer(device, "hot cells", hot);
+    let ubuf = uniform_buffer(device, "convolve params", &uniform);
+    let sbuf = storage_buffer(device, "convolve source", bytes);
     kernel.dispatch(
         device,
         encoder,
@@ -179,25 +162,8 @@ pub fn prefilter_specular(
     let split = split_hot_texels(env);
     let out = with_error_scope(device, "prefilter_specular dispatch", || {
         let source = upload_cube(device, queue, &split.rest, env.levels.len() as u32);
-        // A storage binding cannot be empty: one black texel stands in when none is hot.
-        let hot_data = if split.hot.is_empty() {
-            vec![SourceTexel {
-                dir_omega: [0.0; 4],
-                radiance: [0.0; 4],
-            }]
-        } else {
-            split.hot.clone()
-        };
-        let hot_buf = buffer_with_data(
-            device,
-            "hot texels",
-            bytemuck::cast_slice(&hot_data),
-            wgpu::BufferUsages::STORAGE,
-        );
-        let source_view = source.create_view(&wgpu::TextureViewDescriptor {
-            dimension: Some(wgpu::TextureViewDimension::D2Array),
-            ..Default::default()
-        });
+        let hot_buf = storage_buffer(device, "hot texels", &split.hot);
+        let source_view = cube_array_view(&source);
         // Level 0 is the environment itself.
         let out = upload_cube(
             device,
@@ -222,11 +188,8 @@ pub fn prefilter_specular(
                     record_exact(device, &mut encoder, &exact, &source, n, &target)
                 }
                 LevelMethod::Sampled { samples } => {
-                    let mut lobe = ggx_lobe_samples(samples, r, env.size);
+                    let lobe = ggx_lobe_samples(samples, r, env.size);
                     let lobe_count = lobe.len() as u32;
-                    if lobe.is_empty() {
-                        lobe.push([0.0; 4]); // a storage binding cannot be empty
-                    }
                     let uniform = PrefilterUniform {
                         env_size: env.size,
                         env_levels: env.levels.len() as u32,
@@ -237,18 +200,8 @@ pub fn prefilter_specular(
                         hot_count: split.hot.len() as u32,
                         _pad: 0,
                     };
-                    let lobe_buf = buffer_with_data(
-                        device,
-                        "lobe samples",
-                        bytemuck::cast_slice(&lobe),
-                        wgpu::BufferUsages::STORAGE,
-                    );
-                    let ubuf = buffer_with_data(
-                        device,
-                        "prefilter params",
-                        bytemuck::bytes_of(&uniform),
-                        wgpu::BufferUsages::UNIFORM,
-                    );
+                    let lobe_buf = storage_buffer(device, "lobe samples", &lobe);
+                    let ubuf = uniform_buffer(device, "prefilter params", &uniform);
                     sampled.dispatch(
                         device,
                         &mut encoder,

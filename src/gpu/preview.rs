@@ -3,14 +3,14 @@
 //! `cpu/preview_truth.rs`). Each writes one panel into an `Rgba32Float` 2D texture that is
 //! read back as row-major RGB.
 
-use crate::cpu::irradiance::SourceTexel;
 use crate::cpu::preview_split_sum::SplitSumInputs;
 use crate::cpu::preview_truth::TruthInputs;
-use crate::environment::Cubemap;
-use crate::gpu::compute::{buffer_with_data, read_texture_level, with_error_scope, ComputeKernel};
+use crate::gpu::compute::{
+    read_texture_level, storage_buffer, uniform_buffer, with_error_scope, ComputeKernel,
+};
 use crate::gpu::prefilter::upload_cube;
 use crate::gpu::shaders;
-use crate::gpu::texture::upload_rgb_texture;
+use crate::gpu::texture::{create_storage_texture_2d, cube_array_view, upload_rgb_texture};
 use crate::preview::scene::SceneUniform;
 use crate::Result;
 
@@ -53,57 +53,6 @@ pub struct TruthUniform {
     pub _pad: u32,
 }
 
-/// A storage buffer of `data`, or of one zero vec4 when it is empty (a storage binding
-/// cannot be empty).
-fn storage<T: bytemuck::Pod>(device: &wgpu::Device, label: &str, data: &[T]) -> wgpu::Buffer {
-    let none = [0.0f32; 8];
-    let bytes: &[u8] = if data.is_empty() {
-        bytemuck::cast_slice(&none)
-    } else {
-        bytemuck::cast_slice(data)
-    };
-    buffer_with_data(device, label, bytes, wgpu::BufferUsages::STORAGE)
-}
-
-fn uniform<T: bytemuck::Pod>(device: &wgpu::Device, label: &str, value: &T) -> wgpu::Buffer {
-    buffer_with_data(
-        device,
-        label,
-        bytemuck::bytes_of(value),
-        wgpu::BufferUsages::UNIFORM,
-    )
-}
-
-/// The panel's output texture.
-fn panel_texture(device: &wgpu::Device, scene: &SceneUniform) -> wgpu::Texture {
-    device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("preview panel"),
-        size: wgpu::Extent3d {
-            width: scene.width,
-            height: scene.height,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba32Float,
-        usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    })
-}
-
-fn array_view(texture: &wgpu::Texture) -> wgpu::TextureView {
-    texture.create_view(&wgpu::TextureViewDescriptor {
-        dimension: Some(wgpu::TextureViewDimension::D2Array),
-        ..Default::default()
-    })
-}
-
-/// Level 0 of `cube` as a one-level cube texture.
-fn upload_level0(device: &wgpu::Device, queue: &wgpu::Queue, cube: &Cubemap) -> wgpu::Texture {
-    upload_cube(device, queue, cube, 1)
-}
-
 /// Runs `kernel` over the panel with `resources` followed by the output, and reads it back.
 fn run_panel(
     device: &wgpu::Device,
@@ -114,7 +63,7 @@ fn run_panel(
     stage: &str,
 ) -> Result<Vec<[f32; 3]>> {
     let out = with_error_scope(device, stage, || {
-        let out = panel_texture(device, scene);
+        let out = create_storage_texture_2d(device, "preview panel", scene.width, scene.height);
         let view = out.create_view(&Default::default());
         let mut all = resources.to_vec();
         all.push(wgpu::BindingResource::TextureView(&view));
@@ -164,16 +113,16 @@ pub fn preview_split_sum(
         with_error_scope(device, "preview_split_sum upload", || {
             (
                 upload_cube(device, queue, spec, spec.levels.len() as u32),
-                upload_level0(device, queue, irr),
+                upload_cube(device, queue, irr, 1),
                 [
-                    uniform(device, "preview scene", scene),
-                    uniform(device, "preview split-sum params", &params),
-                    storage(device, "preview columns", inputs.columns),
-                    storage(device, "preview materials", inputs.materials),
+                    uniform_buffer(device, "preview scene", scene),
+                    uniform_buffer(device, "preview split-sum params", &params),
+                    storage_buffer(device, "preview columns", inputs.columns),
+                    storage_buffer(device, "preview materials", inputs.materials),
                 ],
             )
         })?;
-    let (spec_view, irr_view) = (array_view(&spec_tex), array_view(&irr_tex));
+    let (spec_view, irr_view) = (cube_array_view(&spec_tex), cube_array_view(&irr_tex));
     let lut_view = lut_tex.create_view(&Default::default());
     run_panel(
         device,
@@ -209,19 +158,19 @@ pub fn preview_truth(
     };
     let (env_tex, cold_tex, buffers) = with_error_scope(device, "preview_truth upload", || {
         (
-            upload_level0(device, queue, inputs.env),
-            upload_level0(device, queue, inputs.cold),
+            upload_cube(device, queue, inputs.env, 1),
+            upload_cube(device, queue, inputs.cold, 1),
             [
-                uniform(device, "preview scene", scene),
-                uniform(device, "preview truth params", &params),
-                storage::<SourceTexel>(device, "preview hot texels", inputs.hot),
-                storage(device, "preview columns", inputs.columns),
-                storage(device, "preview materials", inputs.materials),
-                storage(device, "preview points", inputs.points),
+                uniform_buffer(device, "preview scene", scene),
+                uniform_buffer(device, "preview truth params", &params),
+                storage_buffer(device, "preview hot texels", inputs.hot),
+                storage_buffer(device, "preview columns", inputs.columns),
+                storage_buffer(device, "preview materials", inputs.materials),
+                storage_buffer(device, "preview points", inputs.points),
             ],
         )
     })?;
-    let (env_view, cold_view) = (array_view(&env_tex), array_view(&cold_tex));
+    let (env_view, cold_view) = (cube_array_view(&env_tex), cube_array_view(&cold_tex));
     run_panel(
         device,
         queue,
