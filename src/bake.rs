@@ -307,6 +307,50 @@ pub fn bake_environment(
     })
 }
 
+/// Validates `opts`, loads `input` (timed as [`Stage::Load`]) and bakes it in memory with
+/// [`bake_environment`]: the baked light and the load's warnings.
+pub fn load_and_bake(
+    backend: &dyn Backend,
+    input: &Path,
+    opts: &BakeOptions,
+    progress: &mut dyn FnMut(Stage),
+    timings: &mut Vec<(Stage, f64)>,
+) -> Result<(BakedEnvironment, Vec<String>)> {
+    validate_options(opts)?;
+    let LoadedEnvironment { env, warnings } = timed_stage(Stage::Load, progress, timings, || {
+        load_input(
+            input,
+            &InputOptions {
+                exposure_ev: opts.exposure_ev,
+                cube_size: Some(opts.specular_size),
+            },
+        )
+    })?;
+    Ok((
+        bake_environment(backend, env, opts, progress, timings)?,
+        warnings,
+    ))
+}
+
+/// The preview of `baked` with `lut`, or without one with the default model's
+/// [`DEFAULT_LUT_SIZE`]² LUT computed on `backend`.
+pub fn preview_baked(
+    backend: &dyn Backend,
+    baked: &BakedEnvironment,
+    lut: Option<&BrdfLut>,
+    opts: &PreviewOptions,
+) -> Result<Preview> {
+    let own;
+    let lut = match lut {
+        Some(l) => l,
+        None => {
+            own = backend.brdf_lut(DEFAULT_LUT_SIZE, DEFAULT_LUT_SIZE)?;
+            &own
+        }
+    };
+    render_preview(backend, &baked.light(lut), opts)
+}
+
 /// `sh.json`: the coefficient order, the radiance projection and the E/π coefficients.
 #[derive(Serialize)]
 struct ShJson<'a> {
@@ -416,33 +460,12 @@ pub fn bake(
     lut: Option<&BrdfLut>,
     progress: &mut dyn FnMut(Stage),
 ) -> Result<BakeReport> {
-    validate_options(opts)?;
     let mut timings = Vec::new();
-    let LoadedEnvironment {
-        env: source,
-        mut warnings,
-    } = timed_stage(Stage::Load, progress, &mut timings, || {
-        load_input(
-            input,
-            &InputOptions {
-                exposure_ev: opts.exposure_ev,
-                cube_size: Some(opts.specular_size),
-            },
-        )
-    })?;
-    let baked = bake_environment(backend, source, opts, progress, &mut timings)?;
+    let (baked, mut warnings) = load_and_bake(backend, input, opts, progress, &mut timings)?;
     let preview = match &opts.preview {
         None => None,
         Some(p) => Some(timed_stage(Stage::Preview, progress, &mut timings, || {
-            let own;
-            let lut = match lut {
-                Some(l) => l,
-                None => {
-                    own = backend.brdf_lut(DEFAULT_LUT_SIZE, DEFAULT_LUT_SIZE)?;
-                    &own
-                }
-            };
-            render_preview(backend, &baked.light(lut), p)
+            preview_baked(backend, &baked, lut, p)
         })?),
     };
     let BakedEnvironment {

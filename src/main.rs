@@ -340,7 +340,7 @@ fn print_preview(path: &std::path::Path, p: &splitsum::preview::Preview, verbose
 }
 
 fn run_preview(args: PreviewArgs) -> anyhow::Result<()> {
-    use splitsum::bake::{bake_environment, read_bake_dir, BakeOptions};
+    use splitsum::bake::{load_and_bake, preview_baked, read_bake_dir, BakeOptions};
     let popts = preview_options(&args.render, args.exposure);
     splitsum::preview::validate_options(&popts)?;
     let output = args.output.clone().unwrap_or_else(|| {
@@ -360,37 +360,19 @@ fn run_preview(args: PreviewArgs) -> anyhow::Result<()> {
             specular_size: args.specular_size,
             ..BakeOptions::default()
         };
-        splitsum::bake::validate_options(&opts)?;
-        let loaded = splitsum::io::input::load_input(
-            &args.input,
-            &splitsum::io::input::InputOptions {
-                exposure_ev: 0.0,
-                cube_size: Some(opts.specular_size),
-            },
-        )?;
-        for w in &loaded.warnings {
-            eprintln!("warning: {w}");
-        }
-        let mut timings = Vec::new();
-        let baked = bake_environment(
+        let (baked, warnings) = load_and_bake(
             backend.as_ref(),
-            loaded.env,
+            &args.input,
             &opts,
             &mut |_| {},
-            &mut timings,
+            &mut Vec::new(),
         )?;
+        for w in &warnings {
+            eprintln!("warning: {w}");
+        }
         (baked, None)
     };
-    let lut = match lut {
-        Some(l) => l,
-        None => backend
-            .brdf_lut(
-                splitsum::lut::DEFAULT_LUT_SIZE,
-                splitsum::lut::DEFAULT_LUT_SIZE,
-            )
-            .context("computing the BRDF LUT")?,
-    };
-    let preview = splitsum::preview::render_preview(backend.as_ref(), &baked.light(&lut), &popts)?;
+    let preview = preview_baked(backend.as_ref(), &baked, lut.as_ref(), &popts)?;
     splitsum::io::atomic::write_atomic(&output, &preview.png)?;
     print_preview(&output, &preview, args.common.verbose);
     Ok(())
