@@ -294,6 +294,16 @@ fn specular_benchmarks() {
 
 /// A full default bake of venice_sunset_1k.hdr (cubemap 256 with mips, specular 256 × 9
 /// levels, irradiance 32, SH, LUT 512) per stage, on each backend.
+/// The CPU backend, and the GPU one when an adapter exists.
+fn cpu_and_gpu_backends() -> Vec<(&'static str, Box<dyn splitsum::Backend>)> {
+    let mut backends: Vec<(&str, Box<dyn splitsum::Backend>)> =
+        vec![("cpu", Box::new(splitsum::CpuBackend))];
+    if let Ok(g) = splitsum::GpuBackend::new() {
+        backends.push(("gpu", Box::new(g)));
+    }
+    backends
+}
+
 fn bake_benchmarks() {
     use splitsum::bake::{bake, BakeOptions, Stage};
     println!("\n## Full default bake of venice_sunset_1k.hdr, per stage\n");
@@ -301,11 +311,7 @@ fn bake_benchmarks() {
     println!("|---|---|---|---|");
     let input = std::path::Path::new("tests/data/venice_sunset_1k.hdr");
     let out = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench-bake");
-    let mut backends: Vec<(&str, Box<dyn splitsum::Backend>)> =
-        vec![("cpu", Box::new(splitsum::CpuBackend))];
-    if let Ok(g) = splitsum::GpuBackend::new() {
-        backends.push(("gpu", Box::new(g)));
-    }
+    let mut backends = cpu_and_gpu_backends();
     if let Ok((auto, _)) = splitsum::create_backend(splitsum::BackendChoice::Auto) {
         backends.push(("auto", auto));
     }
@@ -476,11 +482,7 @@ fn preview_benchmarks() {
     )
     .unwrap();
     let lut = cpu.brdf_lut(512, 512).unwrap();
-    let mut backends: Vec<(&str, Box<dyn splitsum::Backend>)> =
-        vec![("cpu", Box::new(splitsum::CpuBackend))];
-    if let Ok(g) = splitsum::GpuBackend::new() {
-        backends.push(("gpu", Box::new(g)));
-    }
+    let backends = cpu_and_gpu_backends();
     for (label, backend) in &backends {
         for truth_samples in [512, 2048] {
             let opts = PreviewOptions {

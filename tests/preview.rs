@@ -353,6 +353,21 @@ fn gpu_renders_match_cpu() {
     assert!(t <= 1e-3, "truth {t}");
 }
 
+/// Fails the test with the command's stderr unless it exited 0.
+fn assert_succeeded(out: &std::process::Output) {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// The stderr of a command that must exit 1 (a job failed).
+fn failure_message(out: &std::process::Output) -> String {
+    assert_eq!(out.status.code(), Some(1));
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
 /// `splitsum preview` of an environment and of a bake folder, and `bake --preview`: the
 /// PNG exists with the picture's size, the table is printed, the manifest lists the preview
 /// with its per-sphere numbers; a bake for another target is refused with a message.
@@ -374,11 +389,7 @@ fn preview_command_line() {
         ])
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_succeeded(&out);
     let table = String::from_utf8_lossy(&out.stdout);
     assert!(
         table.contains("dielectric") && table.contains("r = 0.75"),
@@ -403,11 +414,7 @@ fn preview_command_line() {
         ])
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_succeeded(&out);
     let bake_dir = dir.join("venice_sunset_1k");
     let manifest: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(bake_dir.join("manifest.json")).unwrap())
@@ -431,11 +438,7 @@ fn preview_command_line() {
         .args(["--preview-cell", "16", "--truth-samples", "16"])
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_succeeded(&out);
     let (a, b) = (
         image::load_from_memory(&baked_png).unwrap().to_rgb8(),
         image::open(&again).unwrap().to_rgb8(),
@@ -457,16 +460,32 @@ fn preview_command_line() {
         .args(["--specular-size", "64", "--target", "bevy", "--quiet"])
         .output()
         .unwrap();
-    assert!(out.status.success());
+    assert_succeeded(&out);
     let out = common::splitsum()
         .arg("preview")
         .arg(dir.join("bevy/venice_sunset_1k"))
         .output()
         .unwrap();
-    assert_eq!(out.status.code(), Some(1));
-    let err = String::from_utf8_lossy(&out.stderr);
+    let err = failure_message(&out);
     assert!(
         err.contains("--target bevy") && err.contains("--preview"),
         "{err}"
     );
+
+    // A folder that is not a bake, and a cell outside the range, are one clear line each.
+    let empty = dir.join("empty");
+    std::fs::create_dir_all(&empty).unwrap();
+    let out = common::splitsum()
+        .arg("preview")
+        .arg(&empty)
+        .output()
+        .unwrap();
+    let err = failure_message(&out);
+    assert!(err.contains("no manifest.json"), "{err}");
+    let out = common::splitsum()
+        .args(["preview", hdr, "--preview-cell", "4"])
+        .output()
+        .unwrap();
+    let err = failure_message(&out);
+    assert!(err.contains("--preview-cell"), "{err}");
 }
