@@ -205,13 +205,14 @@ pub fn render_preview(
     let split_sum_seconds = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
-    let mut env = Cubemap {
-        size: light.specular.size,
-        levels: vec![light.specular.levels[0].clone()],
-    };
     let truth = if opts.truth_samples == 0 {
         Vec::new()
     } else {
+        // The environment with every mip, as the hot/cold split needs it.
+        let mut env = Cubemap {
+            size: light.specular.size,
+            levels: vec![light.specular.levels[0].clone()],
+        };
         let mips = Cubemap::full_mip_count(env.size);
         crate::cpu::cube_downsample::build_mips(&mut env, mips);
         let split = split_hot_texels(&env);
@@ -232,7 +233,7 @@ pub fn render_preview(
 
     let exposure = match opts.exposure_ev {
         Some(ev) => 2f32.powf(ev),
-        None => auto_exposure(&env),
+        None => auto_exposure(light.specular),
     };
     let (relative, stats) = if truth.is_empty() {
         (Vec::new(), Vec::new())
