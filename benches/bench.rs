@@ -535,7 +535,7 @@ fn lut_benchmarks() {
             Err(e) => println!("| {size} | gpu | - | - | unavailable: {e} |"),
         }
         let (wall, cpu) = measure(3, || {
-            splitsum::cpu::brdf_lut::brdf_lut(size, size, &quad, Default::default());
+            splitsum::cpu::lut_interpolation::brdf_lut(size, size, &quad, Default::default());
         });
         println!(
             "| {size} | cpu | {wall:.3} | {cpu:.3} | rayon, {} threads |",

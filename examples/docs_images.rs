@@ -21,7 +21,12 @@ fn save_png(path: &str, w: u32, h: u32, rgb: &[[f32; 3]]) {
 
 fn main() {
     std::fs::create_dir_all("docs").unwrap();
-    let lut = splitsum::cpu::brdf_lut::brdf_lut(128, 128, &Default::default(), Default::default());
+    let lut = splitsum::cpu::lut_interpolation::brdf_lut(
+        128,
+        128,
+        &Default::default(),
+        Default::default(),
+    );
     splitsum::io::lut::write_lut("docs/brdf_lut.png".as_ref(), &lut, Default::default()).unwrap();
 
     let (w, h) = (512u32, 256u32);

@@ -96,7 +96,7 @@ impl Backend for CpuBackend {
 
     fn brdf_lut_model(&self, width: u32, height: u32, model: LutModel) -> Result<BrdfLut> {
         validate_lut_size(width, height)?;
-        Ok(cpu::brdf_lut::brdf_lut(
+        Ok(cpu::lut_interpolation::brdf_lut(
             width,
             height,
             &LutQuadrature::for_model(model),
@@ -220,13 +220,13 @@ impl Backend for GpuBackend {
 }
 
 /// What `--backend auto` uses on a software adapter (Mesa's lavapipe and the like): the
-/// GPU for the kernels lavapipe runs faster than the CPU backend (the LUT, the preview's
-/// ground truth) and the CPU reference for the others (cube conversion, prefilter,
+/// GPU for the kernel lavapipe runs faster than the CPU backend (the preview's ground
+/// truth) and the CPU reference for the others (the LUT, cube conversion, prefilter,
 /// irradiance, the preview's split-sum), as measured by `cargo bench` on a 2-core machine
-/// (LUT 512: 0.5 CPU-s on lavapipe, 1.0 on the CPU; prefilter 256: 2.1 on lavapipe, 1.3
-/// on the CPU; irradiance 32: 1.9 and 0.4; preview truth at 2048 points: 22.9 and 41.2;
-/// preview split-sum: 0.12 and 0.02 s wall). On a hardware adapter every kernel runs on
-/// the GPU.
+/// (LUT 512: 0.5 CPU-s on lavapipe integrating every texel, 0.2 on the CPU interpolating
+/// most of them; prefilter 256: 2.1 on lavapipe, 1.3 on the CPU; irradiance 32: 1.9 and
+/// 0.4; preview truth at 2048 points: 22.9 and 41.2; preview split-sum: 0.12 and 0.02 s
+/// wall). On a hardware adapter every kernel runs on the GPU.
 #[derive(Debug)]
 pub struct SoftwareAdapterBackend {
     /// The software adapter.
@@ -236,7 +236,7 @@ pub struct SoftwareAdapterBackend {
 impl Backend for SoftwareAdapterBackend {
     fn description(&self) -> String {
         format!(
-            "{} for the LUT and the preview's truth, {} for conversion, prefilter, irradiance and the preview's split-sum (software adapter)",
+            "{} for the preview's truth, {} for the LUT, conversion, prefilter, irradiance and the preview's split-sum (software adapter)",
             self.gpu.description(),
             CpuBackend.description()
         )
@@ -244,13 +244,13 @@ impl Backend for SoftwareAdapterBackend {
 
     fn identity(&self) -> String {
         format!(
-            "{} for the LUT and the preview's truth, cpu for conversion, prefilter, irradiance and the preview's split-sum",
+            "{} for the preview's truth, cpu for the LUT, conversion, prefilter, irradiance and the preview's split-sum",
             self.gpu.identity()
         )
     }
 
     fn brdf_lut_model(&self, width: u32, height: u32, model: LutModel) -> Result<BrdfLut> {
-        self.gpu.brdf_lut_model(width, height, model)
+        CpuBackend.brdf_lut_model(width, height, model)
     }
 
     fn equirect_to_cube(

@@ -7,7 +7,12 @@ use splitsum::lut::{BrdfLut, LutQuadrature};
 
 /// A small non-square LUT, so a transposed writer would show.
 fn small_lut() -> BrdfLut {
-    splitsum::cpu::brdf_lut::brdf_lut(24, 10, &LutQuadrature::default(), Default::default())
+    splitsum::cpu::lut_interpolation::brdf_lut(
+        24,
+        10,
+        &LutQuadrature::default(),
+        Default::default(),
+    )
 }
 
 /// A file in a folder of its own (tests run in parallel and each clears its folder).
@@ -161,7 +166,12 @@ fn every_model_keeps_1e4_in_every_float_file() {
     let n = 64u32;
     let texels = common::check_texels(n, n);
     for model in LutModel::ALL {
-        let lut = splitsum::cpu::brdf_lut::brdf_lut(n, n, &LutQuadrature::for_model(model), model);
+        let lut = splitsum::cpu::lut_interpolation::brdf_lut(
+            n,
+            n,
+            &LutQuadrature::for_model(model),
+            model,
+        );
         let dir = common::output_dir(&format!("writers-models-{}", model.name()));
         // PNG, R and G in 16 bits.
         let png = dir.join("lut.png");

@@ -205,8 +205,10 @@ pub fn brdf_lut_texel(
     model.layout().arrange(ab)
 }
 
-/// The whole LUT of `model` on the CPU (rayon over rows).
-pub fn brdf_lut(width: u32, height: u32, quad: &LutQuadrature, model: LutModel) -> BrdfLut {
+/// The whole LUT of `model` on the CPU with every texel integrated (rayon over rows), as
+/// the GPU kernel computes it; the CPU backend interpolates most texels instead
+/// ([`crate::cpu::lut_interpolation`]).
+pub fn brdf_lut_exact(width: u32, height: u32, quad: &LutQuadrature, model: LutModel) -> BrdfLut {
     let mut data = vec![[0.0f32; 2]; (width * height) as usize];
     data.par_chunks_mut(width as usize)
         .enumerate()

@@ -369,21 +369,50 @@ pub fn worst_model_error(
     model: splitsum::lut::LutModel,
     lut_texel: impl Fn(f32, f32) -> [f32; 2] + Sync,
 ) -> (f64, (u32, u32)) {
+    let by_index = |i, j| {
+        let (nv, r) = splitsum::lut::lut_texel_coords(i, j, width, height);
+        lut_texel(nv, r)
+    };
+    worst_model_errors(width, height, texels, model, &[&by_index])[0]
+}
+
+/// The worst error of each candidate (a function of the texel index) against one
+/// evaluation of [`reference_lut_model`] per texel, and where it is.
+pub fn worst_model_errors(
+    width: u32,
+    height: u32,
+    texels: &[(u32, u32)],
+    model: splitsum::lut::LutModel,
+    candidates: &[&(dyn Fn(u32, u32) -> [f32; 2] + Sync)],
+) -> Vec<(f64, (u32, u32))> {
     use rayon::prelude::*;
+    let start = vec![(0.0f64, (0, 0)); candidates.len()];
     texels
         .par_iter()
         .map(|&(i, j)| {
             let (nv, r) = splitsum::lut::lut_texel_coords(i, j, width, height);
-            let got = lut_texel(nv, r);
             let (ra, rb) = reference_lut_model(nv as f64, r as f64, model);
             // Relative to max(1, |reference|): every GGX model stays within [0, 1]; the
             // Charlie sheen albedo exceeds 1 near grazing n·v (22 at the 128² corner),
             // where f32 keeps about 1e-7 of the value, not of 1.
             let rel = |g: f32, r: f64| (g as f64 - r).abs() / r.abs().max(1.0);
-            let err = rel(got[0], ra).max(rel(got[1], rb));
-            (err, (i, j))
+            candidates
+                .iter()
+                .map(|c| {
+                    let got = c(i, j);
+                    (rel(got[0], ra).max(rel(got[1], rb)), (i, j))
+                })
+                .collect::<Vec<_>>()
         })
-        .reduce(|| (0.0f64, (0, 0)), |a, b| if b.0 > a.0 { b } else { a })
+        .reduce(
+            || start.clone(),
+            |a, b| {
+                a.into_iter()
+                    .zip(b)
+                    .map(|(a, b)| if b.0 > a.0 { b } else { a })
+                    .collect()
+            },
+        )
 }
 
 /// An HDRI from `tests/data` as an equirect (the tests' real environments).
