@@ -96,12 +96,14 @@ impl Backend for CpuBackend {
 
     fn brdf_lut_model(&self, width: u32, height: u32, model: LutModel) -> Result<BrdfLut> {
         validate_lut_size(width, height)?;
-        Ok(cpu::lut_interpolation::brdf_lut(
-            width,
-            height,
-            &LutQuadrature::for_model(model),
-            model,
-        ))
+        BrdfLut::assemble(model, |m| {
+            Ok(cpu::lut_interpolation::brdf_lut(
+                width,
+                height,
+                &LutQuadrature::for_model(m),
+                m,
+            ))
+        })
     }
 
     fn equirect_to_cube(
@@ -167,9 +169,11 @@ impl Backend for GpuBackend {
 
     fn brdf_lut_model(&self, width: u32, height: u32, model: LutModel) -> Result<BrdfLut> {
         validate_lut_size(width, height)?;
-        self.ctx.run_kernel("brdf_lut", |device, queue| {
-            let quad = LutQuadrature::for_model(model);
-            gpu::brdf_lut::brdf_lut(device, queue, width, height, &quad, model)
+        BrdfLut::assemble(model, |m| {
+            self.ctx.run_kernel("brdf_lut", |device, queue| {
+                let quad = LutQuadrature::for_model(m);
+                gpu::brdf_lut::brdf_lut(device, queue, width, height, &quad, m)
+            })
         })
     }
 
@@ -223,7 +227,7 @@ impl Backend for GpuBackend {
 /// GPU for the kernel lavapipe runs faster than the CPU backend (the preview's ground
 /// truth) and the CPU reference for the others (the LUT, cube conversion, prefilter,
 /// irradiance, the preview's split-sum), as measured by `cargo bench` on a 2-core machine
-/// (LUT 512: 0.5 CPU-s on lavapipe integrating every texel, 0.2 on the CPU interpolating
+/// (LUT 512: 2.0 CPU-s on lavapipe integrating every texel, 0.24 on the CPU interpolating
 /// most of them; prefilter 256: 2.1 on lavapipe, 1.3 on the CPU; irradiance 32: 1.9 and
 /// 0.4; preview truth at 2048 points: 22.9 and 41.2; preview split-sum: 0.12 and 0.02 s
 /// wall). On a hardware adapter every kernel runs on the GPU.

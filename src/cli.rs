@@ -293,6 +293,9 @@ pub enum LutModelArg {
     /// (E, 0): the KHR_materials_sheen albedo (Charlie D, V_Sheen), the glTF Sample
     /// Viewer's lut_sheen_E quantity.
     SheenAlbedo,
+    /// Filament's three-channel DFG: R, G as multiscatter-smith-correlated, B the cloth
+    /// albedo as charlie (cmgen --ibl-dfg-multiscatter --ibl-dfg-cloth).
+    FilamentDfg,
 }
 
 impl From<LutModelArg> for splitsum::lut::LutModel {
@@ -305,6 +308,7 @@ impl From<LutModelArg> for splitsum::lut::LutModel {
             LutModelArg::MultiscatterSmithCorrelated => M::MultiscatterSmithCorrelated,
             LutModelArg::Charlie => M::Charlie,
             LutModelArg::SheenAlbedo => M::SheenAlbedo,
+            LutModelArg::FilamentDfg => M::FilamentDfg,
         }
     }
 }

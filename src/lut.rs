@@ -128,11 +128,27 @@ pub enum LutModel {
     /// KHR_materials_sheen BRDF, the quantity of the glTF Sample Viewer's `lut_sheen_E`
     /// (its R), which scales the base layer by 1 − max(sheen colour)·E.
     SheenAlbedo,
+    /// Filament's three-channel DFG (cmgen `--ibl-dfg-multiscatter --ibl-dfg-cloth`):
+    /// R, G as [`LutModel::MultiscatterSmithCorrelated`] and B the cloth albedo of
+    /// [`LutModel::Charlie`], one table in one file ([`BrdfLut::third`]).
+    FilamentDfg,
 }
 
 impl LutModel {
     /// Every model, in the command line's order.
-    pub const ALL: [LutModel; 6] = [
+    pub const ALL: [LutModel; 7] = [
+        LutModel::SchlickGgx,
+        LutModel::SmithCorrelated,
+        LutModel::MultiscatterSchlickGgx,
+        LutModel::MultiscatterSmithCorrelated,
+        LutModel::Charlie,
+        LutModel::SheenAlbedo,
+        LutModel::FilamentDfg,
+    ];
+
+    /// Every model that is one integrand (all but [`LutModel::FilamentDfg`], which
+    /// combines two of them).
+    pub const SINGLE: [LutModel; 6] = [
         LutModel::SchlickGgx,
         LutModel::SmithCorrelated,
         LutModel::MultiscatterSchlickGgx,
@@ -140,6 +156,18 @@ impl LutModel {
         LutModel::Charlie,
         LutModel::SheenAlbedo,
     ];
+
+    /// The one-integrand models a table of this model is made of: the model itself for
+    /// the two channels (R, G), and the model whose first channel becomes a third (B).
+    pub fn parts(self) -> (LutModel, Option<LutModel>) {
+        match self {
+            LutModel::FilamentDfg => (
+                LutModel::MultiscatterSmithCorrelated,
+                Some(LutModel::Charlie),
+            ),
+            m => (m, None),
+        }
+    }
 
     /// The name on the command line.
     pub fn name(self) -> &'static str {
@@ -150,20 +178,21 @@ impl LutModel {
             LutModel::MultiscatterSmithCorrelated => "multiscatter-smith-correlated",
             LutModel::Charlie => "charlie",
             LutModel::SheenAlbedo => "sheen-albedo",
+            LutModel::FilamentDfg => "filament-dfg",
         }
     }
 
-    /// The distribution.
+    /// The distribution (of the R, G channels).
     pub fn distribution(self) -> LutDistribution {
-        match self {
+        match self.parts().0 {
             LutModel::Charlie | LutModel::SheenAlbedo => LutDistribution::Charlie,
             _ => LutDistribution::Ggx,
         }
     }
 
-    /// The visibility term.
+    /// The visibility term (of the R, G channels).
     pub fn visibility(self) -> Visibility {
-        match self {
+        match self.parts().0 {
             LutModel::SchlickGgx | LutModel::MultiscatterSchlickGgx => Visibility::SchlickGgx,
             LutModel::Charlie => Visibility::Ashikhmin,
             LutModel::SheenAlbedo => Visibility::Sheen,
@@ -171,9 +200,9 @@ impl LutModel {
         }
     }
 
-    /// The channel layout.
+    /// The layout of the R, G channels.
     pub fn layout(self) -> LutLayout {
-        match self {
+        match self.parts().0 {
             LutModel::SchlickGgx | LutModel::SmithCorrelated => LutLayout::ScaleBias,
             LutModel::Charlie | LutModel::SheenAlbedo => LutLayout::Albedo,
             _ => LutLayout::Multiscatter,
@@ -202,9 +231,45 @@ pub struct BrdfLut {
     pub height: u32,
     /// Row-major channel pairs ([`LutModel`]); row 0 is roughness ≈ 0.
     pub data: Vec<[f32; 2]>,
+    /// A third channel (B), row-major like `data`, for models that have one (Filament's
+    /// cloth albedo in [`LutModel::FilamentDfg`]); `None` for two-channel models.
+    pub third: Option<Vec<f32>>,
 }
 
 impl BrdfLut {
+    /// A two-channel table.
+    pub fn new(width: u32, height: u32, data: Vec<[f32; 2]>) -> Self {
+        BrdfLut {
+            width,
+            height,
+            data,
+            third: None,
+        }
+    }
+
+    /// The table of `model` from `single`, which computes one-integrand tables: its (R, G)
+    /// table, and for a model with a third channel that channel from its part's first.
+    pub fn assemble(
+        model: LutModel,
+        mut single: impl FnMut(LutModel) -> crate::Result<BrdfLut>,
+    ) -> crate::Result<BrdfLut> {
+        let (rg, b) = model.parts();
+        let mut lut = single(rg)?;
+        if let Some(b) = b {
+            lut.third = Some(single(b)?.data.iter().map(|t| t[0]).collect());
+        }
+        Ok(lut)
+    }
+
+    /// Every stored value, all channels.
+    pub fn values(&self) -> impl Iterator<Item = f32> + '_ {
+        self.data
+            .iter()
+            .flatten()
+            .copied()
+            .chain(self.third.iter().flatten().copied())
+    }
+
     /// The (A, B) pair at column `i` (n·v) and row `j` (roughness).
     pub fn get(&self, i: u32, j: u32) -> [f32; 2] {
         self.data[(j * self.width + i) as usize]
@@ -286,7 +351,7 @@ impl LutQuadrature {
     /// The tables `model` is integrated with: the defaults, [`CHARLIE_RULES`] or
     /// [`SHEEN_RULES`].
     pub fn for_model(model: LutModel) -> Self {
-        let (full, partial, phi, growth) = match model {
+        let (full, partial, phi, growth) = match model.parts().0 {
             LutModel::Charlie => CHARLIE_RULES,
             LutModel::SheenAlbedo => SHEEN_RULES,
             _ => return Self::default(),

@@ -423,11 +423,9 @@ fn run_lut(args: LutArgs) -> anyhow::Result<()> {
     }
     if splitsum::io::extension_of(&args.output) == "png" {
         let (clipped, largest) = lut
-            .data
-            .iter()
-            .flatten()
-            .filter(|&&v| v > 1.0)
-            .fold((0usize, 0.0f32), |(n, m), &v| (n + 1, m.max(v)));
+            .values()
+            .filter(|&v| v > 1.0)
+            .fold((0usize, 0.0f32), |(n, m), v| (n + 1, m.max(v)));
         if clipped > 0 {
             eprintln!(
                 "warning: {}: {clipped} values above 1 (the {} model's largest is {largest:.2}) are clipped in a PNG; write .exr or .ktx2 to keep them",

@@ -9,7 +9,7 @@ const LUT_TOLERANCE: f64 = 1e-4;
 
 #[test]
 fn cpu_lut_matches_converged_integral() {
-    for model in LutModel::ALL {
+    for model in LutModel::SINGLE {
         for (w, h) in [(128u32, 128u32), (512, 512)] {
             check_both_paths(model, w, h, &common::check_texels(w, h), "spread");
         }
@@ -42,7 +42,7 @@ fn dense_scan_512() {
         .iter()
         .map(|&(i, j)| ((i + 1).min(w - 1), (j + 3).min(h - 1)))
         .collect();
-    for model in LutModel::ALL.into_iter().filter(wanted) {
+    for model in LutModel::SINGLE.into_iter().filter(wanted) {
         check_both_paths(model, w, h, &texels, "dense");
         check_interpolated(model, w, h, &offset, "dense, offset (1, 3)");
     }
@@ -127,7 +127,7 @@ fn quadrature_scan() {
 #[test]
 fn every_model_keeps_the_albedo_identities() {
     let (w, h) = (64u32, 512u32);
-    for model in LutModel::ALL {
+    for model in LutModel::SINGLE {
         let quad = LutQuadrature::for_model(model);
         let lut = splitsum::cpu::lut_interpolation::brdf_lut(w, h, &quad, model);
         if model.distribution() == splitsum::lut::LutDistribution::Charlie {
@@ -182,11 +182,13 @@ fn every_model_keeps_the_albedo_identities() {
 }
 
 /// Filament's DFG as cmgen writes it (`--ibl-dfg`, 1024 Hammersley samples per texel),
-/// against splitsum's model of the same definition and against the converged reference.
-/// cmgen (Debian `libfilament-tools`) is not a dependency, so this runs on demand where it
-/// is installed: `cargo test --release --test lut_accuracy filament_dfg -- --ignored
-/// --nocapture`. cmgen's row y of an h-row table holds roughness min(1, (h − y + ½)/h)
-/// (CubemapIBL.cpp `DFG`), n·v = (x + ½)/w, and α = roughness².
+/// against splitsum's model of the same definition and against the converged reference:
+/// single scattering (R, G), multiple scattering (R, G) and, with `--ibl-dfg-cloth`, the
+/// three-channel file whose B is the cloth albedo (`filament-dfg`'s B, the `charlie`
+/// model). cmgen (Debian `libfilament-tools`) is not a dependency, so this runs on demand
+/// where it is installed: `cargo test --release --test lut_accuracy filament_dfg --
+/// --ignored --nocapture`. cmgen's row y of an h-row table holds roughness
+/// min(1, (h − y + ½)/h) (CubemapIBL.cpp `DFG`), n·v = (x + ½)/w, and α = roughness².
 #[test]
 #[ignore]
 fn filament_dfg_against_cmgen() {
@@ -197,45 +199,58 @@ fn filament_dfg_against_cmgen() {
     };
     let dir = common::output_dir("lut-cmgen");
     let n = 128usize;
-    for (model, extra) in [
-        (LutModel::SmithCorrelated, None),
+    // (file, cmgen flags, which channels against which model)
+    let runs: [(&str, &[&str], &[(LutModel, [usize; 2])]); 3] = [
+        ("single", &[], &[(LutModel::SmithCorrelated, [0, 1])]),
         (
-            LutModel::MultiscatterSmithCorrelated,
-            Some("--ibl-dfg-multiscatter"),
+            "multiscatter",
+            &["--ibl-dfg-multiscatter"],
+            &[(LutModel::MultiscatterSmithCorrelated, [0, 1])],
         ),
-    ] {
-        let path = dir.join(format!("{}.exr", model.name()));
+        (
+            "filament-dfg",
+            &["--ibl-dfg-multiscatter", "--ibl-dfg-cloth"],
+            &[
+                (LutModel::MultiscatterSmithCorrelated, [0, 1]),
+                (LutModel::Charlie, [2, 3]),
+            ],
+        ),
+    ];
+    for (name, flags, checks) in runs {
+        let path = dir.join(format!("{name}.exr"));
         let mut cmd = std::process::Command::new(&cmgen);
         cmd.arg(format!("--ibl-dfg={}", path.display()))
-            .arg(format!("--size={n}"));
-        if let Some(e) = extra {
-            cmd.arg(e);
-        }
+            .arg(format!("--size={n}"))
+            .args(flags);
         assert!(cmd.output().unwrap().status.success());
+        // R, G, B and a 0 that stands for the Charlie model's empty second channel.
         let image = read_first_rgba_layer_from_file(
             &path,
-            |res, _| vec![[0f32; 2]; res.width() * res.height()],
-            move |px: &mut Vec<[f32; 2]>, pos, (r, g, _b, _a): (f32, f32, f32, f32)| {
-                px[pos.y() * n + pos.x()] = [r, g];
+            |res, _| vec![[0f32; 4]; res.width() * res.height()],
+            move |px: &mut Vec<[f32; 4]>, pos, (r, g, b, _a): (f32, f32, f32, f32)| {
+                px[pos.y() * n + pos.x()] = [r, g, b, 0.0];
             },
         )
         .unwrap();
         let data = image.layer_data.channel_data.pixels;
-        let texels = (0..n).step_by(3).flat_map(|y| {
-            let r = (((n - y) as f32 + 0.5) / n as f32).min(1.0);
-            let data = &data;
-            (0..n)
-                .step_by(3)
-                .map(move |x| ((x as f32 + 0.5) / n as f32, r, data[y * n + x]))
-        });
-        let (vs_ours, vs_ref, ours_vs_ref) = peer_errors(model, texels);
-        println!(
-            "{}: cmgen vs splitsum max |Δ| {vs_ours:.2e}, cmgen vs converged {vs_ref:.2e}, splitsum vs converged {ours_vs_ref:.2e}",
-            model.name()
-        );
-        // Matching the peer to its own accuracy: the two differ by no more than cmgen's
-        // own error plus splitsum's.
-        assert!(vs_ours <= vs_ref + ours_vs_ref + 1e-6);
+        for &(model, [c0, c1]) in checks {
+            let texels = (0..n).step_by(3).flat_map(|y| {
+                let r = (((n - y) as f32 + 0.5) / n as f32).min(1.0);
+                let data = &data;
+                (0..n).step_by(3).map(move |x| {
+                    let t = data[y * n + x];
+                    ((x as f32 + 0.5) / n as f32, r, [t[c0], t[c1]])
+                })
+            });
+            let (vs_ours, vs_ref, ours_vs_ref) = peer_errors(model, texels);
+            println!(
+                "cmgen {name}, channels {c0} {c1} as {}: cmgen vs splitsum max |Δ| {vs_ours:.2e}, cmgen vs converged {vs_ref:.2e}, splitsum vs converged {ours_vs_ref:.2e}",
+                model.name()
+            );
+            // Matching the peer to its own accuracy: the two differ by no more than
+            // cmgen's own error plus splitsum's.
+            assert!(vs_ours <= vs_ref + ours_vs_ref + 1e-6);
+        }
     }
 }
 
@@ -314,7 +329,7 @@ fn three_dfg_against_splitsum() {
 /// `check_both_paths`. Sizes include odd ones whose last coarse gap is short.
 #[test]
 fn interpolated_lut_matches_every_texel_integrated() {
-    for model in LutModel::ALL {
+    for model in LutModel::SINGLE {
         let quad = LutQuadrature::for_model(model);
         for (w, h) in [(512u32, 512u32), (101, 37), (16, 16)] {
             let t = std::time::Instant::now();

@@ -165,7 +165,7 @@ fn every_model_keeps_1e4_in_every_float_file() {
     use splitsum::lut::LutModel;
     let n = 64u32;
     let texels = common::check_texels(n, n);
-    for model in LutModel::ALL {
+    for model in LutModel::SINGLE {
         let lut = splitsum::cpu::lut_interpolation::brdf_lut(
             n,
             n,
@@ -231,5 +231,71 @@ fn every_model_keeps_1e4_in_every_float_file() {
                 }
             }
         }
+    }
+}
+
+/// `filament-dfg` is its two parts in one file: R, G exactly the multiscatter
+/// height-correlated table and B exactly the Charlie cloth albedo, and each format keeps
+/// all three channels (PNG 16-bit RGB within 1/131070, OpenEXR R, G, B float32 and KTX2
+/// `--f32` RGBA32F with A = 1, both exact).
+#[test]
+fn filament_dfg_holds_both_parts_in_every_file() {
+    use exr::prelude::*;
+    use splitsum::lut::LutModel;
+    use splitsum::Backend;
+    let n = 32u32;
+    let cpu = splitsum::CpuBackend;
+    let lut = cpu.brdf_lut_model(n, n, LutModel::FilamentDfg).unwrap();
+    let rg = cpu
+        .brdf_lut_model(n, n, LutModel::MultiscatterSmithCorrelated)
+        .unwrap();
+    let cloth = cpu.brdf_lut_model(n, n, LutModel::Charlie).unwrap();
+    assert_eq!(lut.data, rg.data);
+    let b = lut.third.clone().expect("a third channel");
+    assert!(b.iter().zip(&cloth.data).all(|(x, c)| *x == c[0]));
+    assert!(rg.third.is_none() && cloth.third.is_none());
+    let want = |k: usize| [lut.data[k][0], lut.data[k][1], b[k]];
+
+    let dir = common::output_dir("writers-filament-dfg");
+    let png = dir.join("dfg.png");
+    write_lut(&png, &lut, LutWriteOptions::default()).unwrap();
+    let img = image::open(&png).unwrap().into_rgb16();
+    let exr_path = dir.join("dfg.exr");
+    write_lut(&exr_path, &lut, LutWriteOptions::default()).unwrap();
+    let exr_image = read_first_rgba_layer_from_file(
+        &exr_path,
+        |res, _| vec![[0f32; 3]; res.width() * res.height()],
+        move |px: &mut Vec<[f32; 3]>, pos, (r, g, b, _a): (f32, f32, f32, f32)| {
+            px[pos.y() * n as usize + pos.x()] = [r, g, b];
+        },
+    )
+    .unwrap();
+    let exr_data = exr_image.layer_data.channel_data.pixels;
+    let ktx_bytes = encode_lut(&dir.join("dfg.ktx2"), &lut, LutWriteOptions { f32: true }).unwrap();
+    let reader = ktx2::Reader::new(&ktx_bytes[..]).unwrap();
+    assert_eq!(
+        reader.header().format,
+        Some(ktx2::Format::R32G32B32A32_SFLOAT)
+    );
+    let ktx: Vec<f32> = reader
+        .levels()
+        .next()
+        .unwrap()
+        .data
+        .chunks_exact(4)
+        .map(|c| f32::from_le_bytes(c.try_into().unwrap()))
+        .collect();
+    for k in 0..(n * n) as usize {
+        let (i, j) = (k as u32 % n, k as u32 / n);
+        let p = img.get_pixel(i, j).0;
+        for c in 0..3 {
+            let w = want(k)[c];
+            if w <= 1.0 {
+                assert!((p[c] as f32 / 65535.0 - w).abs() <= 0.5 / 65535.0 + 1e-7);
+            }
+            assert_eq!(exr_data[k][c], w);
+            assert_eq!(ktx[4 * k + c], w);
+        }
+        assert_eq!(ktx[4 * k + 3], 1.0);
     }
 }

@@ -218,9 +218,5 @@ pub fn brdf_lut_exact(width: u32, height: u32, quad: &LutQuadrature, model: LutM
                 *texel = brdf_lut_texel(n_dot_v, roughness, quad, model);
             }
         });
-    BrdfLut {
-        width,
-        height,
-        data,
-    }
+    BrdfLut::new(width, height, data)
 }

@@ -201,10 +201,6 @@ pub fn interpolated_lut(
         });
     InterpolatedLut {
         integrated: state.iter().filter(|&&s| s != INTERPOLATE).count(),
-        lut: BrdfLut {
-            width,
-            height,
-            data,
-        },
+        lut: BrdfLut::new(width, height, data),
     }
 }

@@ -43,9 +43,5 @@ pub fn brdf_lut(
     })?;
     let rgba = read_texture_level(device, queue, &texture, 0)?;
     let data = rgba.chunks_exact(4).map(|t| [t[0], t[1]]).collect();
-    Ok(BrdfLut {
-        width,
-        height,
-        data,
-    })
+    Ok(BrdfLut::new(width, height, data))
 }

@@ -23,9 +23,10 @@ pub fn check_lut_path(path: &Path) -> Result<()> {
     super::check_output_extension(path, "a BRDF LUT", LUT_EXTENSIONS)
 }
 
-/// Encodes `lut` for `path`'s extension: `.png` 16-bit RGB (R = A, G = B, B = 0), `.exr`
-/// float32 R and G, `.ktx2` and `.dds` R16G16 float (R32G32 with `f32`). Row 0
-/// (roughness ≈ 0) is the first row in every format.
+/// Encodes `lut` for `path`'s extension: `.png` 16-bit RGB (R = A, G = B, B = 0 or the
+/// third channel), `.exr` float32 R and G (and B for a third channel), `.ktx2` and `.dds`
+/// R16G16 float (R32G32 with `f32`; RGBA16F or RGBA32F with A = 1 for a third channel).
+/// Row 0 (roughness ≈ 0) is the first row in every format.
 pub fn encode_lut(path: &Path, lut: &BrdfLut, opts: LutWriteOptions) -> Result<Vec<u8>> {
     let ext = extension_of(path);
     let encode_err = |format: &'static str| {
@@ -35,13 +36,23 @@ pub fn encode_lut(path: &Path, lut: &BrdfLut, opts: LutWriteOptions) -> Result<V
             message,
         }
     };
+    let rgb: Vec<[f32; 3]> = match &lut.third {
+        Some(b) => lut
+            .data
+            .iter()
+            .zip(b)
+            .map(|(t, &b)| [t[0], t[1], b])
+            .collect(),
+        None => lut.data.iter().map(|t| [t[0], t[1], 0.0]).collect(),
+    };
     let texture = || {
-        let format = if opts.f32 {
-            PixelFormat::Rg32f
-        } else {
-            PixelFormat::Rg16f
+        let format = match (lut.third.is_some(), opts.f32) {
+            (false, false) => PixelFormat::Rg16f,
+            (false, true) => PixelFormat::Rg32f,
+            (true, false) => PixelFormat::Rgba16f,
+            (true, true) => PixelFormat::Rgba32f,
         };
-        let texels: Vec<[f32; 4]> = lut.data.iter().map(|&[a, b]| [a, b, 0.0, 1.0]).collect();
+        let texels: Vec<[f32; 4]> = rgb.iter().map(|&[r, g, b]| [r, g, b, 1.0]).collect();
         EncodedTexture {
             format,
             width: lut.width,
@@ -52,8 +63,11 @@ pub fn encode_lut(path: &Path, lut: &BrdfLut, opts: LutWriteOptions) -> Result<V
     };
     match ext.as_str() {
         "png" => {
-            let rgb: Vec<f32> = lut.data.iter().flat_map(|t| [t[0], t[1], 0.0]).collect();
-            png::encode_rgb16(lut.width, lut.height, &rgb).map_err(encode_err("PNG"))
+            let flat: Vec<f32> = rgb.iter().flatten().copied().collect();
+            png::encode_rgb16(lut.width, lut.height, &flat).map_err(encode_err("PNG"))
+        }
+        "exr" if lut.third.is_some() => {
+            exr::encode_rgb32(lut.width, lut.height, &rgb).map_err(encode_err("OpenEXR"))
         }
         "exr" => exr::encode_rg32(lut.width, lut.height, &lut.data).map_err(encode_err("OpenEXR")),
         "ktx2" => ktx2::encode(&texture(), None).map_err(|e| encode_err("KTX2")(e.to_string())),
@@ -77,9 +91,9 @@ pub fn read_lut_png(path: &Path) -> Result<BrdfLut> {
         message,
     })?;
     crate::lut::validate_lut_size(width, height)?;
-    Ok(BrdfLut {
+    Ok(BrdfLut::new(
         width,
         height,
-        data: rgb.iter().map(|t| [t[0], t[1]]).collect(),
-    })
+        rgb.iter().map(|t| [t[0], t[1]]).collect(),
+    ))
 }
