@@ -252,30 +252,33 @@ fn output_path_problems_are_clean_errors() {
     assert_eq!(err.trim_end().lines().count(), 1, "{err}");
 }
 
-/// A Charlie LUT holds values above 1 near grazing: a PNG clips them, with a warning.
+/// A Charlie LUT holds values above 1 near grazing: a PNG clips them, with a warning; so
+/// does Filament's DFG, whose third channel is that albedo.
 #[test]
 fn a_png_that_clips_the_lut_says_so() {
     let dir = common::output_dir("cli-charlie-png");
-    let lut_to = |file: &str| {
-        splitsum()
-            .args([
-                "lut",
-                "--model",
-                "charlie",
-                "--size",
-                "32",
-                "--backend",
-                "cpu",
-                "-o",
-            ])
-            .arg(dir.join(file))
-            .output()
-            .unwrap()
-    };
-    let o = lut_to("charlie.png");
-    assert!(o.status.success());
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("are clipped in a PNG"), "{err}");
-    let o = lut_to("charlie.exr");
-    assert!(o.status.success() && o.stderr.is_empty());
+    for model in ["charlie", "filament-dfg"] {
+        let lut_to = |file: &str| {
+            splitsum()
+                .args([
+                    "lut",
+                    "--model",
+                    model,
+                    "--size",
+                    "32",
+                    "--backend",
+                    "cpu",
+                    "-o",
+                ])
+                .arg(dir.join(file))
+                .output()
+                .unwrap()
+        };
+        let o = lut_to(&format!("{model}.png"));
+        assert!(o.status.success());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("are clipped in a PNG"), "{err}");
+        let o = lut_to(&format!("{model}.exr"));
+        assert!(o.status.success() && o.stderr.is_empty());
+    }
 }
