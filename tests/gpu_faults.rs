@@ -78,9 +78,10 @@ fn bake(out: &Path, backend: &str, lose_at: Option<&str>) -> std::process::Outpu
 /// The device is lost before the LUT (the first GPU kernel) or before the prefilter (in
 /// the middle of the bake): `auto` warns, redoes the work on the CPU and writes exactly
 /// what a CPU bake writes; `gpu` exits 1 with the reason and leaves no files. On a
-/// software adapter `auto` runs only the LUT on it (see `SoftwareAdapterBackend`), so
-/// there the mid-bake loss is checked with `--backend gpu` alone; on a hardware GPU with
-/// both.
+/// software adapter `auto` runs no bake kernel on it (only the preview's truth, see
+/// `SoftwareAdapterBackend`), so there `auto` must write a CPU bake's bytes without a
+/// warning, and the loss is checked with `--backend gpu` and, for `auto`, with a loss
+/// before the preview's truth.
 #[test]
 fn bake_falls_back_to_the_cpu_when_the_device_is_lost() {
     let Some(ctx) = common::gpu() else { return };
@@ -91,7 +92,7 @@ fn bake_falls_back_to_the_cpu_when_the_device_is_lost() {
     assert!(o.status.success());
     let reference = dir.join("cpu/venice_sunset_1k");
     for kernel in ["brdf_lut", "prefilter_specular"] {
-        let auto_runs_it_on_the_gpu = kernel == "brdf_lut" || !software;
+        let auto_runs_it_on_the_gpu = !software;
         let out = dir.join(format!("auto-{kernel}"));
         let o = bake(&out, "auto", Some(kernel));
         let err = String::from_utf8_lossy(&o.stderr);
@@ -103,14 +104,13 @@ fn bake_falls_back_to_the_cpu_when_the_device_is_lost() {
                 "{kernel}: {err}"
             );
         }
-        // Without a loss, `auto` on a software adapter computed the LUT on it.
         let files = [
             "specular.ktx2",
             "irradiance.ktx2",
             "sh.json",
             "brdf_lut.png",
         ];
-        for file in &files[..if auto_runs_it_on_the_gpu { 4 } else { 3 }] {
+        for file in &files {
             let got = std::fs::read(out.join("venice_sunset_1k").join(file)).unwrap();
             let want = std::fs::read(reference.join(file)).unwrap();
             assert!(got == want, "{kernel}: {file} differs from the CPU bake");
@@ -130,6 +130,31 @@ fn bake_falls_back_to_the_cpu_when_the_device_is_lost() {
             !out.join("venice_sunset_1k").exists(),
             "{kernel}: partial output"
         );
+    }
+    if software {
+        let out = dir.join("auto-preview_truth");
+        let o = Command::new(env!("CARGO_BIN_EXE_splitsum"))
+            .args([
+                "bake",
+                "--specular-size",
+                "16",
+                "--irradiance-size",
+                "8",
+                "--preview",
+            ])
+            .args(["--truth-samples", "16", "--preview-cell", "8", "-o"])
+            .arg(&out)
+            .arg("tests/data/venice_sunset_1k.hdr")
+            .env(LOSE_DEVICE_ENV, "preview_truth")
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "preview_truth: {err}");
+        assert!(
+            err.contains("GPU device was lost") && err.contains("continuing on the CPU backend"),
+            "preview_truth: {err}"
+        );
+        assert!(out.join("venice_sunset_1k/preview.png").is_file());
     }
 }
 

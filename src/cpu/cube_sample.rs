@@ -90,6 +90,97 @@ pub fn sample_cube_lod(cube: &Cubemap, d: [f32; 3], lod: f32) -> [f32; 3] {
     [0, 1, 2].map(|c| a[c] + f * (b[c] - a[c]))
 }
 
+/// A cube chain with a one-texel border around every face of every level, holding what
+/// [`fetch_cube_texel`] returns there (the neighbouring faces' texels), so that no
+/// bilinear tap leaves its face: [`BorderedCube::sample_lod`] returns exactly what
+/// [`sample_cube_lod`] returns for the same cube, bit for bit, without the per-tap edge
+/// path that the lobe tails' reads of small mips take nearly every time. The prefilter's
+/// sampled levels read it; the GPU samples the plain chain.
+#[derive(Clone, Debug)]
+pub struct BorderedCube {
+    /// Edge of level 0 (without the border).
+    size: u32,
+    /// Per level: six faces of (n + 2)² texels, row-major, texel (x, y) of the face (x, y
+    /// from −1 to n) at ((face · (n + 2) + y + 1) · (n + 2) + x + 1).
+    levels: Vec<Vec<[f32; 4]>>,
+}
+
+impl BorderedCube {
+    /// Adds the borders to every level of `cube`.
+    pub fn new(cube: &Cubemap) -> Self {
+        let levels = (0..cube.levels.len())
+            .map(|m| {
+                let n = cube.level_size(m) as i32;
+                let p = n + 2;
+                let mut out = Vec::with_capacity((6 * p * p) as usize);
+                for face in 0..6u32 {
+                    for y in -1..=n {
+                        for x in -1..=n {
+                            let inside = x >= 0 && y >= 0 && x < n && y < n;
+                            out.push(if inside {
+                                cube.texel(m, face, x as u32, y as u32)
+                            } else {
+                                let [r, g, b] = fetch_cube_texel(cube, m, face, x, y);
+                                [r, g, b, 1.0]
+                            });
+                        }
+                    }
+                }
+                out
+            })
+            .collect();
+        BorderedCube {
+            size: cube.size,
+            levels,
+        }
+    }
+
+    /// [`sample_face_bilinear`] on the bordered level `m`.
+    fn face_bilinear(&self, m: usize, face: u32, s: f32, t: f32) -> [f32; 3] {
+        let n = (self.size >> m).max(1);
+        let x = (s + 1.0) * 0.5 * n as f32 - 0.5;
+        let y = (t + 1.0) * 0.5 * n as f32 - 0.5;
+        let (xi, yi) = (floor_i32(x), floor_i32(y));
+        let (fx, fy) = (x - xi as f32, y - yi as f32);
+        let weights = [
+            (1.0 - fx) * (1.0 - fy),
+            fx * (1.0 - fy),
+            (1.0 - fx) * fy,
+            fx * fy,
+        ];
+        // |s|, |t| ≤ 1, so xi, yi ∈ [−1, n − 1] and the 2×2 footprint lies in the border.
+        let p = n as usize + 2;
+        let base = (face as usize * p + (yi + 1) as usize) * p + (xi + 1) as usize;
+        let level = &self.levels[m];
+        let mut out = [0.0f32; 3];
+        for (k, w) in [base, base + 1, base + p, base + p + 1]
+            .into_iter()
+            .zip(weights)
+        {
+            let v = level[k];
+            for c in 0..3 {
+                out[c] += w * v[c];
+            }
+        }
+        out
+    }
+
+    /// [`sample_cube_lod`] on this chain.
+    pub fn sample_lod(&self, d: [f32; 3], lod: f32) -> [f32; 3] {
+        let last = (self.levels.len() - 1) as f32;
+        let lod = lod.clamp(0.0, last);
+        let l0 = floor_i32(lod) as f32;
+        let f = lod - l0;
+        let (face, s, t) = cube_face_coords(d);
+        let a = self.face_bilinear(l0 as usize, face, s, t);
+        if f == 0.0 {
+            return a;
+        }
+        let b = self.face_bilinear((l0 + 1.0).min(last) as usize, face, s, t);
+        [0, 1, 2].map(|c| a[c] + f * (b[c] - a[c]))
+    }
+}
+
 /// Solid angle of a level-0 texel of `cube` at direction `d` ((2/n)² times the face's
 /// solid-angle density there).
 pub fn cube_texel_solid_angle_at(cube: &Cubemap, d: [f32; 3]) -> f32 {
@@ -127,6 +218,46 @@ mod tests {
             let x = k as f32 * 0.013_7;
             assert_eq!(floor_i32(x), x.floor() as i32, "{x}");
         }
+    }
+
+    /// The bordered chain returns `sample_cube_lod`'s values bit for bit, at face
+    /// edges and corners, fractional and integral lods, on every level down to 1×1.
+    #[test]
+    fn bordered_cube_equals_seamless_lookups() {
+        let size = 16u32;
+        let mut cube = Cubemap {
+            size,
+            levels: vec![(0..Cubemap::level_len(size))
+                .map(|i| {
+                    [
+                        (i % 17) as f32 * 0.37,
+                        (i % 5) as f32,
+                        1.0 + (i % 3) as f32,
+                        1.0,
+                    ]
+                })
+                .collect()],
+        };
+        crate::cpu::cube_downsample::build_mips(&mut cube, 5);
+        let bordered = BorderedCube::new(&cube);
+        let mut edge = 0;
+        for k in 0..20_000 {
+            let d = crate::math::cubemap::normalize([
+                (k as f32 * 0.7311).sin(),
+                (k as f32 * 0.3137).cos(),
+                (k as f32 * 0.1713).sin() * 1.3,
+            ]);
+            let lod = [0.0, 0.5, 1.0, 2.25, 3.7, 4.0, 9.0][k % 7];
+            let want = sample_cube_lod(&cube, d, lod);
+            assert_eq!(
+                bordered.sample_lod(d, lod).map(f32::to_bits),
+                want.map(f32::to_bits),
+                "{d:?} lod {lod}"
+            );
+            let (_, s, t) = cube_face_coords(d);
+            edge += (s.abs().max(t.abs()) > 0.9) as u32;
+        }
+        assert!(edge > 1000, "{edge}");
     }
 
     #[test]

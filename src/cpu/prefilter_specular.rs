@@ -14,7 +14,7 @@
 
 use std::f32::consts::PI;
 
-use crate::cpu::cube_sample::sample_cube_lod;
+use crate::cpu::cube_sample::BorderedCube;
 use crate::cpu::equirect_to_cube::fill_cube_level;
 use crate::cpu::irradiance::{source_texels, SourceTexel};
 use crate::environment::{Cubemap, IrradianceSource};
@@ -139,6 +139,9 @@ pub fn hottest_texels(texels: impl Iterator<Item = (usize, f64, f64)>, mean: f64
 pub struct SampledSource {
     /// The environment without its hot texels, with every mip.
     pub rest: Cubemap,
+    /// `rest` with a border around each face, which the CPU's lookups read
+    /// ([`BorderedCube`]: the same values, faster).
+    pub bordered: BorderedCube,
     /// The hot texels.
     pub hot: Vec<SourceTexel>,
 }
@@ -184,6 +187,7 @@ pub fn split_hot_texels(env: &Cubemap) -> SampledSource {
     };
     crate::cpu::cube_downsample::build_mips(&mut rest, env.levels.len() as u32);
     SampledSource {
+        bordered: BorderedCube::new(&rest),
         rest,
         hot: hot.into_iter().map(|k| texels[k]).collect(),
     }
@@ -252,7 +256,7 @@ pub fn prefilter_texel(
     let mut weight = 0.0f32;
     for s in lobe {
         let l = [0, 1, 2].map(|k| t[k] * s[0] + b[k] * s[1] + n[k] * s[2]);
-        let v = sample_cube_lod(&src.rest, l, s[3]);
+        let v = src.bordered.sample_lod(l, s[3]);
         for c in 0..3 {
             sum[c] += v[c] * s[2];
         }
