@@ -75,11 +75,14 @@ fn generic_outputs(dir: &Path, extra: &[&str]) -> Vec<(PathBuf, String)> {
 }
 
 /// Hashes of the generic outputs, taken before any target existed: adding targets must
-/// not change a byte of them (nor a value of sh.json).
+/// not change a byte of them (nor a value of sh.json). Re-taken when the numerics change
+/// on purpose: brdf_lut.png when the CPU LUT began interpolating between integrated
+/// texels, specular.ktx2 when the exact levels' sum was packed into lanes (both within
+/// their accuracy tests' bars; the other four are the hashes first taken).
 const GENERIC_PINNED: [&str; 6] = [
-    "05247f06f04c187b9d1ba04775702383a71254495e7d75fdfd30ae859dae6728",
+    "35ccbd242e6691105a3face9bd1d4b8b2d54239a1b16e921ce62faab1db8b06b",
     "24a55c58dab879775f93ca6bff4eb83baba44063ca8c518853a4097fe6b46897",
-    "6e8e81d20dddd86b580b0ca96e10922bbb49afc0cde00adb5c876f0258f45646",
+    "e08a363f85abecd999bba8e07f66506ecaa5fdc73c78e89daa77ad9fcd7e6f12",
     "4deaab7ee12f7d42b2b68c95e3fb8105b764a6e26e25f15754b5ebae33ea5328",
     "ae025bcfbe944c5d6034041db4531c426cefd9586c26ff21616bad7dacb31fb1",
     "a5dff322e5ad356bd1a38e5d133b972c0d8e8aabe37c5adb98a171e1856b67bc",
