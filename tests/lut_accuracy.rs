@@ -23,29 +23,47 @@ fn cpu_lut_matches_converged_integral() {
 #[ignore]
 fn dense_scan_512() {
     let (w, h) = (512u32, 512u32);
+    let texels = dense_texels(w, h);
+    for model in LutModel::SINGLE.into_iter().filter(wanted_models) {
+        check_both_paths(model, w, h, &texels, "dense");
+    }
+}
+
+/// Every 8th texel is a coarse node of the CPU backend's interpolated table (steps 4 and
+/// 8), so [`dense_scan_512`] sees that path only where it integrates; this scans it at the
+/// same texels offset by (1, 3), which it interpolates (edges included). On demand:
+/// `cargo test --release --test lut_accuracy dense_scan_512_interpolated -- --ignored
+/// --nocapture` (`SPLITSUM_LUT_MODELS` as above).
+#[test]
+#[ignore]
+fn dense_scan_512_interpolated() {
+    let (w, h) = (512u32, 512u32);
+    let offset: Vec<(u32, u32)> = dense_texels(w, h)
+        .iter()
+        .map(|&(i, j)| ((i + 1).min(w - 1), (j + 3).min(h - 1)))
+        .collect();
+    for model in LutModel::SINGLE.into_iter().filter(wanted_models) {
+        check_interpolated(model, w, h, &offset, "dense, offset (1, 3)");
+    }
+}
+
+/// Every 8th texel of a w×h table plus every edge texel.
+fn dense_texels(w: u32, h: u32) -> Vec<(u32, u32)> {
     let mut texels: Vec<(u32, u32)> = (0..w)
         .step_by(8)
         .flat_map(|i| (0..h).step_by(8).map(move |j| (i, j)))
         .collect();
-    for t in 0..w {
+    for t in 0..w.min(h) {
         texels.extend([(0, t), (w - 1, t), (t, 0), (t, h - 1)]);
     }
-    // SPLITSUM_LUT_MODELS="charlie,sheen-albedo" scans only those.
-    let only = std::env::var("SPLITSUM_LUT_MODELS").ok();
-    let wanted = |m: &LutModel| {
-        only.as_deref()
-            .is_none_or(|o| o.split(',').any(|n| n == m.name()))
-    };
-    // Every 8th texel is a coarse node of the interpolated table (step 4), so that path is
-    // also scanned at texels offset by (1, 3), which it interpolates, edges included.
-    let offset: Vec<(u32, u32)> = texels
-        .iter()
-        .map(|&(i, j)| ((i + 1).min(w - 1), (j + 3).min(h - 1)))
-        .collect();
-    for model in LutModel::SINGLE.into_iter().filter(wanted) {
-        check_both_paths(model, w, h, &texels, "dense");
-        check_interpolated(model, w, h, &offset, "dense, offset (1, 3)");
-    }
+    texels
+}
+
+/// The models `SPLITSUM_LUT_MODELS="charlie,sheen-albedo"` names (all when unset).
+fn wanted_models(m: &LutModel) -> bool {
+    std::env::var("SPLITSUM_LUT_MODELS")
+        .ok()
+        .is_none_or(|o| o.split(',').any(|n| n == m.name()))
 }
 
 /// The CPU backend's interpolated table alone against the converged reference.
@@ -325,13 +343,13 @@ fn three_dfg_against_splitsum() {
 /// every model. Bound 2.5e-5 (relative to max(1, value)): the cells' check tolerance of
 /// 1e-5, plus the quadrature's own texel-to-texel steps (its panel count changes with n·v,
 /// by up to about 1e-5), which integrated texels show and an interpolant smooths over;
-/// measured worst 1.7e-5. The total against the converged reference is checked by
+/// measured worst 1.8e-5. The total against the converged reference is checked by
 /// `check_both_paths`. Sizes include odd ones whose last coarse gap is short.
 #[test]
 fn interpolated_lut_matches_every_texel_integrated() {
     for model in LutModel::SINGLE {
         let quad = LutQuadrature::for_model(model);
-        for (w, h) in [(512u32, 512u32), (101, 37), (16, 16)] {
+        for (w, h) in [(512u32, 512u32), (301, 203), (16, 16)] {
             let t = std::time::Instant::now();
             let fast = splitsum::cpu::lut_interpolation::interpolated_lut(w, h, &quad, model);
             let fast_s = t.elapsed().as_secs_f64();

@@ -3,8 +3,8 @@
 //! between its nodes, and a check of that interpolation in every coarse cell.
 //!
 //! # Estimator and error control
-//! The coarse grid takes every [`LUT_COARSE_STEP`]-th column and row plus the last one, so
-//! no texel is extrapolated. A texel between nodes is the tensor product of 4-point
+//! The coarse grid takes every 4th column and 8th row ([`LUT_COARSE_STEP`]) plus the last
+//! ones, so no texel is extrapolated. A texel between nodes is the tensor product of 4-point
 //! Lagrange interpolants through the nearest coarse nodes (the stencil shifts inward at the
 //! edges). Its error is ω(x) f⁽⁴⁾/4! per axis with ω(x) = Π (x − xₖ), largest near the
 //! middle of the cell (A&S 25.2.2; |ω| is 0.56 h⁴ there and 0.41 h⁴ a quarter cell off), so
@@ -110,8 +110,8 @@ pub fn interpolated_lut(
     model: LutModel,
 ) -> InterpolatedLut {
     let (Some(ax), Some(ay)) = (
-        Axis::new(width, LUT_COARSE_STEP),
-        Axis::new(height, LUT_COARSE_STEP),
+        Axis::new(width, LUT_COARSE_STEP[0]),
+        Axis::new(height, LUT_COARSE_STEP[1]),
     ) else {
         return InterpolatedLut {
             lut: brdf_lut_exact(width, height, quad, model),
