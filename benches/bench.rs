@@ -53,7 +53,7 @@ fn child_cpu(cmd: &mut std::process::Command) -> Option<f64> {
 
 /// The whole default `splitsum bake` process against Filament's cmgen doing the cube 256,
 /// the GGX chain 256 and SH3 (`cmgen --size=256 --sh=3 --ibl-ld`) on the same HDRI,
-/// interleaved, 3 runs each, CPU seconds (Debian: `apt-get install libfilament-tools`).
+/// interleaved, [`RUNS`] runs each, CPU seconds (Debian: `apt-get install libfilament-tools`).
 fn process_versus_cmgen() {
     let input = std::path::Path::new("tests/data/venice_sunset_1k.hdr");
     let out = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench-vs-cmgen");
@@ -115,9 +115,13 @@ fn lut_versus_cmgen() {
 /// Runs each command three times, interleaved, and prints each one's CPU seconds and its
 /// ratio to command `reference`; says so and stops if a command (cmgen, from Debian's
 /// `libfilament-tools`) is not installed.
+/// Interleaved runs of each process in [`compare_processes`]: this machine's CPU time varies
+/// by ±10 % from run to run, so a ratio near a bar needs more than three.
+const RUNS: usize = 5;
+
 fn compare_processes(commands: &mut [(&str, &mut std::process::Command)], reference: usize) {
     let mut times: Vec<Vec<f64>> = vec![Vec::new(); commands.len()];
-    for _ in 0..3 {
+    for _ in 0..RUNS {
         for (k, (name, cmd)) in commands.iter_mut().enumerate() {
             match child_cpu(cmd) {
                 Some(t) => times[k].push(t),
@@ -138,7 +142,7 @@ fn compare_processes(commands: &mut [(&str, &mut std::process::Command)], refere
     for ((name, _), v) in commands.iter().zip(&times) {
         let runs: Vec<String> = v.iter().map(|t| format!("{t:.2}")).collect();
         println!(
-            "| {name} | {} | {:.2} | {:.2} |",
+            "| {name} | {} | {:.2} | {:.3} |",
             runs.join(", "),
             mean(v),
             mean(v) / first

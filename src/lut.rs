@@ -150,15 +150,10 @@ impl LutModel {
     ];
 
     /// Every model that is one integrand (all but [`LutModel::FilamentDfg`], which
-    /// combines two of them).
-    pub const SINGLE: [LutModel; 6] = [
-        LutModel::SchlickGgx,
-        LutModel::SmithCorrelated,
-        LutModel::MultiscatterSchlickGgx,
-        LutModel::MultiscatterSmithCorrelated,
-        LutModel::Charlie,
-        LutModel::SheenAlbedo,
-    ];
+    /// combines two of them), in the command line's order.
+    pub fn singles() -> impl Iterator<Item = LutModel> {
+        Self::ALL.into_iter().filter(|m| m.parts().1.is_none())
+    }
 
     /// The one-integrand models a table of this model is made of: the model itself for
     /// the two channels (R, G), and the model whose first channel becomes a third (B).

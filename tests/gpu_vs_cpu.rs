@@ -16,10 +16,7 @@ fn brdf_lut_gpu_matches_cpu() {
     let Some(ctx) = common::gpu() else { return };
     let quad = LutQuadrature::default();
     let sizes = [(64u32, 32u32), (128, 128)];
-    for (model, (w, h)) in LutModel::SINGLE
-        .into_iter()
-        .flat_map(|m| sizes.map(|s| (m, s)))
-    {
+    for (model, (w, h)) in LutModel::singles().flat_map(|m| sizes.map(|s| (m, s))) {
         let gpu =
             splitsum::gpu::brdf_lut::brdf_lut(&ctx.device, &ctx.queue, w, h, &quad, model).unwrap();
         let cpu = splitsum::cpu::brdf_lut::brdf_lut_exact(w, h, &quad, model);

@@ -9,7 +9,7 @@ const LUT_TOLERANCE: f64 = 1e-4;
 
 #[test]
 fn cpu_lut_matches_converged_integral() {
-    for model in LutModel::SINGLE {
+    for model in LutModel::singles() {
         for (w, h) in [(128u32, 128u32), (512, 512)] {
             check_both_paths(model, w, h, &common::check_texels(w, h), "spread");
         }
@@ -24,7 +24,7 @@ fn cpu_lut_matches_converged_integral() {
 fn dense_scan_512() {
     let (w, h) = (512u32, 512u32);
     let texels = dense_texels(w, h);
-    for model in LutModel::SINGLE.into_iter().filter(wanted_models) {
+    for model in LutModel::singles().filter(wanted_models) {
         check_both_paths(model, w, h, &texels, "dense");
     }
 }
@@ -42,7 +42,7 @@ fn dense_scan_512_interpolated() {
         .iter()
         .map(|&(i, j)| ((i + 1).min(w - 1), (j + 3).min(h - 1)))
         .collect();
-    for model in LutModel::SINGLE.into_iter().filter(wanted_models) {
+    for model in LutModel::singles().filter(wanted_models) {
         check_interpolated(model, w, h, &offset, "dense, offset (1, 3)");
     }
 }
@@ -145,7 +145,7 @@ fn quadrature_scan() {
 #[test]
 fn every_model_keeps_the_albedo_identities() {
     let (w, h) = (64u32, 512u32);
-    for model in LutModel::SINGLE {
+    for model in LutModel::singles() {
         let quad = LutQuadrature::for_model(model);
         let lut = splitsum::cpu::lut_interpolation::brdf_lut(w, h, &quad, model);
         if model.distribution() == splitsum::lut::LutDistribution::Charlie {
@@ -218,7 +218,8 @@ fn filament_dfg_against_cmgen() {
     let dir = common::output_dir("lut-cmgen");
     let n = 128usize;
     // (file, cmgen flags, which channels against which model)
-    let runs: [(&str, &[&str], &[(LutModel, [usize; 2])]); 3] = [
+    type Run<'a> = (&'a str, &'a [&'a str], &'a [(LutModel, [usize; 2])]);
+    let runs: [Run; 3] = [
         ("single", &[], &[(LutModel::SmithCorrelated, [0, 1])]),
         (
             "multiscatter",
@@ -347,7 +348,7 @@ fn three_dfg_against_splitsum() {
 /// `check_both_paths`. Sizes include odd ones whose last coarse gap is short.
 #[test]
 fn interpolated_lut_matches_every_texel_integrated() {
-    for model in LutModel::SINGLE {
+    for model in LutModel::singles() {
         let quad = LutQuadrature::for_model(model);
         for (w, h) in [(512u32, 512u32), (301, 203), (16, 16)] {
             let t = std::time::Instant::now();

@@ -165,7 +165,7 @@ fn every_model_keeps_1e4_in_every_float_file() {
     use splitsum::lut::LutModel;
     let n = 64u32;
     let texels = common::check_texels(n, n);
-    for model in LutModel::SINGLE {
+    for model in LutModel::singles() {
         let lut = splitsum::cpu::lut_interpolation::brdf_lut(
             n,
             n,

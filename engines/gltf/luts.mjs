@@ -12,11 +12,11 @@
 //
 // Environment: CHROMIUM (default /usr/bin/chromium). Writes ../../target/engines/gltf/
 // lut_ggx.f32, lut_charlie.f32 and luts.json. Exits 1 on a WebGL or console error.
-import { mkdirSync, readFileSync, writeFileSync, existsSync, mkdtempSync, rmSync } from 'node:fs';
+import { mkdirSync, readFileSync, writeFileSync, existsSync } from 'node:fs';
 import { join, resolve, dirname } from 'node:path';
-import { tmpdir } from 'node:os';
 import { fileURLToPath } from 'node:url';
 import puppeteer from 'puppeteer-core';
+import { launchChromium } from '../chromium.mjs';
 
 const here = dirname(fileURLToPath(import.meta.url));
 const out = resolve(here, '../../target/engines/gltf');
@@ -40,16 +40,7 @@ const fragment = shader('iblFiltering');
 const vertex = shader('fullscreenShader');
 
 mkdirSync(out, { recursive: true });
-const profile = mkdtempSync(join(tmpdir(), 'splitsum-chromium-'));
-const browser = await puppeteer.launch({
-  executablePath: chromium,
-  headless: true,
-  args: [
-    '--headless=new', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--no-sandbox',
-    '--no-first-run', '--disable-background-networking', '--disable-component-update',
-    '--disable-sync', '--disable-quic', `--user-data-dir=${profile}`,
-  ],
-});
+const { browser, close } = await launchChromium(puppeteer, chromium);
 const problems = [];
 try {
   const page = await browser.newPage();
@@ -107,8 +98,7 @@ try {
   }
   writeFileSync(join(out, 'luts.json'), JSON.stringify({ viewer: '@khronosgroup/gltf-viewer 1.1.0', ...meta }, null, 2));
 } finally {
-  await browser.close();
-  rmSync(profile, { recursive: true, force: true });
+  await close();
 }
 if (problems.length > 0) {
   console.log('FAIL console:\n  ' + problems.join('\n  '));

@@ -189,6 +189,27 @@ pub fn cube_texel_solid_angle_at(cube: &Cubemap, d: [f32; 3]) -> f32 {
     (2.0 / n) * (2.0 / n) * cube_face_jacobian(s, t)
 }
 
+/// A 16² … chain with `mips` levels whose texels follow three incommensurate patterns
+/// (no two neighbours alike, so a wrong tap shows), for the lookup and prefilter tests.
+#[cfg(test)]
+pub(crate) fn patterned_chain(size: u32, mips: u32) -> Cubemap {
+    let mut cube = Cubemap {
+        size,
+        levels: vec![(0..Cubemap::level_len(size))
+            .map(|i| {
+                [
+                    (i % 17) as f32 * 0.37,
+                    (i % 5) as f32,
+                    1.0 + (i % 3) as f32,
+                    1.0,
+                ]
+            })
+            .collect()],
+    };
+    crate::cpu::cube_downsample::build_mips(&mut cube, mips);
+    cube
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -224,21 +245,7 @@ mod tests {
     /// edges and corners, fractional and integral lods, on every level down to 1×1.
     #[test]
     fn bordered_cube_equals_seamless_lookups() {
-        let size = 16u32;
-        let mut cube = Cubemap {
-            size,
-            levels: vec![(0..Cubemap::level_len(size))
-                .map(|i| {
-                    [
-                        (i % 17) as f32 * 0.37,
-                        (i % 5) as f32,
-                        1.0 + (i % 3) as f32,
-                        1.0,
-                    ]
-                })
-                .collect()],
-        };
-        crate::cpu::cube_downsample::build_mips(&mut cube, 5);
+        let cube = patterned_chain(16, 5);
         let bordered = BorderedCube::new(&cube);
         let mut edge = 0;
         for k in 0..20_000 {
@@ -262,21 +269,7 @@ mod tests {
 
     #[test]
     fn fast_path_equals_per_tap_fetches() {
-        let size = 16u32;
-        let mut cube = Cubemap {
-            size,
-            levels: vec![(0..Cubemap::level_len(size))
-                .map(|i| {
-                    [
-                        (i % 17) as f32 * 0.37,
-                        (i % 5) as f32,
-                        1.0 + (i % 3) as f32,
-                        1.0,
-                    ]
-                })
-                .collect()],
-        };
-        crate::cpu::cube_downsample::build_mips(&mut cube, 5);
+        let cube = patterned_chain(16, 5);
         let mut checked = 0;
         for m in 0..5usize {
             let n = cube.level_size(m) as f32;
