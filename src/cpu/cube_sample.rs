@@ -38,6 +38,29 @@ pub fn fetch_cube_texel(cube: &Cubemap, m: usize, face: u32, x: i32, y: i32) -> 
 /// paths sum the taps in the same order, so the result does not depend on the path.
 pub fn sample_face_bilinear(cube: &Cubemap, m: usize, face: u32, s: f32, t: f32) -> [f32; 3] {
     let n = cube.level_size(m);
+    let (xi, yi, weights) = bilinear_footprint(n, s, t);
+    let inside = xi >= 0 && yi >= 0 && xi + 1 < n as i32 && yi + 1 < n as i32;
+    if inside {
+        let base = ((face * n + yi as u32) * n + xi as u32) as usize;
+        let n = n as usize;
+        let level = &cube.levels[m];
+        return weighted_taps(
+            [base, base + 1, base + n, base + n + 1].map(|k| level[k]),
+            weights,
+        );
+    }
+    let taps = [(0, 0), (1, 0), (0, 1), (1, 1)].map(|(dx, dy)| {
+        let [r, g, b] = fetch_cube_texel(cube, m, face, xi + dx, yi + dy);
+        [r, g, b, 1.0]
+    });
+    weighted_taps(taps, weights)
+}
+
+/// The 2×2 footprint of a bilinear lookup at face coordinates (s, t) of an n² face: the
+/// texel (xi, yi) of its lower corner (−1 … n − 1) and the weights of the taps (0, 0),
+/// (1, 0), (0, 1), (1, 1).
+#[inline(always)]
+fn bilinear_footprint(n: u32, s: f32, t: f32) -> (i32, i32, [f32; 4]) {
     let x = (s + 1.0) * 0.5 * n as f32 - 0.5;
     let y = (t + 1.0) * 0.5 * n as f32 - 0.5;
     let (xi, yi) = (floor_i32(x), floor_i32(y));
@@ -48,25 +71,15 @@ pub fn sample_face_bilinear(cube: &Cubemap, m: usize, face: u32, s: f32, t: f32)
         (1.0 - fx) * fy,
         fx * fy,
     ];
+    (xi, yi, weights)
+}
+
+/// Σ wₖ tapₖ over rgb, in tap order (so every path that reads the same four texels gives
+/// the same bits).
+#[inline(always)]
+fn weighted_taps(taps: [[f32; 4]; 4], weights: [f32; 4]) -> [f32; 3] {
     let mut out = [0.0f32; 3];
-    let inside = xi >= 0 && yi >= 0 && xi + 1 < n as i32 && yi + 1 < n as i32;
-    if inside {
-        let level = &cube.levels[m];
-        let base = ((face * n + yi as u32) * n + xi as u32) as usize;
-        let n = n as usize;
-        for (k, w) in [base, base + 1, base + n, base + n + 1]
-            .into_iter()
-            .zip(weights)
-        {
-            let v = level[k];
-            for c in 0..3 {
-                out[c] += w * v[c];
-            }
-        }
-        return out;
-    }
-    for ((dx, dy), w) in [(0, 0), (1, 0), (0, 1), (1, 1)].into_iter().zip(weights) {
-        let v = fetch_cube_texel(cube, m, face, xi + dx, yi + dy);
+    for (v, w) in taps.into_iter().zip(weights) {
         for c in 0..3 {
             out[c] += w * v[c];
         }
@@ -74,20 +87,34 @@ pub fn sample_face_bilinear(cube: &Cubemap, m: usize, face: u32, s: f32, t: f32)
     out
 }
 
-/// Trilinear lookup at fractional mip `lod` (clamped to the chain). The face coordinates
-/// are found once for both levels, and an integral lod reads one level only.
-pub fn sample_cube_lod(cube: &Cubemap, d: [f32; 3], lod: f32) -> [f32; 3] {
-    let last = (cube.levels.len() - 1) as f32;
+/// The trilinear blend of a chain of `levels` at `lod` (clamped to it) around `d`, with
+/// `bilinear(m, face, s, t)` reading one level; an integral lod reads one level only.
+#[inline(always)]
+fn trilinear(
+    levels: usize,
+    d: [f32; 3],
+    lod: f32,
+    bilinear: impl Fn(usize, u32, f32, f32) -> [f32; 3],
+) -> [f32; 3] {
+    let last = (levels - 1) as f32;
     let lod = lod.clamp(0.0, last);
     let l0 = floor_i32(lod) as f32;
     let f = lod - l0;
     let (face, s, t) = cube_face_coords(d);
-    let a = sample_face_bilinear(cube, l0 as usize, face, s, t);
+    let a = bilinear(l0 as usize, face, s, t);
     if f == 0.0 {
         return a;
     }
-    let b = sample_face_bilinear(cube, (l0 + 1.0).min(last) as usize, face, s, t);
+    let b = bilinear((l0 + 1.0).min(last) as usize, face, s, t);
     [0, 1, 2].map(|c| a[c] + f * (b[c] - a[c]))
+}
+
+/// Trilinear lookup at fractional mip `lod` (clamped to the chain). The face coordinates
+/// are found once for both levels, and an integral lod reads one level only.
+pub fn sample_cube_lod(cube: &Cubemap, d: [f32; 3], lod: f32) -> [f32; 3] {
+    trilinear(cube.levels.len(), d, lod, |m, face, s, t| {
+        sample_face_bilinear(cube, m, face, s, t)
+    })
 }
 
 /// A cube chain with a one-texel border around every face of every level, holding what
@@ -138,46 +165,22 @@ impl BorderedCube {
     /// [`sample_face_bilinear`] on the bordered level `m`.
     fn face_bilinear(&self, m: usize, face: u32, s: f32, t: f32) -> [f32; 3] {
         let n = (self.size >> m).max(1);
-        let x = (s + 1.0) * 0.5 * n as f32 - 0.5;
-        let y = (t + 1.0) * 0.5 * n as f32 - 0.5;
-        let (xi, yi) = (floor_i32(x), floor_i32(y));
-        let (fx, fy) = (x - xi as f32, y - yi as f32);
-        let weights = [
-            (1.0 - fx) * (1.0 - fy),
-            fx * (1.0 - fy),
-            (1.0 - fx) * fy,
-            fx * fy,
-        ];
+        let (xi, yi, weights) = bilinear_footprint(n, s, t);
         // |s|, |t| ≤ 1, so xi, yi ∈ [−1, n − 1] and the 2×2 footprint lies in the border.
         let p = n as usize + 2;
         let base = (face as usize * p + (yi + 1) as usize) * p + (xi + 1) as usize;
         let level = &self.levels[m];
-        let mut out = [0.0f32; 3];
-        for (k, w) in [base, base + 1, base + p, base + p + 1]
-            .into_iter()
-            .zip(weights)
-        {
-            let v = level[k];
-            for c in 0..3 {
-                out[c] += w * v[c];
-            }
-        }
-        out
+        weighted_taps(
+            [base, base + 1, base + p, base + p + 1].map(|k| level[k]),
+            weights,
+        )
     }
 
     /// [`sample_cube_lod`] on this chain.
     pub fn sample_lod(&self, d: [f32; 3], lod: f32) -> [f32; 3] {
-        let last = (self.levels.len() - 1) as f32;
-        let lod = lod.clamp(0.0, last);
-        let l0 = floor_i32(lod) as f32;
-        let f = lod - l0;
-        let (face, s, t) = cube_face_coords(d);
-        let a = self.face_bilinear(l0 as usize, face, s, t);
-        if f == 0.0 {
-            return a;
-        }
-        let b = self.face_bilinear((l0 + 1.0).min(last) as usize, face, s, t);
-        [0, 1, 2].map(|c| a[c] + f * (b[c] - a[c]))
+        trilinear(self.levels.len(), d, lod, |m, face, s, t| {
+            self.face_bilinear(m, face, s, t)
+        })
     }
 }
 
