@@ -1,6 +1,7 @@
 // Headless Chromium for the engine checks (engines/three, engines/gltf): SwiftShader
 // WebGL2, no network, a throw-away profile. Each check passes its own puppeteer-core (its
-// package's node_modules) and the browser path.
+// package's node_modules) and the browser path, and collects the page's console problems
+// with watchConsole.
 import { mkdtempSync, rmSync } from 'node:fs';
 import { join } from 'node:path';
 import { tmpdir } from 'node:os';
@@ -21,4 +22,26 @@ export async function launchChromium(puppeteer, executablePath) {
     rmSync(profile, { recursive: true, force: true });
   };
   return { browser, close };
+}
+
+// ANGLE forwards the GL driver's debug messages to the page console as warnings. Those the
+// driver files under "Performance" (for example "GPU stall due to ReadPixels", which comes
+// or not with timing on the same page) are advice about speed, not errors; every other
+// warning or error, and every uncaught page error, is a problem that fails a check.
+const PERFORMANCE_NOTICE = /^\[[^\]]*\]GL Driver Message \([^,]*, Performance,/;
+
+export function isPerformanceNotice(text) {
+  return PERFORMANCE_NOTICE.test(text);
+}
+
+export function watchConsole(page) {
+  const problems = [];
+  page.on('console', (m) => {
+    const type = m.type();
+    if ((type === 'error' || type === 'warn' || type === 'warning') && !isPerformanceNotice(m.text())) {
+      problems.push(`${type}: ${m.text()}`);
+    }
+  });
+  page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
+  return problems;
 }

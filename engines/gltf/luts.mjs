@@ -16,7 +16,7 @@ import { mkdirSync, readFileSync, writeFileSync, existsSync } from 'node:fs';
 import { join, resolve, dirname } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import puppeteer from 'puppeteer-core';
-import { launchChromium } from '../chromium.mjs';
+import { launchChromium, watchConsole } from '../chromium.mjs';
 
 const here = dirname(fileURLToPath(import.meta.url));
 const out = resolve(here, '../../target/engines/gltf');
@@ -41,13 +41,10 @@ const vertex = shader('fullscreenShader');
 
 mkdirSync(out, { recursive: true });
 const { browser, close } = await launchChromium(puppeteer, chromium);
-const problems = [];
+let problems = [];
 try {
   const page = await browser.newPage();
-  page.on('console', (m) => {
-    if (m.type() === 'error' || m.type() === 'warn' || m.type() === 'warning') problems.push(`${m.type()}: ${m.text()}`);
-  });
-  page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
+  problems = watchConsole(page);
   await page.goto('about:blank');
   const meta = {};
   for (const [name, distribution] of Object.entries(DISTRIBUTIONS)) {

@@ -15,7 +15,7 @@ import { mkdirSync, readFileSync, writeFileSync, existsSync } from 'node:fs';
 import { extname, join, normalize, resolve, dirname } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import puppeteer from 'puppeteer-core';
-import { launchChromium } from '../chromium.mjs';
+import { launchChromium, watchConsole } from '../chromium.mjs';
 
 const here = dirname(fileURLToPath(import.meta.url));
 const root = resolve(here, '../..');
@@ -65,15 +65,12 @@ await new Promise((ok) => server.listen(0, '127.0.0.1', ok));
 const port = server.address().port;
 
 const { browser, close } = await launchChromium(puppeteer, chromium);
-const consoleProblems = [];
+let consoleProblems = [];
 let failed = false;
 const results = {};
 try {
   const page = await browser.newPage();
-  page.on('console', (m) => {
-    if (m.type() === 'error' || m.type() === 'warn' || m.type() === 'warning') consoleProblems.push(`${m.type()}: ${m.text()}`);
-  });
-  page.on('pageerror', (e) => consoleProblems.push(`page error: ${e.message}`));
+  consoleProblems = watchConsole(page);
   await page.goto(`http://127.0.0.1:${port}/engines/three/check.html`);
   await page.waitForFunction('window.checkReady === true', { timeout: 60000 });
   for (const hdri of HDRIS) {
