@@ -1,9 +1,10 @@
 // Headless Chromium for the engine checks (engines/three, engines/gltf): SwiftShader
 // WebGL2, no network, a throw-away profile. Each check passes its own puppeteer-core (its
-// package's node_modules) and the browser path, and collects the page's console problems
-// with watchConsole.
-import { mkdtempSync, rmSync } from 'node:fs';
-import { join } from 'node:path';
+// package's node_modules) and the browser path, serves the repository to the page with
+// serveFiles and collects the page's console problems with watchConsole.
+import { mkdtempSync, rmSync, existsSync, readFileSync } from 'node:fs';
+import { createServer } from 'node:http';
+import { extname, join, normalize } from 'node:path';
 import { tmpdir } from 'node:os';
 
 export async function launchChromium(puppeteer, executablePath) {
@@ -44,4 +45,25 @@ export function watchConsole(page) {
   });
   page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
   return problems;
+}
+
+const TYPES = {
+  '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript',
+  '.json': 'application/json', '.wasm': 'application/wasm',
+};
+
+// Serves the files under `root` on 127.0.0.1 (an ephemeral port) until close().
+export async function serveFiles(root) {
+  const server = createServer((req, res) => {
+    const path = normalize(decodeURIComponent(new URL(req.url, 'http://x').pathname));
+    const file = join(root, path);
+    if (!file.startsWith(root) || !existsSync(file)) {
+      res.writeHead(404).end();
+      return;
+    }
+    res.writeHead(200, { 'content-type': TYPES[extname(file)] ?? 'application/octet-stream' });
+    res.end(readFileSync(file));
+  });
+  await new Promise((ok) => server.listen(0, '127.0.0.1', ok));
+  return { port: server.address().port, close: () => server.close() };
 }

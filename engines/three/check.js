@@ -6,6 +6,7 @@
 import * as THREE from 'three';
 import { HDRLoader } from 'three/addons/loaders/HDRLoader.js';
 import { loadSplitsumBake, loadSplitsumCube } from '/js/splitsum-three.js';
+import * as measure from '/engines/measure.js';
 
 // Edge of the renders; the mirror sphere is rendered larger, since one pixel of it turns
 // the reflected direction by twice the normal's change (about 2.3° at 160 px).
@@ -24,8 +25,6 @@ function setSize(size) {
   target = new THREE.WebGLRenderTarget(SIZE, SIZE, { type: THREE.FloatType });
 }
 
-const luminance = (p, i) => 0.2126 * p[i] + 0.7152 * p[i + 1] + 0.0722 * p[i + 2];
-
 function render(scene, camera) {
   renderer.setRenderTarget(target);
   renderer.setClearColor(0x000000, 0);
@@ -35,6 +34,13 @@ function render(scene, camera) {
   renderer.setRenderTarget(null);
   return px;
 }
+
+// engines/measure.js at the current render size.
+const luminance = measure.luminance;
+const brightCentroid = (px) => measure.brightCentroid(px, SIZE);
+const logDiff = (a, b) => measure.logDiff(a, b, SIZE);
+const compareSpheres = (got, want) => measure.compareSpheres(got, want, SIZE);
+const toPng = (px) => measure.toPng(px, SIZE);
 
 // The HDRI's sun: luminance-weighted mean direction of the texels above half the maximum
 // (three's equirect convention: u = atan(z, x)/2π + 0.5, the first row at +y).
@@ -58,21 +64,6 @@ function sunDirection(hdr) {
   return d.normalize();
 }
 
-// Centroid (in pixels) of the pixels above half the image's maximum luminance.
-function brightCentroid(px) {
-  let max = 0;
-  for (let i = 0; i < SIZE * SIZE; i++) max = Math.max(max, luminance(px, 4 * i));
-  let sx = 0, sy = 0, sw = 0;
-  for (let i = 0; i < SIZE * SIZE; i++) {
-    const l = luminance(px, 4 * i);
-    if (l < 0.5 * max) continue;
-    sx += l * ((i % SIZE) + 0.5);
-    sy += l * (Math.floor(i / SIZE) + 0.5);
-    sw += l;
-  }
-  return [sx / sw, sy / sw];
-}
-
 // The world ray through pixel (x, y) of a readRenderTargetPixels image (row 0 at the bottom).
 function pixelRay(camera, [x, y]) {
   const ndc = new THREE.Vector3((2 * x) / SIZE - 1, (2 * y) / SIZE - 1, 0.5);
@@ -81,56 +72,6 @@ function pixelRay(camera, [x, y]) {
 }
 
 const degrees = (a, b) => THREE.MathUtils.radToDeg(a.angleTo(b));
-
-// Mean |Δ ln(1 + L)| over the pixels both images cover.
-function logDiff(a, b) {
-  let s = 0, n = 0;
-  for (let i = 0; i < SIZE * SIZE; i++) {
-    if (a[4 * i + 3] === 0 || b[4 * i + 3] === 0) continue;
-    for (let c = 0; c < 3; c++) s += Math.abs(Math.log1p(a[4 * i + c]) - Math.log1p(b[4 * i + c]));
-    n += 3;
-  }
-  return s / n;
-}
-
-// Mean luminance ratio and correlation over the pixels the sphere covers (alpha 1).
-function compareSpheres(got, want) {
-  const g = [], w = [];
-  for (let i = 0; i < SIZE * SIZE; i++) {
-    if (got[4 * i + 3] < 1 || want[4 * i + 3] < 1) continue;
-    g.push(luminance(got, 4 * i));
-    w.push(luminance(want, 4 * i));
-  }
-  const mean = (v) => v.reduce((a, b) => a + b, 0) / v.length;
-  const mg = mean(g), mw = mean(w);
-  let sgw = 0, sgg = 0, sww = 0;
-  for (let i = 0; i < g.length; i++) {
-    sgw += (g[i] - mg) * (w[i] - mw);
-    sgg += (g[i] - mg) ** 2;
-    sww += (w[i] - mw) ** 2;
-  }
-  return { pixels: g.length, ratio: mg / mw, correlation: sgw / Math.sqrt(sgg * sww) };
-}
-
-// An RGBA8 PNG (data URL) of a float render, Reinhard-mapped, for the record.
-function toPng(px) {
-  const canvas = document.createElement('canvas');
-  canvas.width = canvas.height = SIZE;
-  const ctx = canvas.getContext('2d');
-  const img = ctx.createImageData(SIZE, SIZE);
-  for (let y = 0; y < SIZE; y++) {
-    for (let x = 0; x < SIZE; x++) {
-      const s = 4 * ((SIZE - 1 - y) * SIZE + x), d = 4 * (y * SIZE + x);
-      for (let c = 0; c < 3; c++) {
-        const v = px[s + c] / (1 + px[s + c]);
-        img.data[d + c] = Math.round(255 * Math.pow(v, 1 / 2.2));
-      }
-      img.data[d + 3] = 255;
-    }
-  }
-  ctx.putImageData(img, 0, 0);
-  return canvas.toDataURL('image/png');
-}
 
 window.runCheck = async function ({ hdrUrl, bakeDir, cubeUrl, roughness }) {
   const hdr = await new HDRLoader().setDataType(THREE.FloatType).loadAsync(hdrUrl);
