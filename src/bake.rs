@@ -17,11 +17,11 @@ use crate::io::atomic::write_all_atomic;
 use crate::io::cubemap::{encode_texture, to_cross};
 use crate::io::input::{load_input, InputOptions, LoadedEnvironment};
 use crate::io::lut::{encode_lut, LutWriteOptions};
-use crate::io::{dds, exr, ktx2, PixelFormat};
+use crate::io::{dds, exr, ktx1, ktx2, sh_text, PixelFormat};
 use crate::lut::{BrdfLut, DEFAULT_LUT_SIZE};
-use crate::math::sh::SH_ORDER;
+use crate::math::sh::{sh_prescaled, sh_rotated, SH_ORDER};
 use crate::preview::{render_preview, BakedLight, Preview, PreviewOptions, SphereStats};
-use crate::target::{Target, GENERIC};
+use crate::target::{FileSet, Target, GENERIC};
 use crate::{Backend, Error, Result};
 
 /// Container of the specular and irradiance outputs.
@@ -96,6 +96,15 @@ impl BakeOptions {
             exposure_ev: 0.0,
             sh: target.sh,
             preview: None,
+        }
+    }
+
+    /// The container of the cubes, as manifests name it: the bake's for the standard file
+    /// set, the engine's own otherwise.
+    pub fn container_name(&self) -> &'static str {
+        match self.target.files {
+            FileSet::Standard => self.container.extension(),
+            FileSet::FilamentKtx1 => "ktx (KTX 1)",
         }
     }
 
@@ -261,6 +270,23 @@ pub fn validate_options(opts: &BakeOptions) -> Result<()> {
     }
     if let Some(p) = &opts.preview {
         crate::preview::validate_options(p)?;
+    }
+    let target = opts.target;
+    if target.files != FileSet::Standard && opts.container != Container::Ktx2 {
+        return Err(Error::InvalidParameter {
+            name: "--container",
+            message: format!(
+                "--target {} writes the containers its engine loads ({}); --container applies to the generic, bevy and three targets",
+                target.name,
+                opts.container_name()
+            ),
+        });
+    }
+    if target.files == FileSet::FilamentKtx1 && !opts.sh {
+        return Err(Error::InvalidParameter {
+            name: "--no-sh",
+            message: "--target filament writes the SH into the IBL file, where Filament's loaders read them (the web build's createIblFromKtx1 fails without them)".into(),
+        });
     }
     Ok(())
 }
@@ -486,35 +512,25 @@ pub fn bake(
     let specular = target.orientation.apply(specular);
     let dir = output_dir(out_root, input);
     let mut out = Staging::default();
-    let fmt = match opts.container {
-        Container::Exr => "rgb32f (OpenEXR cross)",
-        _ => opts.pixel_format.name(),
-    };
-    for (path, bytes) in encode_cube(&dir, "specular", &specular, opts)? {
-        let levels = specular.levels.len() as u32;
-        out.add(path, bytes, ("specular", fmt, specular.size, levels));
-    }
-    if target.irradiance {
-        let irradiance = target.orientation.apply(irradiance);
-        for (path, bytes) in encode_cube(&dir, "irradiance", &irradiance, opts)? {
-            out.add(path, bytes, ("irradiance", fmt, irradiance.size, 1));
+    match target.files {
+        FileSet::Standard => {
+            let irradiance = target
+                .irradiance
+                .then(|| target.orientation.apply(irradiance));
+            stage_standard(
+                &mut out,
+                &dir,
+                opts,
+                &specular,
+                irradiance.as_ref(),
+                sh.as_ref(),
+                lut,
+            )?;
         }
-    }
-    if let Some(sh) = &sh {
-        out.add(
-            dir.join("sh.json"),
-            sh_json(sh).into_bytes(),
-            ("sh", "json", 0, 0),
-        );
-    }
-    if let Some(lut) = lut {
-        let path = dir.join(target.lut_file.file_name());
-        let bytes = encode_lut(&path, lut, LutWriteOptions::default())?;
-        out.add(
-            path,
-            bytes,
-            ("brdf_lut", target.lut_file.format(), lut.width, 1),
-        );
+        FileSet::FilamentKtx1 => {
+            let stem = crate::io::input::input_stem(input);
+            stage_filament(&mut out, &dir, &stem, opts, &specular, sh.as_ref())?;
+        }
     }
     if let Some(p) = &preview {
         out.add(
@@ -548,6 +564,97 @@ pub fn bake(
         warnings,
         preview,
     })
+}
+
+/// DESIGN.md's file set ([`FileSet::Standard`]): the specular chain and (when given) the
+/// irradiance cube in the bake's container, sh.json and the LUT.
+fn stage_standard(
+    out: &mut Staging,
+    dir: &Path,
+    opts: &BakeOptions,
+    specular: &Cubemap,
+    irradiance: Option<&Cubemap>,
+    sh: Option<&ShCoefficients>,
+    lut: Option<&BrdfLut>,
+) -> Result<()> {
+    let fmt = match opts.container {
+        Container::Exr => "rgb32f (OpenEXR cross)",
+        _ => opts.pixel_format.name(),
+    };
+    for (path, bytes) in encode_cube(dir, "specular", specular, opts)? {
+        let levels = specular.levels.len() as u32;
+        out.add(path, bytes, ("specular", fmt, specular.size, levels));
+    }
+    if let Some(irradiance) = irradiance {
+        for (path, bytes) in encode_cube(dir, "irradiance", irradiance, opts)? {
+            out.add(path, bytes, ("irradiance", fmt, irradiance.size, 1));
+        }
+    }
+    if let Some(sh) = sh {
+        out.add(
+            dir.join("sh.json"),
+            sh_json(sh).into_bytes(),
+            ("sh", "json", 0, 0),
+        );
+    }
+    if let Some(lut) = lut {
+        let lut_file = opts.target.lut_file;
+        let path = dir.join(lut_file.file_name());
+        let bytes = encode_lut(&path, lut, LutWriteOptions::default())?;
+        out.add(path, bytes, ("brdf_lut", lut_file.format(), lut.width, 1));
+    }
+    Ok(())
+}
+
+/// The SH as Filament evaluates them: the E/π coefficients in the engine's frame, with the
+/// basis constants folded in (cmgen `--sh-shader`).
+pub fn filament_sh(sh: &ShCoefficients, target: &Target) -> [[f32; 3]; 9] {
+    let frame = target.orientation.frame.matrix();
+    sh_prescaled(&sh_rotated(&sh.irradiance, frame))
+}
+
+/// cmgen's deploy set for Filament ([`FileSet::FilamentKtx1`]): `<stem>_ibl.ktx` (the
+/// chain, the SH under the key `sh`), `<stem>_skybox.ktx` (level 0) and `sh.txt`.
+fn stage_filament(
+    out: &mut Staging,
+    dir: &Path,
+    stem: &str,
+    opts: &BakeOptions,
+    specular: &Cubemap,
+    sh: Option<&ShCoefficients>,
+) -> Result<()> {
+    let sh = sh.map(|sh| filament_sh(sh, opts.target));
+    let fmt = opts.pixel_format.name();
+    let ktx = |path: &Path, cube: &Cubemap, key_values: &[(&str, &[u8])]| {
+        ktx1::encode(&encode_texture(cube, opts.pixel_format), key_values).map_err(|message| {
+            Error::Encode {
+                path: path.to_path_buf(),
+                format: "KTX 1",
+                message,
+            }
+        })
+    };
+    let ibl = dir.join(format!("{stem}_ibl.ktx"));
+    let sh_value = sh.as_ref().map(sh_text::ktx_value);
+    let key_values: Vec<(&str, &[u8])> = sh_value.iter().map(|v| ("sh", v.as_slice())).collect();
+    let bytes = ktx(&ibl, specular, &key_values)?;
+    let levels = specular.levels.len() as u32;
+    out.add(ibl, bytes, ("specular", fmt, specular.size, levels));
+    let skybox_cube = Cubemap {
+        size: specular.size,
+        levels: vec![specular.levels[0].clone()],
+    };
+    let skybox = dir.join(format!("{stem}_skybox.ktx"));
+    let bytes = ktx(&skybox, &skybox_cube, &[])?;
+    out.add(skybox, bytes, ("skybox", fmt, specular.size, 1));
+    if let Some(sh) = &sh {
+        out.add(
+            dir.join("sh.txt"),
+            sh_text::sh_txt(sh).into_bytes(),
+            ("sh", "text (cmgen --sh-shader)", 0, 0),
+        );
+    }
+    Ok(())
 }
 
 /// manifest.json's root.
@@ -635,7 +742,7 @@ fn manifest_json(
         backend: backend.identity(),
         target: TargetRecord {
             name: target.name,
-            orientation: target.orientation.description(),
+            orientation: target.orientation.description,
             notes: target.notes,
         },
         parameters: Parameters {
@@ -646,7 +753,7 @@ fn manifest_json(
             roughest_level: "least-squares fit of the irradiance (E / pi) for bilinear lookups, when the irradiance cube is at least twice as fine",
             irradiance_size: opts.irradiance_size,
             irradiance: "E / pi",
-            container: opts.container.extension(),
+            container: opts.container_name(),
             pixel_format: opts.pixel_format.name(),
             zstd: opts.zstd,
             samples: opts.samples,

@@ -40,15 +40,16 @@ pub enum Command {
     /// R32G32_FLOAT with --f32).
     Lut(LutArgs),
 
-    /// Converts an HDR environment (equirect, cross, faces, KTX2/DDS cube) to a cubemap.
+    /// Converts an HDR environment (equirect, cross, faces, KTX2/DDS/KTX cube) to a cubemap.
     ///
     /// Faces +X, −X, +Y, −Y, +Z, −Z in the Vulkan/D3D/OpenGL face orientation: a shader
     /// sampling the result with a world-space direction d gets the radiance arriving from d
     /// (right-handed, +Y up; the equirect's centre looks along +X, u = 0.75 along +Z).
     /// Each texel is the solid-angle-weighted mean of the environment over its footprint;
-    /// mips (--mips) keep the energy of the level above. Format from the extension: .ktx2
-    /// and .dds with every mip in --pixel-format; .exr and .hdr (level 0, for inspection)
-    /// as six files <stem>_px … <stem>_nz, or one image with --layout cross|equirect.
+    /// mips (--mips) keep the energy of the level above. Format from the extension: .ktx2,
+    /// .dds and .ktx (KTX 1, as Filament loads it) with every mip in --pixel-format; .exr
+    /// and .hdr (level 0, for inspection) as six files <stem>_px … <stem>_nz, or one image
+    /// with --layout cross|equirect.
     Cubemap(CubemapArgs),
 
     /// Bakes everything a PBR renderer needs for image-based lighting from each input.
@@ -57,7 +58,7 @@ pub enum Command {
     /// m/(levels−1), down to --min-mip-size), irradiance.<ext> (E/π: multiply by the
     /// diffuse albedo), sh.json (9 SH coefficients, radiance and E/π), brdf_lut.png and
     /// manifest.json (version, target, parameters, every output with its SHA-256).
-    /// --target bevy|three write what that engine reads, as it samples it (see the
+    /// --target bevy|three|filament write what that engine reads, as it samples it (see the
     /// README's "Engine targets"). Every input is baked even when another fails; the
     /// exit code is 1 if any failed.
     Bake(BakeArgs),
@@ -100,12 +101,15 @@ pub struct BakeArgs {
 
     /// The engine the files are for: generic (DESIGN.md's conventions), bevy (Bevy 0.19:
     /// z mirrored, rgb9e5 + zstd, no LUT or SH), three (three.js r187: x mirrored, a PMREM
-    /// chain to 8×8 at r = 1 − √(1 − m/(levels − 1)), no irradiance cube or LUT).
+    /// chain to 8×8 at r = 1 − √(1 − m/(levels − 1)), no irradiance cube or LUT), filament
+    /// (cmgen's files: <stem>_ibl.ktx with the SH, <stem>_skybox.ktx and sh.txt, KTX 1
+    /// rg11b10f, a quarter turn about +Y, the chain to 16×16 at three's roughness).
     #[arg(long, value_enum, default_value_t = TargetArg::Generic)]
     pub target: TargetArg,
 
     /// Edge of the smallest specular mip (power of two; 1 for the full chain to 1×1): the
-    /// chain has log2(specular-size / min-mip-size) + 1 levels [default: 4; three: 8].
+    /// chain has log2(specular-size / min-mip-size) + 1 levels [default: 4; three: 8;
+    /// filament: 16].
     #[arg(long)]
     pub min_mip_size: Option<u32>,
 
@@ -113,11 +117,13 @@ pub struct BakeArgs {
     #[arg(long, default_value_t = 32)]
     pub irradiance_size: u32,
 
-    /// Container of the specular and irradiance cubes.
+    /// Container of the specular and irradiance cubes (generic, bevy and three; the other
+    /// targets write their engine's own).
     #[arg(long, value_enum, default_value_t = ContainerArg::Ktx2)]
     pub container: ContainerArg,
 
-    /// Pixel format of KTX2/DDS outputs [default: the target's: rgba16f; bevy: rgb9e5].
+    /// Pixel format of KTX2/DDS/KTX outputs [default: the target's: rgba16f; bevy: rgb9e5;
+    /// filament: rg11b10f].
     #[arg(long, value_enum)]
     pub pixel_format: Option<PixelFormatArg>,
 
@@ -365,7 +371,8 @@ pub struct CubemapArgs {
     #[arg(long, value_enum, default_value_t = TargetArg::Generic)]
     pub target: TargetArg,
 
-    /// Pixel format of KTX2/DDS outputs [default: the target's: rgba16f; bevy: rgb9e5].
+    /// Pixel format of KTX2/DDS/KTX outputs [default: the target's: rgba16f; bevy: rgb9e5;
+    /// filament: rg11b10f].
     #[arg(long, value_enum)]
     pub pixel_format: Option<PixelFormatArg>,
 
@@ -416,6 +423,8 @@ pub enum TargetArg {
     Bevy,
     /// three.js r187.
     Three,
+    /// Filament (cmgen's KTX 1 files).
+    Filament,
 }
 
 impl From<TargetArg> for &'static splitsum::target::Target {
@@ -425,6 +434,7 @@ impl From<TargetArg> for &'static splitsum::target::Target {
             TargetArg::Generic => &t_::GENERIC,
             TargetArg::Bevy => &t_::BEVY,
             TargetArg::Three => &t_::THREE,
+            TargetArg::Filament => &t_::FILAMENT,
         }
     }
 }

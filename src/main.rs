@@ -86,25 +86,28 @@ fn run_cubemap(args: CubemapArgs) -> anyhow::Result<()> {
         .clone()
         .or_else(|| args.faces.first().cloned())
         .unwrap_or_default();
+    let target: &'static splitsum::target::Target = args.target.into();
     let output = args.output.clone().unwrap_or_else(|| {
         let stem = splitsum::io::input::input_stem(&first_input);
-        std::path::PathBuf::from("out").join(format!("{stem}_cubemap.ktx2"))
+        std::path::PathBuf::from("out").join(format!("{stem}_cubemap.{}", target.cube_extension))
     });
     check_cube_path(&output)?;
     if let Some(size) = args.size {
         splitsum::convert::validate_cube_size(size)?;
     }
-    let target: &'static splitsum::target::Target = args.target.into();
     let format = args.pixel_format.map_or(target.pixel_format, Into::into);
-    let is_texture = matches!(splitsum::io::extension_of(&output).as_str(), "ktx2" | "dds");
-    if target.orientation != splitsum::target::Orientation::Generic
+    let is_texture = matches!(
+        splitsum::io::extension_of(&output).as_str(),
+        "ktx2" | "dds" | "ktx"
+    );
+    if target.orientation.texel_map() != splitsum::math::cubemap::AxisMap::IDENTITY
         && !is_texture
         && matches!(args.layout, cli::LayoutArg::Equirect)
     {
         return Err(splitsum::Error::InvalidParameter {
             name: "--target",
             message: format!(
-                "an equirect is not a cube: --target {} mirrors cube faces, so it applies to .ktx2, .dds and the faces or cross layouts",
+                "an equirect is not a cube: --target {} re-orients cube faces, so it applies to .ktx2, .dds and the faces or cross layouts",
                 target.name
             ),
         }

@@ -8,58 +8,56 @@
 //! outputs in the engine (`engines/bevy`, `engines/three`; the README's "Engine targets").
 
 use crate::cpu::prefilter_specular::{MipRoughness, DEFAULT_MIN_MIP_SIZE};
+
+/// The smallest mip of the Filament target's chain: cmgen's default (`--ibl-min-lod-size`).
+pub const FILAMENT_MIN_MIP_SIZE: u32 = 16;
 use crate::environment::Cubemap;
 use crate::io::PixelFormat;
+use crate::math::cubemap::AxisMap;
 
-/// Where a target's cube texel for world direction d lies.
+/// How an engine's shaders read directions, against DESIGN.md's (right-handed, +Y up, the
+/// equirect's centre along +X).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Orientation {
-    /// At d: `textureSample(cube, s, d)` returns the light arriving from d (DESIGN.md).
-    Generic,
-    /// At (−x, y, z): the engine mirrors x before sampling (three.js: `flipEnvMap`, the
-    /// (−1, 1, 1) matrix WebGLMaterials and WebGLBackground premultiply for cube textures
-    /// that are not render targets).
-    MirrorX,
-    /// At (x, y, −z): the engine mirrors z before sampling (Bevy:
-    /// `sample_dir.z = -sample_dir.z` in bevy_pbr's environment_map.wgsl, the skybox's
-    /// `ray_direction * vec3(1.0, 1.0, -1.0)`).
-    MirrorZ,
+pub struct Orientation {
+    /// The engine's world direction for DESIGN.md's direction d: the identity where the
+    /// engine's world is DESIGN.md's, a quarter turn about +Y for Filament (whose
+    /// environments, as cmgen bakes them, face another way). SH written for the engine
+    /// (Filament's KTX key, sh.txt) are expressed in this frame.
+    pub frame: AxisMap,
+    /// Where the engine's shader looks a world direction w up in a cube: a mirror for
+    /// engines that negate an axis before every cube lookup (Bevy z, three.js x).
+    pub shader: AxisMap,
+    /// As written in manifests.
+    pub description: &'static str,
 }
 
 impl Orientation {
-    /// The world axis the engine negates, if any.
-    pub fn mirror_axis(self) -> Option<usize> {
-        match self {
-            Orientation::Generic => None,
-            Orientation::MirrorX => Some(0),
-            Orientation::MirrorZ => Some(2),
-        }
+    /// DESIGN.md's: `textureSample(cube, s, d)` returns the light arriving from d.
+    pub const GENERIC: Orientation = Orientation {
+        frame: AxisMap::IDENTITY,
+        shader: AxisMap::IDENTITY,
+        description: "generic: texel at d holds the light arriving from d",
+    };
+
+    /// Where the target's cube holds the light arriving from DESIGN.md's direction d: the
+    /// engine's lookup of its own world direction for d.
+    pub fn lookup(&self, d: [f32; 3]) -> [f32; 3] {
+        self.shader.apply(self.frame.apply(d))
     }
 
-    /// The texture coordinate direction at which the engine reads world direction `d`.
-    pub fn lookup(self, d: [f32; 3]) -> [f32; 3] {
-        let mut d = d;
-        if let Some(axis) = self.mirror_axis() {
-            d[axis] = -d[axis];
-        }
-        d
+    /// The texel permutation [`Orientation::lookup`] is.
+    pub fn texel_map(&self) -> AxisMap {
+        self.shader.after(self.frame)
     }
 
     /// `cube` (in generic orientation) stored for this orientation: every level's texels
-    /// permuted so that the engine's lookup of d returns the light from d.
-    pub fn apply(self, cube: Cubemap) -> Cubemap {
-        match self.mirror_axis() {
-            None => cube,
-            Some(axis) => cube.mirrored(axis),
-        }
-    }
-
-    /// The orientation as written in manifests.
-    pub fn description(self) -> &'static str {
-        match self {
-            Orientation::Generic => "generic: texel at d holds the light arriving from d",
-            Orientation::MirrorX => "mirror x: texel at (-x, y, z) holds the light from (x, y, z)",
-            Orientation::MirrorZ => "mirror z: texel at (x, y, -z) holds the light from (x, y, z)",
+    /// permuted so that the engine's lookup of a direction returns the light from it.
+    pub fn apply(&self, cube: Cubemap) -> Cubemap {
+        let map = self.texel_map();
+        if map == AxisMap::IDENTITY {
+            cube
+        } else {
+            cube.remapped(map)
         }
     }
 }
@@ -92,6 +90,19 @@ impl LutFile {
     }
 }
 
+/// Which files a bake writes for the engine, each in the container the engine loads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FileSet {
+    /// DESIGN.md's: `specular.<ext>` and `irradiance.<ext>` (when [`Target::irradiance`])
+    /// in the bake's container (KTX2, DDS or EXR crosses), `sh.json` and the LUT.
+    Standard,
+    /// cmgen's deploy set (`cmgen -x DIR --format=ktx`), which Filament loads:
+    /// `<stem>_ibl.ktx` (KTX 1: the specular chain, with the SH pre-scaled for Filament's
+    /// shader as text under the key `sh`), `<stem>_skybox.ktx` (the environment, level 0
+    /// alone) and `sh.txt`.
+    FilamentKtx1,
+}
+
 /// One engine's conventions.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Target {
@@ -115,6 +126,10 @@ pub struct Target {
     pub lut: bool,
     /// The LUT file, when one is written.
     pub lut_file: LutFile,
+    /// The files written and their containers.
+    pub files: FileSet,
+    /// The extension of `splitsum cubemap`'s default output for this target.
+    pub cube_extension: &'static str,
     /// Pixel formats the engine cannot use everywhere, with the reason (a warning).
     pub format_warnings: &'static [(PixelFormat, &'static str)],
     /// How the engine reads the files, for the manifest.
@@ -124,7 +139,7 @@ pub struct Target {
 /// DESIGN.md's conventions: right-handed, +Y up, lod = r·(M − 1), irradiance E/π.
 pub const GENERIC: Target = Target {
     name: "generic",
-    orientation: Orientation::Generic,
+    orientation: Orientation::GENERIC,
     pixel_format: PixelFormat::Rgba16f,
     zstd: None,
     roughness: MipRoughness::Linear,
@@ -133,6 +148,8 @@ pub const GENERIC: Target = Target {
     sh: true,
     lut: true,
     lut_file: LutFile::Png,
+    files: FileSet::Standard,
+    cube_extension: "ktx2",
     format_warnings: &[],
     notes: &[
         "sample specular at lod = roughness * (levels - 1), seamless trilinear",
@@ -143,7 +160,13 @@ pub const GENERIC: Target = Target {
 /// Bevy 0.19 (`EnvironmentMapLight`, `Skybox`).
 pub const BEVY: Target = Target {
     name: "bevy",
-    orientation: Orientation::MirrorZ,
+    // bevy_pbr's environment_map.wgsl: `sample_dir.z = -sample_dir.z` ("cube maps are
+    // left-handed"); the skybox shader: `ray_direction * vec3(1.0, 1.0, -1.0)`.
+    orientation: Orientation {
+        frame: AxisMap::IDENTITY,
+        shader: AxisMap::mirror(2),
+        description: "mirror z: texel at (x, y, -z) holds the light from (x, y, z)",
+    },
     pixel_format: PixelFormat::Rgb9e5,
     zstd: Some(10),
     roughness: MipRoughness::Linear,
@@ -152,6 +175,8 @@ pub const BEVY: Target = Target {
     sh: false,
     lut: false,
     lut_file: LutFile::Png,
+    files: FileSet::Standard,
+    cube_extension: "ktx2",
     format_warnings: &[(
         PixelFormat::Rgba32f,
         "rgba32f is not filterable under WebGPU's limits: Bevy fails to bind it without the native FLOAT32_FILTERABLE feature; rgba16f or rgb9e5 render everywhere",
@@ -167,7 +192,13 @@ pub const BEVY: Target = Target {
 /// three.js r187 (`MeshStandardMaterial`, `MeshPhysicalMaterial`, `scene.background`).
 pub const THREE: Target = Target {
     name: "three",
-    orientation: Orientation::MirrorX,
+    // `flipEnvMap`: WebGLMaterials and WebGLBackground premultiply (-1, 1, 1) for cube
+    // textures that are not render targets.
+    orientation: Orientation {
+        frame: AxisMap::IDENTITY,
+        shader: AxisMap::mirror(0),
+        description: "mirror x: texel at (-x, y, z) holds the light from (x, y, z)",
+    },
     pixel_format: PixelFormat::Rgba16f,
     zstd: Some(10),
     roughness: MipRoughness::Quadratic,
@@ -176,6 +207,8 @@ pub const THREE: Target = Target {
     sh: true,
     lut: false,
     lut_file: LutFile::Ktx2,
+    files: FileSet::Standard,
+    cube_extension: "ktx2",
     format_warnings: &[(
         PixelFormat::Rgba32f,
         "rgba32f cubes are filtered only where WebGL has OES_texture_float_linear; rgba16f is filterable everywhere",
@@ -188,8 +221,54 @@ pub const THREE: Target = Target {
     ],
 };
 
+/// Filament (`IndirectLight`, `Skybox`; the web build's `Engine.createIblFromKtx1` and
+/// `createSkyFromKtx1`), as cmgen deploys an environment for it.
+pub const FILAMENT: Target = Target {
+    name: "filament",
+    // cmgen's faces: DESIGN.md's direction d is stored at (−z, y, x), a quarter turn about
+    // +Y (measured against cmgen 1.9's output in tests/targets.rs). Filament samples its
+    // cubes with the world direction as it is, and evaluates the SH in the same frame.
+    orientation: Orientation {
+        frame: AxisMap {
+            axis: [2, 1, 0],
+            sign: [-1, 1, 1],
+        },
+        shader: AxisMap::IDENTITY,
+        description: "filament (cmgen's faces): texel at (-z, y, x) holds the light from (x, y, z), a quarter turn about +y",
+    },
+    // cmgen's KTX format; Filament's web loader warns about any other but RGB32F.
+    pixel_format: PixelFormat::Rg11b10f,
+    zstd: None,
+    // Filament's perceptualRoughnessToLod: lod = iblRoughnessOneLevel · r (2 − r), with
+    // iblRoughnessOneLevel = the reflections texture's level count − 1.
+    roughness: MipRoughness::Quadratic,
+    min_mip_size: FILAMENT_MIN_MIP_SIZE,
+    irradiance: false,
+    sh: true,
+    lut: false,
+    lut_file: LutFile::Png,
+    files: FileSet::FilamentKtx1,
+    cube_extension: "ktx",
+    format_warnings: &[
+        (
+            PixelFormat::Rgba16f,
+            "Filament's web loader (createIblFromKtx1) warns about any IBL format but R11F_G11F_B10F and RGB32F; the native engine loads rgba16f",
+        ),
+        (
+            PixelFormat::Rgba32f,
+            "Filament's web loader (createIblFromKtx1) warns about any IBL format but R11F_G11F_B10F and RGB32F; the native engine loads rgba32f",
+        ),
+    ],
+    notes: &[
+        "<stem>_ibl.ktx: IndirectLight reflections (web: engine.createIblFromKtx1), its key 'sh' the irradiance SH pre-scaled for Filament's shader (IndirectLight::Builder::irradiance(3, sh); web: ibl.shfloats)",
+        "<stem>_skybox.ktx: Skybox environment (web: engine.createSkyFromKtx1)",
+        "Filament samples lod = (levels - 1) * r * (2 - r) (perceptualRoughnessToLod); without SH it reads diffuse from the last level, which holds E / pi",
+        "sh.txt: the same SH as cmgen --sh-shader writes them",
+    ],
+};
+
 /// Every target, for the command line.
-pub const TARGETS: [&Target; 3] = [&GENERIC, &BEVY, &THREE];
+pub const TARGETS: [&Target; 4] = [&GENERIC, &BEVY, &THREE, &FILAMENT];
 
 impl Target {
     /// The target called `name`.
@@ -233,7 +312,7 @@ mod tests {
 
     #[test]
     fn a_mirrored_cube_returns_the_light_from_d_where_the_engine_looks() {
-        for orientation in [Orientation::MirrorX, Orientation::MirrorZ] {
+        for orientation in TARGETS.map(|t| t.orientation) {
             let cube = orientation.apply(direction_cube(8));
             for m in 0..cube.levels.len() {
                 let n = cube.level_size(m);
@@ -248,7 +327,8 @@ mod tests {
                             for k in 0..3 {
                                 assert!(
                                     (got[k] - d[k]).abs() < 1e-6,
-                                    "{orientation:?} {m} {f} {i} {j}"
+                                    "{} {m} {f} {i} {j}",
+                                    orientation.description
                                 );
                             }
                         }

@@ -195,7 +195,9 @@ fn default_bake_lookup_error() {
 
 /// The layout scan behind [`DEFAULT_MIN_MIP_SIZE`]: lookup error per roughness for each
 /// minimum mip size of a 256 chain (`cargo test --release --test lookup -- --ignored
-/// --nocapture`), or for the layouts in `SPLITSUM_LAYOUTS` ("512/8,256/4": size/min).
+/// --nocapture`), or for the layouts in `SPLITSUM_LAYOUTS` ("512/8,256/4": size/min), at
+/// r = m/(M − 1), or with `SPLITSUM_MAPPING=quadratic` at three's and Filament's
+/// r = 1 − √(1 − m/(M − 1)).
 #[test]
 #[ignore]
 fn layout_scan() {
@@ -225,8 +227,12 @@ fn layout_scan() {
                 .collect(),
             Err(_) => [1, 2, 4, 8, 16, 32].map(|m| (256, m)).to_vec(),
         };
+        let mapping = match std::env::var("SPLITSUM_MAPPING").as_deref() {
+            Ok("quadratic") => MipRoughness::Quadratic,
+            _ => MipRoughness::Linear,
+        };
         for (size, min) in layouts {
-            let layout = (size, min, MipRoughness::Linear);
+            let layout = (size, min, mapping);
             let errors = lookup_errors(&CpuBackend, &e, layout, &r, &truth);
             println!(
                 "{size} to {min:>2}: {}",

@@ -211,8 +211,8 @@ fn every_model_keeps_the_albedo_identities() {
 #[ignore]
 fn filament_dfg_against_cmgen() {
     use exr::prelude::*;
-    let Ok(cmgen) = which_cmgen() else {
-        skip("cmgen not found");
+    let Ok(cmgen) = common::which_cmgen() else {
+        common::skip_peer("cmgen not found");
         return;
     };
     let dir = common::output_dir("lut-cmgen");
@@ -294,16 +294,6 @@ fn peer_errors(
     (vs_ours, vs_ref, ours_vs_ref)
 }
 
-fn which_cmgen() -> Result<std::path::PathBuf, ()> {
-    std::env::var_os("PATH")
-        .and_then(|p| {
-            std::env::split_paths(&p)
-                .map(|d| d.join("cmgen"))
-                .find(|c| c.is_file())
-        })
-        .ok_or(())
-}
-
 /// three.js r187's DFG (`src/renderers/shaders/DFGLUTData.js`: 16×16 RG16F, 4096 samples per
 /// texel, sampled at uv = (roughness, n·v), so texel (i, j) holds r = (i + ½)/16 and
 /// n·v = (j + ½)/16) against splitsum's `smith-correlated` model and the converged reference.
@@ -314,7 +304,7 @@ fn which_cmgen() -> Result<std::path::PathBuf, ()> {
 fn three_dfg_against_splitsum() {
     let path = "engines/three/node_modules/three/src/renderers/shaders/DFGLUTData.js";
     let Ok(js) = std::fs::read_to_string(path) else {
-        skip(&format!("{path} not found (npm ci in engines/three)"));
+        common::skip_peer(&format!("{path} not found (npm ci in engines/three)"));
         return;
     };
     let start = js.find("new Uint16Array( [").expect("the DATA array");
@@ -406,7 +396,9 @@ fn gltf_viewer_luts_against_splitsum() {
         )
     };
     let (Some(ggx), Some(charlie)) = (read("lut_ggx"), read("lut_charlie")) else {
-        skip("target/engines/gltf/*.f32 not found (cd engines/gltf && npm ci && node luts.mjs)");
+        common::skip_peer(
+            "target/engines/gltf/*.f32 not found (cd engines/gltf && npm ci && node luts.mjs)",
+        );
         return;
     };
     let n = 128usize;
@@ -489,14 +481,4 @@ fn viewer_charlie_expectation(n_dot_v: f64, r: f64) -> f64 {
         }
     }
     8.0 * PI * sum / (nu * nphi) as f64
-}
-
-/// A peer comparison whose peer is missing skips, except where SPLITSUM_REQUIRE_PEERS=1
-/// (`.ci/run` sets it, so CI cannot pass without comparing).
-fn skip(why: &str) {
-    assert!(
-        std::env::var("SPLITSUM_REQUIRE_PEERS").as_deref() != Ok("1"),
-        "{why}, and SPLITSUM_REQUIRE_PEERS=1"
-    );
-    eprintln!("{why}; skipping");
 }

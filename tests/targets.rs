@@ -296,3 +296,277 @@ fn bevy_warns_about_rgba32f() {
     );
     assert!(dir.join("venice_sunset_1k/specular.ktx2").exists());
 }
+
+/// A KTX 1 cube as splitsum writes it for Filament.
+fn ktx1(path: &Path) -> splitsum::io::ktx1::Ktx1 {
+    splitsum::io::ktx1::decode(&std::fs::read(path).unwrap()).unwrap()
+}
+
+/// Filament's evaluation of its pre-scaled SH at `w` (`Irradiance_SphericalHarmonics` in
+/// Filament's shaders: sh[0] + sh[1] y + sh[2] z + sh[3] x + sh[4] yx + sh[5] yz +
+/// sh[6] (3z² − 1) + sh[7] zx + sh[8] (x² − y²)).
+fn filament_irradiance(sh: &[[f32; 3]; 9], w: [f32; 3]) -> [f32; 3] {
+    let [x, y, z] = w;
+    let p = [
+        1.0,
+        y,
+        z,
+        x,
+        y * x,
+        y * z,
+        3.0 * z * z - 1.0,
+        z * x,
+        x * x - y * y,
+    ];
+    std::array::from_fn(|c| (0..9).map(|k| sh[k][c] * p[k]).sum())
+}
+
+/// `--target filament`: cmgen's file set (`<stem>_ibl.ktx` with the SH under `sh`,
+/// `<stem>_skybox.ktx`, `sh.txt`), the chain to 16² at r = 1 − √(1 − m/(M − 1)), level 0
+/// the generic bake's turned a quarter about +Y (texel at (−z, y, x) holds L(x, y, z)),
+/// and SH that Filament's shader evaluates at the engine's direction to the generic bake's
+/// E/π at the world direction.
+#[test]
+fn filament_target_is_cmgens_file_set_in_filaments_frame() {
+    let dir = common::output_dir("targets-filament");
+    let _ = std::fs::remove_dir_all(&dir);
+    let bake = |out: &Path, extra: &[&str]| {
+        run(splitsum()
+            .args(["bake", "tests/data/quarry_01_1k.hdr", "--backend", "cpu"])
+            .args([
+                "--specular-size",
+                "64",
+                "--irradiance-size",
+                "8",
+                "-q",
+                "-o",
+            ])
+            .arg(out)
+            .args(extra));
+        out.join("quarry_01_1k")
+    };
+    let filament = bake(&dir.join("f"), &["--target", "filament"]);
+    let exact = bake(
+        &dir.join("f32"),
+        &["--target", "filament", "--pixel-format", "rgba32f"],
+    );
+    let generic = bake(&dir.join("g"), &["--pixel-format", "rgba32f", "--no-lut"]);
+
+    let m = manifest(&filament);
+    assert_eq!(m["target"]["name"], "filament");
+    assert_eq!(m["parameters"]["container"], "ktx (KTX 1)");
+    assert_eq!(m["parameters"]["pixel_format"], "rg11b10f");
+    assert_eq!(m["parameters"]["specular_levels"], 3, "64² to 16²");
+    assert_eq!(
+        m["parameters"]["roughness_per_mip"],
+        "1 - sqrt(1 - m / (levels - 1))"
+    );
+    let files: Vec<&str> = m["outputs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|o| o["file"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        files,
+        ["quarry_01_1k_ibl.ktx", "quarry_01_1k_skybox.ktx", "sh.txt"]
+    );
+
+    // The IBL: R11F_G11F_B10F with cmgen's glType, three levels, the SH as text.
+    let ibl = ktx1(&filament.join("quarry_01_1k_ibl.ktx"));
+    assert_eq!(
+        (ibl.gl.gl_type, ibl.gl.internal_format, ibl.faces),
+        (0x8C3A, 0x8C3A, 6)
+    );
+    assert_eq!(ibl.levels.len(), 3);
+    let sh_key = splitsum::io::sh_text::parse(
+        std::str::from_utf8(ibl.value("sh").expect("the sh key")).unwrap(),
+    )
+    .unwrap();
+    let sh_txt =
+        splitsum::io::sh_text::parse(&std::fs::read_to_string(filament.join("sh.txt")).unwrap())
+            .unwrap();
+    for (a, b) in sh_key.iter().flatten().zip(sh_txt.iter().flatten()) {
+        assert!((a - b).abs() <= 1e-6 * a.abs().max(1.0), "{a} vs {b}");
+    }
+    let skybox = ktx1(&filament.join("quarry_01_1k_skybox.ktx"));
+    assert_eq!((skybox.width, skybox.levels.len()), (64, 1));
+
+    // Level 0 in rgba32f: the generic cube turned, texel for texel.
+    let turned = splitsum::io::ktx1::read_cube(&exact.join("quarry_01_1k_ibl.ktx")).unwrap();
+    let g = cube(&generic.join("specular.ktx2"));
+    let frame = splitsum::math::cubemap::AxisMap {
+        axis: [2, 1, 0],
+        sign: [-1, 1, 1],
+    };
+    assert_eq!(turned.levels[0], g.remapped(frame).levels[0]);
+    assert_eq!(
+        splitsum::target::FILAMENT.orientation.texel_map(),
+        frame,
+        "the target's frame"
+    );
+    // A KTX 1 cube is an input too: read back at its own size, it is the same cube.
+    let back = dir.join("back.ktx2");
+    run(splitsum()
+        .args(["cubemap", "--backend", "cpu", "--pixel-format", "rgba32f", "-o"])
+        .arg(&back)
+        .arg(exact.join("quarry_01_1k_skybox.ktx")));
+    assert_eq!(cube(&back).levels[0], turned.levels[0]);
+
+    // The SH: Filament's polynomial at (−z, y, x) is the generic E/π at (x, y, z).
+    let v: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(generic.join("sh.json")).unwrap()).unwrap();
+    let world: [[f32; 3]; 9] = std::array::from_fn(|k| {
+        std::array::from_fn(|c| v["irradiance_sh9"][k][c].as_f64().unwrap() as f32)
+    });
+    for d in common::uniform_directions(64, 7) {
+        let d = d.map(|x| x as f32);
+        let want = splitsum::math::sh::sh_eval(&world, d);
+        let got = filament_irradiance(&sh_key, frame.apply(d));
+        for c in 0..3 {
+            assert!(
+                (got[c] - want[c]).abs() <= 1e-5 * want[c].abs().max(1.0),
+                "{d:?}: {got:?} vs {want:?}"
+            );
+        }
+    }
+}
+
+/// What Filament's KTX 1 cannot hold, and options the target ignores, are refused in one
+/// line before any file is written.
+#[test]
+fn filament_target_refuses_what_it_cannot_write() {
+    let dir = common::output_dir("targets-filament-refusals");
+    let _ = std::fs::remove_dir_all(&dir);
+    for (extra, says) in [
+        (
+            &["--pixel-format", "rgb9e5"][..],
+            "rgb9e5 cannot be written as KTX 1",
+        ),
+        (&["--container", "dds"][..], "--container applies to"),
+        (&["--no-sh"][..], "writes the SH into the IBL file"),
+    ] {
+        let o = splitsum()
+            .args([
+                "bake",
+                "tests/data/venice_sunset_1k.hdr",
+                "--target",
+                "filament",
+            ])
+            .args(["--specular-size", "32", "--backend", "cpu", "-q", "-o"])
+            .arg(&dir)
+            .args(extra)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{extra:?}: {err}");
+        assert!(err.contains(says), "{extra:?}: {err}");
+        assert!(
+            !dir.join("venice_sunset_1k").exists(),
+            "{extra:?} wrote files"
+        );
+    }
+}
+
+/// cmgen's faces, which Filament shows as they are, are the Filament target's: level 0 of
+/// `cmgen -x DIR --format=ktx --size=64` and of a 64² `--target filament` cube of the same
+/// HDRI put the sun within half a degree of each other and agree in pattern (the
+/// correlation of ln(1 + L) over 4×4-texel blocks); a generic cube read as Filament's does
+/// not.
+/// Runs where cmgen is installed (`.ci/run` installs it and requires it).
+#[test]
+fn filament_frame_is_cmgens() {
+    let Ok(cmgen) = common::which_cmgen() else {
+        common::skip_peer("cmgen not found");
+        return;
+    };
+    let dir = common::output_dir("targets-filament-cmgen");
+    let _ = std::fs::remove_dir_all(&dir);
+    let input = "tests/data/venice_sunset_1k.hdr";
+    run(Command::new(&cmgen)
+        .args(["-q", "-x"])
+        .arg(dir.join("cmgen"))
+        .args(["--format=ktx", "--size=64", input]));
+    let theirs = splitsum::io::ktx1::read_cube(&dir.join("cmgen/cmgen_skybox.ktx")).unwrap();
+    let cube_for = |target: &str| {
+        let path = dir.join(format!("{target}.ktx"));
+        run(splitsum()
+            .args(["cubemap", input, "--size", "64", "--backend", "cpu"])
+            .args(["--target", target, "--pixel-format", "rg11b10f", "-o"])
+            .arg(&path));
+        splitsum::io::ktx1::read_cube(&path).unwrap()
+    };
+    // ln(1 + L) of level 0 averaged over 4×4 blocks, and the luminance-weighted direction
+    // of the texels above half the maximum of level 0.
+    let stats = |c: &splitsum::Cubemap| {
+        let n0 = c.size;
+        let mut pattern = Vec::new();
+        for f in 0..6 {
+            for bj in 0..n0 / 4 {
+                for bi in 0..n0 / 4 {
+                    let mut sum = 0.0;
+                    for j in 4 * bj..4 * bj + 4 {
+                        for i in 4 * bi..4 * bi + 4 {
+                            sum += c.texel(0, f, i, j)[1] as f64 / 16.0;
+                        }
+                    }
+                    pattern.push((1.0 + sum).ln());
+                }
+            }
+        }
+        let lum = |t: [f32; 4]| 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2];
+        let max = c.levels[0].iter().map(|&t| lum(t)).fold(0.0, f32::max);
+        let mut sun = [0.0f64; 3];
+        for f in 0..6 {
+            for j in 0..n0 {
+                for i in 0..n0 {
+                    let l = lum(c.texel(0, f, i, j));
+                    if l >= 0.5 * max {
+                        let d = splitsum::math::cubemap::cube_texel_direction(
+                            f, i as i32, j as i32, n0,
+                        );
+                        for k in 0..3 {
+                            sun[k] += (l * d[k]) as f64;
+                        }
+                    }
+                }
+            }
+        }
+        let len = sun.iter().map(|v| v * v).sum::<f64>().sqrt();
+        (pattern, sun.map(|v| v / len))
+    };
+    let correlation = |a: &[f64], b: &[f64]| {
+        let n = a.len() as f64;
+        let (ma, mb) = (a.iter().sum::<f64>() / n, b.iter().sum::<f64>() / n);
+        let (mut ab, mut aa, mut bb) = (0.0, 0.0, 0.0);
+        for (x, y) in a.iter().zip(b) {
+            ab += (x - ma) * (y - mb);
+            aa += (x - ma).powi(2);
+            bb += (y - mb).powi(2);
+        }
+        ab / (aa * bb).sqrt()
+    };
+    let degrees = |a: [f64; 3], b: [f64; 3]| {
+        (a[0] * b[0] + a[1] * b[1] + a[2] * b[2])
+            .clamp(-1.0, 1.0)
+            .acos()
+            .to_degrees()
+    };
+    let (their_pattern, their_sun) = stats(&theirs);
+    let (ours, our_sun) = stats(&cube_for("filament"));
+    let (generic, generic_sun) = stats(&cube_for("generic"));
+    let (c_ours, c_generic) = (
+        correlation(&ours, &their_pattern),
+        correlation(&generic, &their_pattern),
+    );
+    let (d_ours, d_generic) = (degrees(our_sun, their_sun), degrees(generic_sun, their_sun));
+    println!("filament: sun {d_ours:.2}°, correlation {c_ours:.4}; generic: sun {d_generic:.1}°, correlation {c_generic:.4}");
+    assert!(
+        d_ours < 0.5 && c_ours > 0.99,
+        "filament: {d_ours}°, {c_ours}"
+    );
+    assert!(
+        d_generic > 45.0 && c_generic < 0.9,
+        "generic: {d_generic}°, {c_generic}"
+    );
+}

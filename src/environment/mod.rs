@@ -10,7 +10,7 @@ pub use hot::IrradianceSource;
 pub use integral::EquirectIntegral;
 pub use pyramid::{pyramid_level_count, EquirectReducer, RowDownsampler};
 
-use crate::math::cubemap::FACES;
+use crate::math::cubemap::{AxisMap, FACES};
 
 /// A linear-RGB equirectangular image, rows top (+Y) to bottom.
 #[derive(Clone, Debug, PartialEq)]
@@ -86,12 +86,13 @@ impl Cubemap {
         FACES * (n as usize) * (n as usize)
     }
 
-    /// This cube mirrored along world axis `axis` (0 = x, 1 = y, 2 = z), every level:
-    /// the returned cube's texel at direction d holds this cube's texel at d with that
-    /// coordinate negated. A mirror maps texel centres onto texel centres, so this is an
-    /// exact permutation of texels (no resampling).
-    pub fn mirrored(&self, axis: usize) -> Cubemap {
+    /// This cube re-expressed through `map`, every level: the returned cube's texel at
+    /// direction t holds this cube's texel at `map⁻¹(t)`, so sampling it at `map(d)` gives
+    /// what sampling this cube at d gives. A signed permutation of axes maps texel centres
+    /// onto texel centres, so this is an exact permutation of texels (no resampling).
+    pub fn remapped(&self, map: AxisMap) -> Cubemap {
         use crate::math::cubemap::{cube_face_coords, cube_texel_direction};
+        let source_of = map.inverse();
         let levels = (0..self.levels.len())
             .map(|m| {
                 let n = self.level_size(m);
@@ -99,8 +100,8 @@ impl Cubemap {
                 for face in 0..FACES as u32 {
                     for j in 0..n {
                         for i in 0..n {
-                            let mut d = cube_texel_direction(face, i as i32, j as i32, n);
-                            d[axis] = -d[axis];
+                            let d =
+                                source_of.apply(cube_texel_direction(face, i as i32, j as i32, n));
                             let (f, s, t) = cube_face_coords(d);
                             // (s, t) is a texel centre: s = (2i + 1)/n − 1.
                             let index = |c: f32| {
@@ -120,6 +121,13 @@ impl Cubemap {
             size: self.size,
             levels,
         }
+    }
+
+    /// This cube mirrored along world axis `axis` (0 = x, 1 = y, 2 = z), every level:
+    /// the returned cube's texel at direction d holds this cube's texel at d with that
+    /// coordinate negated ([`Cubemap::remapped`] with [`AxisMap::mirror`]).
+    pub fn mirrored(&self, axis: usize) -> Cubemap {
+        self.remapped(AxisMap::mirror(axis))
     }
 }
 

@@ -1,5 +1,5 @@
-//! Writes a cubemap in the container its path's extension names: `.ktx2` and `.dds` hold
-//! every mip level in a GPU pixel format; `.exr` and `.hdr` hold level 0 for inspection,
+//! Writes a cubemap in the container its path's extension names: `.ktx2`, `.dds` and
+//! `.ktx` (KTX 1, as Filament loads it) hold every mip level in a GPU pixel format; `.exr` and `.hdr` hold level 0 for inspection,
 //! as six face files `<stem>_px.<ext>` … `<stem>_nz.<ext>`, a horizontal cross, or an
 //! equirect. All files of one output are staged and renamed together.
 
@@ -8,14 +8,14 @@ use std::path::{Path, PathBuf};
 use super::atomic::write_all_atomic;
 use super::format::{EncodedTexture, PixelFormat};
 use super::input::HORIZONTAL_CROSS;
-use super::{dds, exr, extension_of, hdr, ktx2};
+use super::{dds, exr, extension_of, hdr, ktx1, ktx2};
 use crate::cpu::cube_resample::sample_cube;
 use crate::environment::Cubemap;
 use crate::math::cubemap::{equirect_direction, FACES};
 use crate::{Error, Result};
 
 /// Extensions a cubemap can be written as.
-pub const CUBE_EXTENSIONS: &[&str] = &["ktx2", "dds", "exr", "hdr"];
+pub const CUBE_EXTENSIONS: &[&str] = &["ktx2", "dds", "ktx", "exr", "hdr"];
 
 /// Face file suffixes in face order.
 pub const FACE_SUFFIXES: [&str; FACES] = ["px", "nx", "py", "ny", "pz", "nz"];
@@ -35,7 +35,7 @@ pub enum CubeLayout {
 /// Options of a cubemap output.
 #[derive(Clone, Copy, Debug)]
 pub struct CubeWriteOptions {
-    /// Pixel format of KTX2/DDS outputs.
+    /// Pixel format of KTX2/DDS/KTX 1 outputs.
     pub format: PixelFormat,
     /// KTX2: Zstandard level for per-level supercompression.
     pub zstd: Option<i32>,
@@ -147,6 +147,10 @@ pub fn write_cubemap(path: &Path, cube: &Cubemap, opts: &CubeWriteOptions) -> Re
         "dds" => vec![(
             path.to_path_buf(),
             dds::encode(&encode_texture(cube, opts.format)),
+        )],
+        "ktx" => vec![(
+            path.to_path_buf(),
+            ktx1::encode(&encode_texture(cube, opts.format), &[]).map_err(enc_err("KTX 1"))?,
         )],
         _ => match opts.layout {
             CubeLayout::Faces => output_paths(path, opts.layout)

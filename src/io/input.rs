@@ -1,5 +1,5 @@
 //! Loading environments: equirect images (.hdr, .exr, .png, .jpg), cube crosses (4:3
-//! horizontal, 3:4 vertical, detected by aspect ratio), six face files, and KTX2/DDS
+//! horizontal, 3:4 vertical, detected by aspect ratio), six face files, and KTX2/DDS/KTX 1
 //! cubemaps in the formats splitsum writes. Every input is sanitised (no NaN, infinity or
 //! negative radiance reaches a kernel) and scaled by the exposure.
 
@@ -328,16 +328,17 @@ fn cross_to_cube(img: &Equirect, layout: &[(u32, u32); FACES], vertical: bool) -
     }
 }
 
-/// Loads one environment file: an equirect, a cross, or a KTX2/DDS cubemap.
+/// Loads one environment file: an equirect, a cross, or a KTX2/DDS/KTX 1 cubemap.
 pub fn load_environment(path: &Path, opts: &InputOptions) -> Result<LoadedEnvironment> {
     let mut warnings = Vec::new();
     let ext = extension_of(path);
-    if ext == "ktx2" || ext == "dds" {
-        let mut cube = if ext == "ktx2" {
-            read_ktx2_cube(path)?
-        } else {
-            read_dds_cube(path)?
+    if matches!(ext.as_str(), "ktx2" | "dds" | "ktx") {
+        let mut cube = match ext.as_str() {
+            "ktx2" => read_ktx2_cube(path)?,
+            "dds" => read_dds_cube(path)?,
+            _ => crate::io::ktx1::read_cube(path)?,
         };
+        cube.levels.truncate(1);
         let mut rgb: Vec<[f32; 3]> = cube.levels[0].iter().map(|t| [t[0], t[1], t[2]]).collect();
         sanitize_with_warning(path, &mut rgb, &mut warnings);
         apply_exposure(&mut rgb, opts)?;

@@ -8,11 +8,13 @@ pub mod exr;
 pub mod format;
 pub mod hdr;
 pub mod input;
+pub mod ktx1;
 pub mod ktx2;
 pub mod ldr;
 pub mod limits;
 pub mod lut;
 pub mod png;
+pub mod sh_text;
 
 pub use format::{EncodedTexture, PixelFormat};
 

@@ -59,6 +59,78 @@ pub fn cube_face_coords(d: [f32; 3]) -> (u32, f32, f32) {
     }
 }
 
+/// A signed permutation of the world axes: `apply(d)[i] = sign[i] · d[axis[i]]` (a mirror,
+/// a quarter turn, or a product of them). It maps the cube's texel centres onto texel
+/// centres, so a cube re-expressed through one is an exact permutation of its texels
+/// ([`crate::environment::Cubemap::remapped`]); engines that read cubes in another frame
+/// than DESIGN.md's differ from it by one of these (`crate::target`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct AxisMap {
+    /// Which input axis each output component takes (a permutation of 0, 1, 2).
+    pub axis: [usize; 3],
+    /// The sign each output component gets (±1).
+    pub sign: [i8; 3],
+}
+
+impl AxisMap {
+    /// d ↦ d.
+    pub const IDENTITY: AxisMap = AxisMap {
+        axis: [0, 1, 2],
+        sign: [1, 1, 1],
+    };
+
+    /// d with component `axis` negated.
+    pub const fn mirror(axis: usize) -> AxisMap {
+        let mut sign = [1, 1, 1];
+        sign[axis] = -1;
+        AxisMap {
+            axis: [0, 1, 2],
+            sign,
+        }
+    }
+
+    /// The image of `d`.
+    pub fn apply(&self, d: [f32; 3]) -> [f32; 3] {
+        std::array::from_fn(|i| f32::from(self.sign[i]) * d[self.axis[i]])
+    }
+
+    /// This map applied after `first`: d ↦ self(first(d)).
+    pub fn after(&self, first: AxisMap) -> AxisMap {
+        AxisMap {
+            axis: std::array::from_fn(|i| first.axis[self.axis[i]]),
+            sign: std::array::from_fn(|i| self.sign[i] * first.sign[self.axis[i]]),
+        }
+    }
+
+    /// The inverse map (the transpose of its matrix).
+    pub fn inverse(&self) -> AxisMap {
+        let mut inv = AxisMap::IDENTITY;
+        for i in 0..3 {
+            inv.axis[self.axis[i]] = i;
+            inv.sign[self.axis[i]] = self.sign[i];
+        }
+        inv
+    }
+
+    /// Its 3×3 matrix, rows: `apply(d) = m · d`.
+    pub fn matrix(&self) -> [[f32; 3]; 3] {
+        let mut m = [[0.0; 3]; 3];
+        for i in 0..3 {
+            m[i][self.axis[i]] = f32::from(self.sign[i]);
+        }
+        m
+    }
+
+    /// Whether it turns rather than mirrors (determinant +1).
+    pub fn is_rotation(&self) -> bool {
+        let m = self.matrix();
+        let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+        det > 0.0
+    }
+}
+
 /// Normalises a vector.
 pub fn normalize(v: [f32; 3]) -> [f32; 3] {
     let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();

@@ -10,25 +10,40 @@ use std::f32::consts::PI;
 /// The coefficient order, as written in `sh.json`.
 pub const SH_ORDER: &str = "l0m0,l1m-1,l1m0,l1m1,l2m-2,l2m-1,l2m0,l2m1,l2m2";
 
-/// The 9 basis functions at unit direction `d`.
-pub fn sh_basis(d: [f32; 3]) -> [f32; 9] {
-    let [x, y, z] = d;
+/// The constant factor of each basis function: Y_k(d) = K_k · P_k(d) with the monomials
+/// P = (1, y, z, x, xy, yz, 3z² − 1, xz, x² − y²).
+pub fn sh_constants() -> [f32; 9] {
     let c0 = 0.5 * (1.0 / PI).sqrt();
     let c1 = (3.0 / (4.0 * PI)).sqrt();
     let c2 = 0.5 * (15.0 / PI).sqrt();
     let c20 = 0.25 * (5.0 / PI).sqrt();
     let c22 = 0.25 * (15.0 / PI).sqrt();
+    [c0, c1, c1, c1, c2, c2, c20, c2, c22]
+}
+
+/// The 9 basis functions at unit direction `d`.
+pub fn sh_basis(d: [f32; 3]) -> [f32; 9] {
+    let [x, y, z] = d;
+    let k = sh_constants();
     [
-        c0,
-        c1 * y,
-        c1 * z,
-        c1 * x,
-        c2 * x * y,
-        c2 * y * z,
-        c20 * (3.0 * z * z - 1.0),
-        c2 * x * z,
-        c22 * (x * x - y * y),
+        k[0],
+        k[1] * y,
+        k[2] * z,
+        k[3] * x,
+        k[4] * x * y,
+        k[5] * y * z,
+        k[6] * (3.0 * z * z - 1.0),
+        k[7] * x * z,
+        k[8] * (x * x - y * y),
     ]
+}
+
+/// Coefficients with the basis constants folded in (c_k · K_k), so that the expansion is
+/// the plain polynomial Σ c'_k P_k(d): Filament's "pre-scaled" SH (cmgen `--sh-shader`,
+/// the `iblSH` its `Irradiance_SphericalHarmonics` evaluates).
+pub fn sh_prescaled(coeffs: &[[f32; 3]; 9]) -> [[f32; 3]; 9] {
+    let k = sh_constants();
+    std::array::from_fn(|i| coeffs[i].map(|c| c * k[i]))
 }
 
 /// Band of coefficient k.
@@ -58,6 +73,46 @@ pub fn sh_eval(coeffs: &[[f32; 3]; 9], d: [f32; 3]) -> [f32; 3] {
     out
 }
 
+/// The coefficients of f ∘ R⁻¹ from those of f, for an orthogonal `r` (rows: R·d): the
+/// same function seen in a frame whose directions are R·d, so that
+/// `sh_eval(&sh_rotated(c, r), R·d) = sh_eval(c, d)`. Band 1 is a linear form aᵀd and
+/// band 2 a traceless quadratic form dᵀQd; they become (Ra)ᵀd and dᵀ(RQRᵀ)d, band 0 is
+/// unchanged. Exact (up to rounding) for any rotation or mirror.
+pub fn sh_rotated(coeffs: &[[f32; 3]; 9], r: [[f32; 3]; 3]) -> [[f32; 3]; 9] {
+    let constants = sh_constants().map(f64::from);
+    let (c1, c2, c20, c22) = (constants[1], constants[4], constants[6], constants[8]);
+    let r = r.map(|row| row.map(f64::from));
+    let mut out = [[0.0f32; 3]; 9];
+    for ch in 0..3 {
+        let k = |i: usize| f64::from(coeffs[i][ch]);
+        out[0][ch] = coeffs[0][ch];
+        // Band 1: c1 (k11 x + k1-1 y + k10 z).
+        let a = [c1 * k(3), c1 * k(1), c1 * k(2)];
+        let ra: [f64; 3] = std::array::from_fn(|i| (0..3).map(|j| r[i][j] * a[j]).sum());
+        out[3][ch] = (ra[0] / c1) as f32;
+        out[1][ch] = (ra[1] / c1) as f32;
+        out[2][ch] = (ra[2] / c1) as f32;
+        // Band 2 on the unit sphere: c20 (3z² − 1) = c20 (2z² − x² − y²).
+        let q = [
+            [-c20 * k(6) + c22 * k(8), 0.5 * c2 * k(4), 0.5 * c2 * k(7)],
+            [0.5 * c2 * k(4), -c20 * k(6) - c22 * k(8), 0.5 * c2 * k(5)],
+            [0.5 * c2 * k(7), 0.5 * c2 * k(5), 2.0 * c20 * k(6)],
+        ];
+        let rq: [[f64; 3]; 3] = std::array::from_fn(|i| {
+            std::array::from_fn(|j| (0..3).map(|l| r[i][l] * q[l][j]).sum())
+        });
+        let p: [[f64; 3]; 3] = std::array::from_fn(|i| {
+            std::array::from_fn(|j| (0..3).map(|l| rq[i][l] * r[j][l]).sum())
+        });
+        out[4][ch] = (2.0 * p[0][1] / c2) as f32;
+        out[5][ch] = (2.0 * p[1][2] / c2) as f32;
+        out[6][ch] = (p[2][2] / (2.0 * c20)) as f32;
+        out[7][ch] = (2.0 * p[0][2] / c2) as f32;
+        out[8][ch] = ((p[0][0] - p[1][1]) / (2.0 * c22)) as f32;
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -70,5 +125,38 @@ mod tests {
         let y = sh_basis([1.0, 0.0, 0.0]);
         assert!((y[8] - 0.546274).abs() < 1e-6);
         assert!((sh_basis([0.0, 0.0, 1.0])[6] - 0.630783).abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_rotated_expansion_takes_the_same_values_at_the_rotated_directions() {
+        // Arbitrary coefficients; a quarter turn about +Y, a mirror and a general rotation.
+        let c: [[f32; 3]; 9] =
+            std::array::from_fn(|i| [i as f32 * 0.3 - 1.0, (i * i) as f32 * 0.1, 0.7 - i as f32]);
+        let (ca, sa) = (0.6f32, 0.8f32);
+        let general = [[ca, 0.0, sa], [0.0, 1.0, 0.0], [-sa, 0.0, ca]];
+        let turns = [
+            crate::math::cubemap::AxisMap {
+                axis: [2, 1, 0],
+                sign: [-1, 1, 1],
+            }
+            .matrix(),
+            crate::math::cubemap::AxisMap::mirror(0).matrix(),
+            general,
+        ];
+        for r in turns {
+            let rc = sh_rotated(&c, r);
+            for d in [
+                [0.6f32, 0.0, 0.8],
+                [0.0, 1.0, 0.0],
+                [0.48, 0.6, -0.64],
+                [-0.36, -0.48, 0.8],
+            ] {
+                let rd: [f32; 3] = std::array::from_fn(|i| (0..3).map(|j| r[i][j] * d[j]).sum());
+                let (a, b) = (sh_eval(&c, d), sh_eval(&rc, rd));
+                for ch in 0..3 {
+                    assert!((a[ch] - b[ch]).abs() < 1e-5, "{r:?} {d:?}: {a:?} vs {b:?}");
+                }
+            }
+        }
     }
 }

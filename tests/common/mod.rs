@@ -455,3 +455,24 @@ pub fn uniform_directions(count: usize, seed: u64) -> Vec<[f64; 3]> {
         })
         .collect()
 }
+
+/// cmgen (Filament's baker, Debian libfilament-tools) on PATH, for the peer comparisons.
+pub fn which_cmgen() -> Result<PathBuf, ()> {
+    std::env::var_os("PATH")
+        .and_then(|p| {
+            std::env::split_paths(&p)
+                .map(|d| d.join("cmgen"))
+                .find(|c| c.is_file())
+        })
+        .ok_or(())
+}
+
+/// A peer comparison whose peer is missing skips, except where SPLITSUM_REQUIRE_PEERS=1
+/// (`.ci/run` sets it, so CI cannot pass without comparing).
+pub fn skip_peer(why: &str) {
+    assert!(
+        std::env::var("SPLITSUM_REQUIRE_PEERS").as_deref() != Ok("1"),
+        "{why}, and SPLITSUM_REQUIRE_PEERS=1"
+    );
+    eprintln!("{why}; skipping");
+}
