@@ -1,0 +1,402 @@
+// Runs in the page: loads a splitsum `--target filament` bake and cmgen's deploy of the
+// same HDRI into Filament (npm filament, its WebGL2 build) exactly as a Filament web app
+// does (`engine.createIblFromKtx1`, `engine.createSkyFromKtx1`), renders the skybox and
+// spheres with gltfio's own materials, and returns the measurements for check.mjs to judge.
+//
+// Filament's web build has no float read-back: the view renders with LINEAR tone mapping
+// (so the output is exposure × radiance, sRGB-encoded into the 8-bit canvas), and each
+// render's exposure is lowered until no pixel clips; the pixels are decoded back to linear
+// radiance. A self-check renders the same view at two exposures and requires the decoded
+// radiance to agree, so a non-linear output would fail the check rather than skew it.
+import * as measure from '/engines/measure.js';
+
+const SIZE = 160;
+const MIRROR_SIZE = 512;
+// Sphere and camera: radius 1 at the origin, the camera 4.2 away with a 30° field of view,
+// 40° from the sun so that each sphere shows its lit and its shaded side.
+const SPHERE_DISTANCE = 4.2;
+const SPHERE_FOV = 30;
+const SKY_FOV = 50;
+// Filament's default intensity of a Skybox and an IndirectLight (FIndirectLight::
+// DEFAULT_INTENSITY, lux); the web build's createSkyFromKtx1 keeps it, and the IBL is set to
+// it, so both show radiance × INTENSITY × the camera's exposure.
+const INTENSITY = 30000;
+
+const canvas = document.createElement('canvas');
+canvas.width = canvas.height = MIRROR_SIZE;
+document.body.appendChild(canvas);
+await new Promise((ok) => Filament.init([], ok));
+const engine = Filament.Engine.create(canvas, { preserveDrawingBuffer: true });
+const gl = engine.context;
+const renderer = engine.createRenderer();
+const swapChain = engine.createSwapChain();
+const camera = engine.createCamera(Filament.EntityManager.get().create());
+const scene = engine.createScene();
+const view = engine.createView();
+view.setCamera(camera);
+view.setScene(scene);
+view.setAntiAliasing(Filament.View$AntiAliasing.NONE);
+view.setColorGrading(
+  Filament.ColorGrading.Builder().toneMapping(Filament.ColorGrading$ToneMapping.LINEAR).build(engine),
+);
+renderer.setClearOptions({ clearColor: [0, 0, 0, 1], clear: true });
+const assetLoader = engine.createAssetLoader();
+
+const add = (a, b) => a.map((v, i) => v + b[i]);
+const scale = (a, k) => a.map((v) => v * k);
+const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+const normalize = (a) => scale(a, 1 / Math.hypot(...a));
+const degrees = (a, b) => (Math.acos(Math.min(1, Math.max(-1, dot(normalize(a), normalize(b))))) * 180) / Math.PI;
+const srgbToLinear = (c) => (c <= 0.04045 ? c / 12.92 : ((c + 0.055) / 1.055) ** 2.4);
+const SRGB = Float32Array.from({ length: 256 }, (_, i) => srgbToLinear(i / 255));
+
+// A pinhole camera: eye, forward, up and vertical field of view; the ray through pixel
+// (x, y) of a read-back image (row 0 at the bottom).
+function pinhole(eye, target, fov) {
+  const forward = normalize(add(target, scale(eye, -1)));
+  const right = normalize(cross(forward, Math.abs(forward[1]) > 0.999 ? [0, 0, 1] : [0, 1, 0]));
+  const up = cross(right, forward);
+  return { eye, forward, right, up, fov };
+}
+function pixelRay(cam, [x, y], size) {
+  const t = Math.tan((cam.fov * Math.PI) / 360);
+  const sx = ((2 * x) / size - 1) * t, sy = ((2 * y) / size - 1) * t;
+  return normalize(add(cam.forward, add(scale(cam.right, sx), scale(cam.up, sy))));
+}
+// Where the ray from the camera through (x, y) meets the unit sphere, if it does.
+function sphereHit(cam, px, size) {
+  const d = pixelRay(cam, px, size);
+  const b = dot(cam.eye, d), c = dot(cam.eye, cam.eye) - 1;
+  const disc = b * b - c;
+  if (disc < 0) return null;
+  return { d, p: add(cam.eye, scale(d, -b - Math.sqrt(disc))), depth: Math.sqrt(disc) };
+}
+
+// Sets the camera's exposure (1 / (1.2 · 2^EV100)) to `exposure` through aperture N,
+// shutter time t and sensitivity S, where exposure = t S / (120 N²) (Filament's
+// Exposure::exposure). Not setExposureDirect: the web build's binding of it ends at
+// 204800 ISO for any input. Filament clamps t to [1/25000, 60] s, N to [0.5, 64] and S to
+// [10, 204800], so the exposure cannot go below MIN_EXPOSURE.
+const MIN_EXPOSURE = ((1 / 25000) * 10) / (120 * 64 * 64);
+function setExposure(exposure) {
+  let aperture = 1, shutter = 1.2 * exposure, iso = 100;
+  while (shutter < 1 / 25000 && aperture < 64) {
+    aperture *= 2;
+    shutter *= 4;
+  }
+  if (shutter < 1 / 25000) {
+    iso = Math.max(10, (iso * shutter) * 25000);
+    shutter = 1 / 25000;
+  }
+  camera.setExposure(aperture, shutter, iso);
+}
+
+// Renders the scene `size`² through `cam` with radiance scaled by `e` and returns linear radiance
+// (RGBA float; alpha 0 where a channel saturates), reading Filament's 8-bit sRGB output. Filament's web build is
+// single-threaded: `engine.execute()` runs a frame's commands, and `beginFrame` skips
+// frames until the GPU fences of earlier ones signal, which WebGL lets happen only between
+// tasks, so the loop yields to the event loop between frames.
+async function renderAt(cam, size, e) {
+  view.setViewport([0, 0, size, size]);
+  camera.setProjectionFov(cam.fov, 1, 0.05, 50, Filament.Camera$Fov.VERTICAL);
+  camera.lookAt(cam.eye, add(cam.eye, cam.forward), cam.up);
+  setExposure(e / INTENSITY);
+  // Two frames drawn: the first may still use textures whose uploads it issues.
+  let drawn = 0;
+  for (let tries = 0; drawn < 2; tries++) {
+    if (tries > 200) throw new Error('Filament skipped every frame');
+    if (renderer.beginFrame(swapChain)) {
+      renderer.renderView(view);
+      renderer.endFrame();
+      drawn++;
+    }
+    engine.execute();
+    if (drawn < 2) await new Promise((ok) => setTimeout(ok, 0));
+  }
+  const bytes = new Uint8Array(size * size * 4);
+  const previous = gl.getParameter(gl.READ_FRAMEBUFFER_BINDING);
+  gl.bindFramebuffer(gl.READ_FRAMEBUFFER, null);
+  gl.readPixels(0, 0, size, size, gl.RGBA, gl.UNSIGNED_BYTE, bytes);
+  gl.bindFramebuffer(gl.READ_FRAMEBUFFER, previous);
+  const px = new Float32Array(size * size * 4);
+  let max = 0;
+  for (let i = 0; i < size * size; i++) {
+    let top = 0;
+    for (let c = 0; c < 3; c++) {
+      px[4 * i + c] = SRGB[bytes[4 * i + c]] / e;
+      top = Math.max(top, bytes[4 * i + c]);
+    }
+    px[4 * i + 3] = top < 254 ? 1 : 0; // saturated pixels carry no radiance
+    max = Math.max(max, top);
+  }
+  return { px, max };
+}
+
+// Renders with the exposure lowered until no channel reaches 254 (nothing clipped) or the
+// exposure reaches Filament's least; `clipped` says whether pixels are still saturated
+// (a sun brighter than 1 / (INTENSITY · MIN_EXPOSURE) ≈ 41000 is; its centroid is still
+// the saturated disc's).
+async function render(cam, size, e0) {
+  let e = Math.max(e0, MIN_EXPOSURE * INTENSITY);
+  for (;;) {
+    const { px, max } = await renderAt(cam, size, e);
+    if (max < 254) return { px, clipped: false };
+    if (e <= MIN_EXPOSURE * INTENSITY) return { px, clipped: true };
+    e = Math.max(e / 8, MIN_EXPOSURE * INTENSITY);
+  }
+}
+
+// Alpha 1 on the pixels whose ray meets the sphere well inside its silhouette, 0 elsewhere.
+function maskSphere(px, cam, size) {
+  for (let y = 0; y < size; y++) {
+    for (let x = 0; x < size; x++) {
+      const hit = sphereHit(cam, [x + 0.5, y + 0.5], size);
+      px[4 * (y * size + x) + 3] = hit && hit.depth > 0.15 ? 1 : 0;
+    }
+  }
+  return px;
+}
+
+// A UV sphere of radius 1 with one metallic-roughness material, as a GLB for gltfio.
+function sphereGlb(metallic, roughness) {
+  const rings = 96, segments = 192;
+  const pos = [], idx = [];
+  for (let i = 0; i <= rings; i++) {
+    const theta = (Math.PI * i) / rings;
+    for (let j = 0; j <= segments; j++) {
+      const phi = (2 * Math.PI * j) / segments;
+      pos.push(Math.sin(theta) * Math.cos(phi), Math.cos(theta), Math.sin(theta) * Math.sin(phi));
+    }
+  }
+  for (let i = 0; i < rings; i++) {
+    for (let j = 0; j < segments; j++) {
+      const a = i * (segments + 1) + j, b = a + segments + 1;
+      idx.push(a, a + 1, b, a + 1, b + 1, b);
+    }
+  }
+  const positions = new Float32Array(pos);
+  const indices = new Uint16Array(idx);
+  const bin = new Uint8Array(positions.byteLength + indices.byteLength + 3 & ~3);
+  bin.set(new Uint8Array(positions.buffer), 0);
+  bin.set(new Uint8Array(indices.buffer), positions.byteLength);
+  const json = {
+    asset: { version: '2.0' },
+    scene: 0,
+    scenes: [{ nodes: [0] }],
+    nodes: [{ mesh: 0 }],
+    meshes: [{ primitives: [{ attributes: { POSITION: 0, NORMAL: 0 }, indices: 1, material: 0 }] }],
+    materials: [{ pbrMetallicRoughness: { baseColorFactor: [1, 1, 1, 1], metallicFactor: metallic, roughnessFactor: roughness } }],
+    accessors: [
+      { bufferView: 0, componentType: 5126, count: positions.length / 3, type: 'VEC3', min: [-1, -1, -1], max: [1, 1, 1] },
+      { bufferView: 1, componentType: 5123, count: indices.length, type: 'SCALAR' },
+    ],
+    bufferViews: [
+      { buffer: 0, byteOffset: 0, byteLength: positions.byteLength, target: 34962 },
+      { buffer: 0, byteOffset: positions.byteLength, byteLength: indices.byteLength, target: 34963 },
+    ],
+    buffers: [{ byteLength: bin.byteLength }],
+  };
+  let text = new TextEncoder().encode(JSON.stringify(json));
+  const jsonChunk = new Uint8Array(text.length + 3 & ~3).fill(0x20);
+  jsonChunk.set(text);
+  const glb = new Uint8Array(12 + 8 + jsonChunk.length + 8 + bin.length);
+  const dv = new DataView(glb.buffer);
+  dv.setUint32(0, 0x46546c67, true);
+  dv.setUint32(4, 2, true);
+  dv.setUint32(8, glb.length, true);
+  dv.setUint32(12, jsonChunk.length, true);
+  dv.setUint32(16, 0x4e4f534a, true);
+  glb.set(jsonChunk, 20);
+  dv.setUint32(20 + jsonChunk.length, bin.length, true);
+  dv.setUint32(24 + jsonChunk.length, 0x004e4942, true);
+  glb.set(bin, 28 + jsonChunk.length);
+  return glb;
+}
+
+async function loadSphere(metallic, roughness) {
+  const asset = assetLoader.createAsset(sphereGlb(metallic, roughness));
+  await new Promise((ok) => asset.loadResources(ok, null, null, 1));
+  return asset;
+}
+
+// KTX 1 level 0 of a skybox as RGB floats (R11F_G11F_B10F, as cmgen and splitsum write it).
+function unpackUfloat(bits, mantissaBits) {
+  const e = bits >> mantissaBits, m = bits & ((1 << mantissaBits) - 1);
+  if (e === 0) return (m / (1 << mantissaBits)) * 2 ** -14;
+  if (e === 31) return m ? NaN : Infinity;
+  return (1 + m / (1 << mantissaBits)) * 2 ** (e - 15);
+}
+// The GL face table (the same as DESIGN.md's): the direction through face coordinates (s, t).
+function faceDirection(face, s, t) {
+  return [[1, -t, -s], [-1, -t, s], [s, 1, t], [s, -1, -t], [s, -t, 1], [-s, -t, -1]][face];
+}
+function skyStats(bytes) {
+  const dv = new DataView(bytes.buffer, bytes.byteOffset);
+  const n = dv.getUint32(36, true);
+  let p = 64 + dv.getUint32(60, true) + 4;
+  let max = 0, sum = 0;
+  const texels = [];
+  for (let f = 0; f < 6; f++) {
+    for (let j = 0; j < n; j++) {
+      for (let i = 0; i < n; i++, p += 4) {
+        const w = dv.getUint32(p, true);
+        const rgb = [unpackUfloat(w & 0x7ff, 6), unpackUfloat((w >> 11) & 0x7ff, 6), unpackUfloat(w >>> 22, 5)];
+        const l = 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
+        const s = (2 * (i + 0.5)) / n - 1, t = (2 * (j + 0.5)) / n - 1;
+        const d = faceDirection(f, s, t);
+        const solid = 1 / (s * s + t * t + 1) ** 1.5;
+        texels.push([l, d, solid]);
+        max = Math.max(max, l);
+        sum += l * solid;
+      }
+    }
+  }
+  let sun = [0, 0, 0];
+  for (const [l, d, solid] of texels) if (l >= 0.5 * max) sun = add(sun, scale(normalize(d), l * solid));
+  let total = 0;
+  for (const [, , solid] of texels) total += solid;
+  return { sun: normalize(sun), max, mean: sum / total };
+}
+
+async function fetchBytes(url) {
+  const r = await fetch(url);
+  if (!r.ok) throw new Error(`${url}: HTTP ${r.status}`);
+  return new Uint8Array(await r.arrayBuffer());
+}
+
+// One path's environment: the IBL as createIblFromKtx1 builds it (diffuse from the last
+// level), the same reflections with the file's SH as irradiance, and the skybox.
+async function loadPath({ ibl, sky }) {
+  const iblBytes = await fetchBytes(ibl);
+  const skyBytes = await fetchBytes(sky);
+  const light = engine.createIblFromKtx1(iblBytes);
+  light.setIntensity(INTENSITY);
+  const withSh = Filament.IndirectLight.Builder()
+    .reflections(light.getReflectionsTexture())
+    .irradianceSh(3, light.shfloats)
+    .intensity(INTENSITY)
+    .build(engine);
+  return { light, withSh, skybox: engine.createSkyFromKtx1(skyBytes), stats: skyStats(skyBytes), sh: light.shfloats };
+}
+
+window.runCheck = async function ({ splitsum, cmgen, fromCmgenCube, control, roughness }) {
+  const ours = await loadPath(splitsum);
+  const ref = await loadPath(cmgen);
+  const sun = ref.stats.sun; // the sun as Filament's own path (cmgen) places it
+  const out = { sun };
+  const images = {};
+
+  // Linearity: the same view at exposures 1 and 1/4 decodes to the same radiance.
+  scene.setSkybox(ref.skybox);
+  scene.setIndirectLight(ref.light);
+  const skyCam = pinhole([0, 0, 0], sun, SKY_FOV);
+  const eSky = 0.6 / ref.stats.mean;
+  const a = (await renderAt(skyCam, SIZE, eSky)).px, b = (await renderAt(skyCam, SIZE, eSky / 4)).px;
+  let sa = 0, sb = 0;
+  for (let i = 0; i < SIZE * SIZE; i++) {
+    const la = measure.luminance(a, 4 * i), lb = measure.luminance(b, 4 * i);
+    if (la * eSky > 0.2 && la * eSky < 0.9) { sa += la; sb += lb; }
+  }
+  out.linearity = sb / sa;
+
+  // Where Filament shows a path's sun: the brightest of six 90° views, then the bright
+  // centroid of a 50° view centred there.
+  const findSun = async (path) => {
+    scene.setSkybox(path.skybox);
+    scene.setIndirectLight(path.light);
+    const e = 0.5 / path.stats.max;
+    let best = { l: -1 };
+    for (const d of [[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]]) {
+      const cam = pinhole([0, 0, 0], d, 90);
+      const { px } = await render(cam, 96, e);
+      for (let i = 0; i < 96 * 96; i++) {
+        const l = measure.luminance(px, 4 * i);
+        if (l > best.l) best = { l, d: pixelRay(cam, [(i % 96) + 0.5, Math.floor(i / 96) + 0.5], 96) };
+      }
+    }
+    const cam = pinhole([0, 0, 0], best.d, SKY_FOV);
+    const { px } = await render(cam, SIZE, e);
+    return pixelRay(cam, measure.brightCentroid(px, SIZE), SIZE);
+  };
+  const refSun = await findSun(ref);
+  const eView = (path) => 0.6 / path.stats.mean;
+  // The view at the sun, exposed for the sky (the sun saturates and is left out).
+  scene.setSkybox(ref.skybox);
+  const refView = (await renderAt(skyCam, SIZE, eView(ref))).px;
+  scene.setSkybox(ours.skybox);
+  const gotView = (await renderAt(skyCam, SIZE, eView(ours))).px;
+  out.background = {
+    sunError: degrees(await findSun(ours), refSun),
+    cmgenVsFile: degrees(refSun, sun),
+    logDiff: measure.logDiff(gotView, refView, SIZE),
+  };
+  images.sky_cmgen = measure.toPng(refView, SIZE);
+  images.sky_splitsum = measure.toPng(gotView, SIZE);
+  // The negative control: the same environment in the generic orientation.
+  const controlPath = { skybox: engine.createSkyFromKtx1(await fetchBytes(control)), light: ref.light, stats: ours.stats };
+  out.control = { sunError: degrees(await findSun(controlPath), refSun) };
+  scene.setSkybox(null);
+
+  // Spheres: the camera 40° from the sun.
+  const axis = normalize(cross([0, 1, 0], sun));
+  const rot = (v, k, ang) => add(add(scale(v, Math.cos(ang)), scale(cross(k, v), Math.sin(ang))), scale(k, dot(k, v) * (1 - Math.cos(ang))));
+  const viewDir = rot(sun, axis, (40 * Math.PI) / 180);
+  const sphereCam = pinhole(scale(viewDir, SPHERE_DISTANCE), [0, 0, 0], SPHERE_FOV);
+  const sphereAt = async (metallic, r, light, size, e) => {
+    const asset = await loadSphere(metallic, r);
+    scene.addEntities(asset.getEntities());
+    scene.setIndirectLight(light);
+    const { px, clipped } = await render(sphereCam, size, e);
+    scene.removeEntities(asset.getEntities());
+    assetLoader.destroyAsset(asset);
+    if (clipped && r > 0) throw new Error(`sphere r = ${r} saturates at Filament's least exposure`);
+    return maskSphere(px, sphereCam, size);
+  };
+
+  // The mirror sphere: the sun's reflection.
+  const reflected = (px) => {
+    const hit = sphereHit(sphereCam, measure.brightCentroid(px, MIRROR_SIZE), MIRROR_SIZE);
+    const n = normalize(hit.p);
+    return add(hit.d, scale(n, -2 * dot(hit.d, n)));
+  };
+  const refMirror = await sphereAt(1, 0, ref.light, MIRROR_SIZE, 0.5 / ref.stats.max);
+  const gotMirror = await sphereAt(1, 0, ours.light, MIRROR_SIZE, 0.5 / ours.stats.max);
+  out.mirror = { sunError: degrees(reflected(gotMirror), reflected(refMirror)), cmgenVsSkybox: degrees(reflected(refMirror), sun) };
+
+  // Spheres and SH-lit diffuse against cmgen's, for splitsum's bake of the HDRI and for its
+  // bake of cmgen's own level-0 cube (the same cube on both sides: only the prefiltering
+  // and the SH differ).
+  const compareWith = async (path, tag) => {
+    const spheres = [];
+    for (const metallic of [1, 0]) {
+      for (const r of roughness) {
+        const want = await sphereAt(metallic, r, ref.light, SIZE, eView(ref));
+        const got = await sphereAt(metallic, r, path.light, SIZE, eView(path));
+        spheres.push({ metallic, roughness: r, ...measure.compareSpheres(got, want, SIZE) });
+        images[`sphere_m${metallic}_r${r}_cmgen`] = measure.toPng(want, SIZE);
+        images[`sphere_m${metallic}_r${r}_${tag}`] = measure.toPng(got, SIZE);
+      }
+    }
+    // Diffuse from the SH in each file (IndirectLight::Builder::irradiance(3, sh)): a
+    // white rough dielectric, whose light is almost all diffuse.
+    const wantSh = await sphereAt(0, 1, ref.withSh, SIZE, eView(ref));
+    const gotSh = await sphereAt(0, 1, path.withSh, SIZE, eView(path));
+    images.sh_cmgen = measure.toPng(wantSh, SIZE);
+    images[`sh_${tag}`] = measure.toPng(gotSh, SIZE);
+    // The bake's SH against its own last level: the two diffuse sources agree.
+    const gotLevel = await sphereAt(0, 1, path.light, SIZE, eView(path));
+    return {
+      spheres,
+      sh: measure.compareSpheres(gotSh, wantSh, SIZE),
+      shVsLastLevel: measure.compareSpheres(gotSh, gotLevel, SIZE),
+      fluxVsCmgen: path.stats.mean / ref.stats.mean,
+    };
+  };
+  out.fromHdri = await compareWith(ours, 'splitsum');
+  out.fromCmgenCube = await compareWith(await loadPath(fromCmgenCube), 'splitsum_from_cmgen_cube');
+  out.renderer = gl.getParameter(gl.VERSION);
+  return { out, images };
+};
+
+window.checkReady = true;
