@@ -4,6 +4,13 @@
 
 export const luminance = (p, i) => 0.2126 * p[i] + 0.7152 * p[i + 1] + 0.0722 * p[i + 2];
 
+// Index of the pixel of largest luminance.
+export function brightestPixel(px, size) {
+  let best = 0;
+  for (let i = 1; i < size * size; i++) if (luminance(px, 4 * i) > luminance(px, 4 * best)) best = i;
+  return best;
+}
+
 // Centroid (in pixels, from the bottom-left corner) of the pixels above half the image's
 // maximum luminance, weighted by luminance.
 export function brightCentroid(px, size) {

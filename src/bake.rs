@@ -17,7 +17,7 @@ use crate::io::atomic::write_all_atomic;
 use crate::io::cubemap::{encode_texture, to_cross};
 use crate::io::input::{load_input, InputOptions, LoadedEnvironment};
 use crate::io::lut::{encode_lut, LutWriteOptions};
-use crate::io::{dds, exr, ktx1, ktx2, sh_text, PixelFormat};
+use crate::io::{dds, env, exr, ktx1, ktx2, sh_text, PixelFormat};
 use crate::lut::{BrdfLut, DEFAULT_LUT_SIZE};
 use crate::math::sh::{sh_prescaled, sh_rotated, SH_ORDER};
 use crate::preview::{render_preview, BakedLight, Preview, PreviewOptions, SphereStats};
@@ -105,6 +105,7 @@ impl BakeOptions {
         match self.target.files {
             FileSet::Standard => self.container.extension(),
             FileSet::FilamentKtx1 => "ktx (KTX 1)",
+            FileSet::BabylonEnv => "env (Babylon.js)",
         }
     }
 
@@ -282,10 +283,22 @@ pub fn validate_options(opts: &BakeOptions) -> Result<()> {
             ),
         });
     }
-    if target.files == FileSet::FilamentKtx1 && !opts.sh {
+    if target.files != FileSet::Standard && !opts.sh {
         return Err(Error::InvalidParameter {
             name: "--no-sh",
-            message: "--target filament writes the SH into the IBL file, where Filament's loaders read them (the web build's createIblFromKtx1 fails without them)".into(),
+            message: format!(
+                "--target {} writes the irradiance SH into its file, where the engine reads them",
+                target.name
+            ),
+        });
+    }
+    if target.files == FileSet::BabylonEnv && opts.min_mip_size != 1 {
+        return Err(Error::InvalidParameter {
+            name: "--min-mip-size",
+            message: format!(
+                "--target babylon writes the whole chain down to 1x1, the only one Babylon reads from a .env ({} asked for)",
+                opts.min_mip_size
+            ),
         });
     }
     Ok(())
@@ -531,6 +544,12 @@ pub fn bake(
             let stem = crate::io::input::input_stem(input);
             stage_filament(&mut out, &dir, &stem, opts, &specular, sh.as_ref())?;
         }
+        FileSet::BabylonEnv => {
+            let stem = crate::io::input::input_stem(input);
+            if let Some(w) = stage_babylon(&mut out, &dir, &stem, opts, &specular, sh.as_ref())? {
+                warnings.push(w);
+            }
+        }
     }
     if let Some(p) = &preview {
         out.add(
@@ -606,9 +625,10 @@ fn stage_standard(
     Ok(())
 }
 
-/// The SH as Filament evaluates them: the E/π coefficients in the engine's frame, with the
-/// basis constants folded in (cmgen `--sh-shader`).
-pub fn filament_sh(sh: &ShCoefficients, target: &Target) -> [[f32; 3]; 9] {
+/// The E/π coefficients in the engine's frame with the basis constants folded in: the
+/// plain polynomial Filament's shader evaluates (cmgen `--sh-shader`) and Babylon's
+/// spherical polynomial is made of.
+pub fn engine_sh(sh: &ShCoefficients, target: &Target) -> [[f32; 3]; 9] {
     let frame = target.orientation.frame.matrix();
     sh_prescaled(&sh_rotated(&sh.irradiance, frame))
 }
@@ -623,7 +643,7 @@ fn stage_filament(
     specular: &Cubemap,
     sh: Option<&ShCoefficients>,
 ) -> Result<()> {
-    let sh = sh.map(|sh| filament_sh(sh, opts.target));
+    let sh = sh.map(|sh| engine_sh(sh, opts.target));
     let fmt = opts.pixel_format.name();
     let ktx = |path: &Path, cube: &Cubemap, key_values: &[(&str, &[u8])]| {
         ktx1::encode(&encode_texture(cube, opts.pixel_format), key_values).map_err(|message| {
@@ -655,6 +675,46 @@ fn stage_filament(
         );
     }
     Ok(())
+}
+
+/// Babylon's prefiltered environment ([`FileSet::BabylonEnv`]): `<stem>.env`, the whole
+/// chain in RGBD and the irradiance as a spherical polynomial. Returns a warning when
+/// level 0 holds radiance RGBD cannot (above 255).
+fn stage_babylon(
+    out: &mut Staging,
+    dir: &Path,
+    stem: &str,
+    opts: &BakeOptions,
+    specular: &Cubemap,
+    sh: Option<&ShCoefficients>,
+) -> Result<Option<String>> {
+    let path = dir.join(format!("{stem}.env"));
+    let enc_err = |message: String| Error::Encode {
+        path: path.clone(),
+        format: "Babylon .env",
+        message,
+    };
+    let sh = sh.ok_or_else(|| enc_err("a .env carries the irradiance SH".into()))?;
+    let polynomial = env::SphericalPolynomial::from_prescaled(&engine_sh(sh, opts.target));
+    let bytes = env::encode(specular, &polynomial).map_err(enc_err)?;
+    let (clipped, largest) = specular.levels[0]
+        .iter()
+        .map(|t| t[0].max(t[1]).max(t[2]))
+        .filter(|&m| m > env::RGBD_MAX)
+        .fold((0usize, 0.0f32), |(n, top), m| (n + 1, top.max(m)));
+    let levels = specular.levels.len() as u32;
+    out.add(
+        path.clone(),
+        bytes,
+        ("specular", "rgbd png", specular.size, levels),
+    );
+    Ok((clipped > 0).then(|| {
+        format!(
+            "{}: {clipped} texels of level 0 are brighter than the {} a .env (RGBD) holds (the largest {largest:.0}) and are clipped; --exposure -N with scene.environmentIntensity = 2^N keeps them",
+            path.display(),
+            env::RGBD_MAX
+        )
+    }))
 }
 
 /// manifest.json's root.

@@ -425,6 +425,8 @@ pub enum TargetArg {
     Three,
     /// Filament (cmgen's KTX 1 files).
     Filament,
+    /// Babylon.js (a .env file).
+    Babylon,
 }
 
 impl From<TargetArg> for &'static splitsum::target::Target {
@@ -435,6 +437,7 @@ impl From<TargetArg> for &'static splitsum::target::Target {
             TargetArg::Bevy => &t_::BEVY,
             TargetArg::Three => &t_::THREE,
             TargetArg::Filament => &t_::FILAMENT,
+            TargetArg::Babylon => &t_::BABYLON,
         }
     }
 }

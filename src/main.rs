@@ -179,6 +179,16 @@ fn run_bake(args: BakeArgs) -> anyhow::Result<()> {
     use splitsum::bake::{bake, BakeOptions, Stage};
     use std::io::IsTerminal;
     let target: &'static splitsum::target::Target = args.target.into();
+    if args.pixel_format.is_some() && !target.files.has_pixel_format() {
+        return Err(splitsum::Error::InvalidParameter {
+            name: "--pixel-format",
+            message: format!(
+                "--target {} writes RGBD PNGs into a .env, whatever the pixel format",
+                target.name
+            ),
+        }
+        .into());
+    }
     let defaults = BakeOptions::for_target(target);
     let opts = BakeOptions {
         specular_size: args.specular_size,

@@ -101,6 +101,16 @@ pub enum FileSet {
     /// shader as text under the key `sh`), `<stem>_skybox.ktx` (the environment, level 0
     /// alone) and `sh.txt`.
     FilamentKtx1,
+    /// Babylon.js's prefiltered environment: `<stem>.env` (the whole chain as RGBD PNGs and
+    /// the irradiance as a spherical polynomial, see [`crate::io::env`]).
+    BabylonEnv,
+}
+
+impl FileSet {
+    /// Whether `--pixel-format` chooses how the cubes are stored (a `.env` is always RGBD).
+    pub fn has_pixel_format(self) -> bool {
+        self != FileSet::BabylonEnv
+    }
 }
 
 /// One engine's conventions.
@@ -267,8 +277,44 @@ pub const FILAMENT: Target = Target {
     ],
 };
 
+/// Babylon.js (`CubeTexture` of a `.env`, `scene.environmentTexture`, `PBRMaterial`).
+pub const BABYLON: Target = Target {
+    name: "babylon",
+    // Babylon's world is left-handed: its own HDRCubeTexture of an equirect holds DESIGN.md's
+    // direction (x, y, z) at (z, y, x) (measured texel for texel in engines/babylon), it
+    // samples cubes with the world direction as it is, and evaluates the irradiance
+    // polynomial in the same frame.
+    orientation: Orientation {
+        frame: AxisMap {
+            axis: [2, 1, 0],
+            sign: [1, 1, 1],
+        },
+        shader: AxisMap::IDENTITY,
+        description: "babylon (left-handed): texel at (z, y, x) holds the light from (x, y, z)",
+    },
+    // Unused: a .env holds RGBD PNGs whatever the format.
+    pixel_format: PixelFormat::Rgba16f,
+    zstd: None,
+    roughness: MipRoughness::Babylon,
+    // Babylon reads a .env only with its whole chain.
+    min_mip_size: 1,
+    irradiance: false,
+    sh: true,
+    lut: false,
+    lut_file: LutFile::Png,
+    files: FileSet::BabylonEnv,
+    cube_extension: "ktx2",
+    format_warnings: &[],
+    notes: &[
+        "<stem>.env: new CubeTexture(url, scene) (or CubeTexture.CreateFromPrefilteredData) as scene.environmentTexture; scene.createDefaultSkybox(texture) for the background",
+        "Babylon samples lod = 0.8 * log2(size * (r^2 + 0.0005)); mip m holds GGX at alpha = 2^(m / 0.8) / size",
+        "the irradiance is the header's spherical polynomial (E / pi, in the cube's frame)",
+        "RGBD holds radiance up to 255: brighter texels (a sun) are clipped; scale with --exposure and scene.environmentIntensity to keep them",
+    ],
+};
+
 /// Every target, for the command line.
-pub const TARGETS: [&Target; 4] = [&GENERIC, &BEVY, &THREE, &FILAMENT];
+pub const TARGETS: [&Target; 5] = [&GENERIC, &BEVY, &THREE, &FILAMENT, &BABYLON];
 
 impl Target {
     /// The target called `name`.

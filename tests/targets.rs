@@ -408,7 +408,14 @@ fn filament_target_is_cmgens_file_set_in_filaments_frame() {
     // A KTX 1 cube is an input too: read back at its own size, it is the same cube.
     let back = dir.join("back.ktx2");
     run(splitsum()
-        .args(["cubemap", "--backend", "cpu", "--pixel-format", "rgba32f", "-o"])
+        .args([
+            "cubemap",
+            "--backend",
+            "cpu",
+            "--pixel-format",
+            "rgba32f",
+            "-o",
+        ])
         .arg(&back)
         .arg(exact.join("quarry_01_1k_skybox.ktx")));
     assert_eq!(cube(&back).levels[0], turned.levels[0]);
@@ -444,7 +451,7 @@ fn filament_target_refuses_what_it_cannot_write() {
             "rgb9e5 cannot be written as KTX 1",
         ),
         (&["--container", "dds"][..], "--container applies to"),
-        (&["--no-sh"][..], "writes the SH into the IBL file"),
+        (&["--no-sh"][..], "writes the irradiance SH into its file"),
     ] {
         let o = splitsum()
             .args([
@@ -568,5 +575,102 @@ fn filament_frame_is_cmgens() {
     assert!(
         d_generic > 45.0 && c_generic < 0.9,
         "generic: {d_generic}°, {c_generic}"
+    );
+}
+
+/// `--target babylon`: one `<stem>.env` holding the whole chain (32² to 1², six levels) at
+/// Babylon's roughness per mip, level 0 the generic cube in Babylon's left-handed frame
+/// (texel at (z, y, x) holds L(x, y, z)) to RGBD's precision, and a polynomial that Babylon
+/// shades (its band factors undone) to the generic E/π at the engine's direction.
+#[test]
+fn babylon_target_is_an_env_in_babylons_frame() {
+    let dir = common::output_dir("targets-babylon");
+    let babylon = small_bake(&dir.join("b"), &["--target", "babylon"]);
+    let generic = small_bake(&dir.join("g"), &["--pixel-format", "rgba32f", "--no-lut"]);
+    let m = manifest(&babylon);
+    assert_eq!(m["target"]["name"], "babylon");
+    assert_eq!(m["parameters"]["container"], "env (Babylon.js)");
+    assert_eq!(m["parameters"]["specular_levels"], 6, "32² to 1²");
+    let files: Vec<&str> = m["outputs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|o| o["file"].as_str().unwrap())
+        .collect();
+    assert_eq!(files, ["quarry_01_1k.env"]);
+    let path = babylon.join("quarry_01_1k.env");
+    let env = splitsum::io::env::decode(&path, &std::fs::read(&path).unwrap()).unwrap();
+    assert_eq!((env.cube.size, env.cube.levels.len()), (32, 6));
+    assert_eq!(env.lod_generation_scale, 0.8);
+    let frame = splitsum::math::cubemap::AxisMap {
+        axis: [2, 1, 0],
+        sign: [1, 1, 1],
+    };
+    assert_eq!(splitsum::target::BABYLON.orientation.texel_map(), frame);
+    let g = cube(&generic.join("specular.ktx2")).remapped(frame);
+    for (a, b) in env.cube.levels[0].iter().zip(&g.levels[0]) {
+        let top = b[0].max(b[1]).max(b[2]);
+        if top > splitsum::io::env::RGBD_MAX {
+            continue; // clipped, with a warning
+        }
+        for c in 0..3 {
+            assert!(
+                (a[c] - b[c]).abs() <= 0.04 * b[c] + 0.015 * top + 1e-4,
+                "{a:?} vs {b:?}"
+            );
+        }
+    }
+    let v: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(generic.join("sh.json")).unwrap()).unwrap();
+    let world: [[f32; 3]; 9] = std::array::from_fn(|k| {
+        std::array::from_fn(|c| v["irradiance_sh9"][k][c].as_f64().unwrap() as f32)
+    });
+    for d in common::uniform_directions(64, 11) {
+        let d = d.map(|x| x as f32);
+        let want = splitsum::math::sh::sh_eval(&world, d);
+        let got = env.irradiance.shade(frame.apply(d));
+        for c in 0..3 {
+            assert!(
+                (got[c] - want[c]).abs() <= 1e-4 * want[c].abs().max(1.0),
+                "{d:?}: {got:?} vs {want:?}"
+            );
+        }
+    }
+}
+
+/// What a .env cannot hold is refused in one line before any file is written, and a sun
+/// above RGBD's 255 is written clipped with a warning that says how to keep it.
+#[test]
+fn babylon_target_refuses_what_a_env_cannot_hold_and_warns_of_clipping() {
+    let dir = common::output_dir("targets-babylon-refusals");
+    let _ = std::fs::remove_dir_all(&dir);
+    for (extra, says) in [
+        (&["--min-mip-size", "4"][..], "the whole chain down to 1x1"),
+        (&["--pixel-format", "rgba16f"][..], "RGBD PNGs"),
+        (&["--container", "exr"][..], "--container applies to"),
+    ] {
+        let o = splitsum()
+            .args(["bake", "tests/data/quarry_01_1k.hdr", "--target", "babylon"])
+            .args(["--specular-size", "32", "--backend", "cpu", "-q", "-o"])
+            .arg(&dir)
+            .args(extra)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{extra:?}: {err}");
+        assert!(err.contains(says), "{extra:?}: {err}");
+        assert!(!dir.join("quarry_01_1k").exists(), "{extra:?} wrote files");
+    }
+    let o = splitsum()
+        .args(["bake", "tests/data/quarry_01_1k.hdr", "--target", "babylon"])
+        .args(["--specular-size", "32", "--backend", "cpu", "-q", "-o"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("brighter than the 255 a .env (RGBD) holds"),
+        "{err}"
     );
 }

@@ -46,7 +46,18 @@ pub enum MipRoughness {
     /// (`PMREMGenerator` `lodToRoughness`, `roughnessToMip` in
     /// envmap_common_pars_fragment) and Filament's `perceptualRoughnessToLod`.
     Quadratic,
+    /// Babylon.js, for a full chain of level-0 edge N = 2^(M − 1): mip m > 0 holds GGX at
+    /// α = 2^(m/s) / N (`HDRFiltering`, s = [`BABYLON_LOD_SCALE`]; m = 0 the environment),
+    /// r = √min(α, 1), and the shader reads lod = s·log2(N·(r² + ε)), ε =
+    /// [`BABYLON_MINIMUM_VARIANCE`] (`getLodFromAlphaG`, `convertRoughnessToAverageSlope`).
+    Babylon,
 }
+
+/// Babylon's `lodGenerationScale`, the default of its own prefiltering and what splitsum
+/// writes into a `.env`.
+pub const BABYLON_LOD_SCALE: f32 = 0.8;
+/// Babylon's `MINIMUMVARIANCE`, added to r² to make the shader's α.
+pub const BABYLON_MINIMUM_VARIANCE: f32 = 0.0005;
 
 impl MipRoughness {
     /// Roughness of mip `m` of a chain of `levels`.
@@ -58,6 +69,11 @@ impl MipRoughness {
         match self {
             MipRoughness::Linear => t,
             MipRoughness::Quadratic => 1.0 - (1.0 - t).max(0.0).sqrt(),
+            MipRoughness::Babylon if m == 0 => 0.0,
+            MipRoughness::Babylon => {
+                let alpha = (m as f32 / BABYLON_LOD_SCALE - (levels - 1) as f32).exp2();
+                alpha.min(1.0).sqrt()
+            }
         }
     }
 
@@ -68,6 +84,9 @@ impl MipRoughness {
         match self {
             MipRoughness::Linear => r * max_lod,
             MipRoughness::Quadratic => r * (2.0 - r) * max_lod,
+            MipRoughness::Babylon => (BABYLON_LOD_SCALE
+                * (max_lod + (r * r + BABYLON_MINIMUM_VARIANCE).log2()))
+            .clamp(0.0, max_lod),
         }
     }
 
@@ -76,6 +95,9 @@ impl MipRoughness {
         match self {
             MipRoughness::Linear => "m / (levels - 1)",
             MipRoughness::Quadratic => "1 - sqrt(1 - m / (levels - 1))",
+            MipRoughness::Babylon => {
+                "sqrt(min(1, 2^(m / 0.8) / size)) for m > 0 (Babylon's lodGenerationScale 0.8), 0 for m = 0"
+            }
         }
     }
 }
@@ -540,6 +562,41 @@ pub fn prefilter_specular(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Each mapping's lod is the inverse of its roughness per mip: a shader asking for a
+    /// level's roughness reads that level (Babylon's only below α = 1, and up to its ε:
+    /// 0.8 log2(1 + ε/α), 0.06 at the first level's α = 0.0093).
+    #[test]
+    fn lod_inverts_the_roughness_of_each_mip() {
+        for (mapping, levels) in [
+            (MipRoughness::Linear, 7),
+            (MipRoughness::Quadratic, 5),
+            (MipRoughness::Babylon, 9),
+        ] {
+            for m in 0..levels {
+                let r = mapping.roughness(m, levels);
+                if mapping == MipRoughness::Babylon && (m == 0 || r >= 1.0) {
+                    continue;
+                }
+                let lod = mapping.lod(r, levels);
+                let tol = match mapping {
+                    MipRoughness::Babylon => {
+                        0.02 + BABYLON_LOD_SCALE * (1.0 + BABYLON_MINIMUM_VARIANCE / (r * r)).log2()
+                    }
+                    _ => 0.02,
+                };
+                assert!(
+                    (lod - m as f32).abs() < tol,
+                    "{mapping:?} m {m}: r {r}, lod {lod}"
+                );
+            }
+        }
+        // Babylon's 256² chain: α = 2^(m / 0.8) / 256 reaches 1 at m = 6.4.
+        assert_eq!(MipRoughness::Babylon.roughness(0, 9), 0.0);
+        assert!((MipRoughness::Babylon.roughness(4, 9) - (32.0f32 / 256.0).sqrt()).abs() < 1e-6);
+        assert_eq!(MipRoughness::Babylon.roughness(7, 9), 1.0);
+        assert!((MipRoughness::Babylon.lod(1.0, 9) - 6.4006).abs() < 1e-3);
+    }
 
     /// The lane-packed sum gives the texel-by-texel reference's value at every roughness of
     /// a chain, within 1e-5 + 2e-7/α² relative: two sums of 1533 f32 terms taken in

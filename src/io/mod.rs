@@ -4,6 +4,7 @@
 pub mod atomic;
 pub mod cubemap;
 pub mod dds;
+pub mod env;
 pub mod exr;
 pub mod format;
 pub mod hdr;

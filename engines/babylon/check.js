@@ -1,0 +1,273 @@
+// Runs in the page: loads a splitsum `--target babylon` .env into Babylon.js (npm babylonjs,
+// its UMD build) as a Babylon app does (`new CubeTexture(url)` as scene.environmentTexture,
+// `scene.createDefaultSkybox`), renders the skybox and PBRMaterial spheres into float
+// targets, and compares them with Babylon's own path from the same HDRI (HDRCubeTexture with
+// its prefiltering) and with Babylon's prefiltering of splitsum's exact cube.
+//
+// Renders are linear: the scene's image processing runs as a post-process (not attached
+// here), so materials write linear radiance, clamped by Babylon to 30; each render lowers
+// scene.environmentIntensity until nothing reaches the clamp and divides it back out.
+import * as measure from '/engines/measure.js';
+
+const B = window.BABYLON;
+const SIZE = 160;
+const MIRROR_SIZE = 512;
+const SPHERE_DISTANCE = 4.2;
+const SPHERE_FOV = 30;
+const SKY_FOV = 50;
+// Babylon's PBR output clamp with the image processing as a post-process (pbr.fragment).
+const CLAMP = 30;
+
+const canvas = document.createElement('canvas');
+canvas.width = canvas.height = 64;
+document.body.appendChild(canvas);
+const engine = new B.Engine(canvas, false, { preserveDrawingBuffer: true });
+const scene = new B.Scene(engine);
+scene.imageProcessingConfiguration.applyByPostProcess = true;
+scene.clearColor = new B.Color4(0, 0, 0, 0);
+const camera = new B.FreeCamera('camera', new B.Vector3(0, 0, 0), scene);
+camera.fovMode = B.Camera.FOVMODE_VERTICAL_FIXED;
+camera.minZ = 0.05;
+camera.maxZ = 1000;
+
+const add = (a, b) => a.map((v, i) => v + b[i]);
+const scale = (a, k) => a.map((v) => v * k);
+const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+const normalize = (a) => scale(a, 1 / Math.hypot(...a));
+const degrees = (a, b) => (Math.acos(Math.min(1, Math.max(-1, dot(normalize(a), normalize(b))))) * 180) / Math.PI;
+
+function aim(eye, target, fov) {
+  camera.position = new B.Vector3(...eye);
+  camera.upVector = Math.abs(normalize(add(target, scale(eye, -1)))[1]) > 0.999 ? new B.Vector3(0, 0, 1) : new B.Vector3(0, 1, 0);
+  camera.setTarget(new B.Vector3(...target));
+  camera.fov = (fov * Math.PI) / 180;
+  camera.getViewMatrix(true);
+}
+
+// The world ray through pixel (x, y) of a read-back image (row 0 at the bottom).
+function pixelRay([x, y], size) {
+  const view = camera.getViewMatrix(), proj = camera.getProjectionMatrix(true);
+  const p = B.Vector3.Unproject(new B.Vector3(x, size - y, 0.5), size, size, B.Matrix.Identity(), view, proj);
+  return normalize([p.x - camera.position.x, p.y - camera.position.y, p.z - camera.position.z]);
+}
+
+// Renders `meshes` size² into a float target with the environment scaled by `e`; returns
+// linear radiance (alpha: coverage) and the largest value written.
+async function renderAt(meshes, size, e) {
+  scene.environmentIntensity = e;
+  // Shaders compile asynchronously: wait until every mesh and its material can draw.
+  for (let tries = 0; !meshes.every((m) => m.isReady(true)); tries++) {
+    if (tries > 3000) throw new Error('a material never compiled');
+    await new Promise((ok) => setTimeout(ok, 10));
+  }
+  const rtt = new B.RenderTargetTexture('rtt', size, scene, false, true, B.Constants.TEXTURETYPE_FLOAT);
+  rtt.renderList = meshes;
+  rtt.activeCamera = camera;
+  camera.getProjectionMatrix(true);
+  scene.render(false);
+  rtt.render(false);
+  const raw = await rtt.readPixels();
+  rtt.dispose();
+  const px = new Float32Array(raw.length);
+  let max = 0;
+  for (let i = 0; i < raw.length; i += 4) {
+    for (let c = 0; c < 3; c++) {
+      px[i + c] = raw[i + c] / e;
+      max = Math.max(max, raw[i + c]);
+    }
+    px[i + 3] = raw[i + 3] > 0.5 ? 1 : 0;
+  }
+  return { px, max };
+}
+
+// Lowers the intensity until nothing reaches Babylon's output clamp.
+async function render(meshes, size, e0) {
+  let e = e0;
+  for (let k = 0; k < 16; k++, e /= 8) {
+    const { px, max } = await renderAt(meshes, size, e);
+    if (max < 0.98 * CLAMP) return px;
+  }
+  throw new Error('every intensity reaches the clamp');
+}
+
+// The GL face table (DESIGN.md's): the direction through face coordinates (s, t).
+const faceDirection = (face, s, t) => [[1, -t, -s], [-1, -t, s], [s, 1, t], [s, -1, -t], [s, -t, 1], [-s, -t, -1]][face];
+
+// Level 0 of a cube texture as Babylon holds it: per face, RGBA floats, rows as read back.
+async function faces(texture) {
+  const out = [];
+  for (let f = 0; f < 6; f++) out.push(await texture.readPixels(f, 0));
+  return out;
+}
+
+// The bright texels' direction, the largest value and the solid-angle mean of level 0.
+function cubeStats(level0, n) {
+  let max = 0, sum = 0, total = 0;
+  const texels = [];
+  for (let f = 0; f < 6; f++) {
+    for (let j = 0; j < n; j++) {
+      for (let i = 0; i < n; i++) {
+        // Babylon's own prefiltering leaves a few NaN texels at quarry_01's sun (half floats).
+        const l = measure.luminance(level0[f], 4 * (j * n + i)) || 0;
+        const s = (2 * (i + 0.5)) / n - 1, t = (2 * (j + 0.5)) / n - 1;
+        const w = 1 / (s * s + t * t + 1) ** 1.5;
+        texels.push([l, faceDirection(f, s, t), w]);
+        max = Math.max(max, l);
+        sum += l * w;
+        total += w;
+      }
+    }
+  }
+  let sun = [0, 0, 0];
+  for (const [l, d, w] of texels) if (l >= 0.5 * max) sun = add(sun, scale(normalize(d), l * w));
+  return { sun: normalize(sun), max, mean: sum / total };
+}
+
+// Correlation of ln(1 + L) between two level-0 cubes, over 8×8-texel blocks.
+function cubeCorrelation(a, b, n) {
+  const blocks = (level0) => {
+    const out = [];
+    for (let f = 0; f < 6; f++) {
+      for (let bj = 0; bj < n / 8; bj++) {
+        for (let bi = 0; bi < n / 8; bi++) {
+          let s = 0;
+          for (let j = 8 * bj; j < 8 * bj + 8; j++) for (let i = 8 * bi; i < 8 * bi + 8; i++) s += measure.luminance(level0[f], 4 * (j * n + i)) || 0;
+          out.push(Math.log1p(s / 64));
+        }
+      }
+    }
+    return out;
+  };
+  const x = blocks(a), y = blocks(b);
+  const m = (v) => v.reduce((p, q) => p + q, 0) / v.length;
+  const mx = m(x), my = m(y);
+  let sxy = 0, sxx = 0, syy = 0;
+  for (let i = 0; i < x.length; i++) {
+    sxy += (x[i] - mx) * (y[i] - my);
+    sxx += (x[i] - mx) ** 2;
+    syy += (y[i] - my) ** 2;
+  }
+  return sxy / Math.sqrt(sxx * syy);
+}
+
+const ready = (texture) => new Promise((ok, fail) => {
+  if (texture.isReady()) ok(texture);
+  else texture.onLoadObservable.addOnce(() => ok(texture));
+  setTimeout(() => fail(new Error(`${texture.name} did not load`)), 120000);
+});
+
+window.runCheck = async function ({ hdrUrl, envUrl, controlUrl, roughness }) {
+  const own = await ready(new B.HDRCubeTexture(hdrUrl, scene, 256, false, true, false, true));
+  const ours = await ready(new B.CubeTexture(envUrl, scene));
+  const control = await ready(new B.CubeTexture(controlUrl, scene));
+  const ownFaces = await faces(own);
+  const ownStats = cubeStats(ownFaces, 256);
+  const ourFaces = await faces(ours);
+  const ourStats = cubeStats(ourFaces, 256);
+  const sun = ownStats.sun;
+  const out = {
+    sun,
+    levels: Math.round(Math.log2(ours.getSize().width)) + 1,
+    lodGenerationScale: ours.lodGenerationScale,
+    cube: { correlation: cubeCorrelation(ourFaces, ownFaces, 256), sunError: degrees(ourStats.sun, ownStats.sun), fluxRatio: ourStats.mean / ownStats.mean },
+  };
+  const images = {};
+
+  // The skybox looking at the sun.
+  const skyAt = async (texture, e) => {
+    const box = scene.createDefaultSkybox(texture, true, 100, 0);
+    aim([0, 0, 0], sun, SKY_FOV);
+    const px = await render([box], SIZE, e);
+    box.material.dispose();
+    box.dispose();
+    return px;
+  };
+  // Where Babylon shows a texture's sun: the brightest of six 90° views, then the bright
+  // centroid of a 50° view centred there.
+  const findSun = async (texture, e) => {
+    const box = scene.createDefaultSkybox(texture, true, 100, 0);
+    let best = { l: -1 };
+    for (const d of [[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]]) {
+      aim([0, 0, 0], d, 90);
+      const px = await render([box], 96, e);
+      const i = measure.brightestPixel(px, 96);
+      if (measure.luminance(px, 4 * i) > best.l) best = { l: measure.luminance(px, 4 * i), d: pixelRay([(i % 96) + 0.5, Math.floor(i / 96) + 0.5], 96) };
+    }
+    aim([0, 0, 0], best.d, SKY_FOV);
+    const px = await render([box], SIZE, e);
+    const sunDir = pixelRay(measure.brightCentroid(px, SIZE), SIZE);
+    box.material.dispose();
+    box.dispose();
+    return sunDir;
+  };
+  const refSun = await findSun(own, 0.5 / ownStats.max);
+  const refView = await skyAt(own, 0.6 / ownStats.mean), gotView = await skyAt(ours, 0.6 / ourStats.mean);
+  out.background = { sunError: degrees(await findSun(ours, 0.5 / ourStats.max), refSun), logDiff: measure.logDiff(gotView, refView, SIZE) };
+  images.sky_babylon = measure.toPng(refView, SIZE);
+  images.sky_splitsum = measure.toPng(gotView, SIZE);
+  out.control = { sunError: degrees(await findSun(control, 0.5 / ourStats.max), refSun) };
+  // The irradiance each texture carries: its polynomial's mean over the sphere (band 0).
+  const band0 = (t) => (t.sphericalPolynomial.xx.y + t.sphericalPolynomial.yy.y + t.sphericalPolynomial.zz.y) / 3;
+  out.irradianceRatio = band0(ours) / band0(own);
+
+  // Spheres, the camera 40° from the sun.
+  const up = [0, 1, 0];
+  const axis = normalize([up[1] * sun[2] - up[2] * sun[1], up[2] * sun[0] - up[0] * sun[2], up[0] * sun[1] - up[1] * sun[0]]);
+  const a = (40 * Math.PI) / 180;
+  const k = axis, v = sun;
+  const kxv = [k[1] * v[2] - k[2] * v[1], k[2] * v[0] - k[0] * v[2], k[0] * v[1] - k[1] * v[0]];
+  const viewDir = add(add(scale(v, Math.cos(a)), scale(kxv, Math.sin(a))), scale(k, dot(k, v) * (1 - Math.cos(a))));
+  const eye = scale(viewDir, SPHERE_DISTANCE);
+  const sphere = B.MeshBuilder.CreateSphere('sphere', { diameter: 2, segments: 96 }, scene);
+  const material = new B.PBRMaterial('material', scene);
+  material.albedoColor = new B.Color3(1, 1, 1);
+  sphere.material = material;
+  sphere.setEnabled(false);
+  const sphereAt = async (texture, metallic, r, size, e) => {
+    scene.environmentTexture = texture;
+    material.metallic = metallic;
+    material.roughness = r;
+    sphere.setEnabled(true);
+    aim(eye, [0, 0, 0], SPHERE_FOV);
+    const px = await render([sphere], size, e);
+    sphere.setEnabled(false);
+    // Coverage well inside the silhouette only.
+    for (let y = 0; y < size; y++) {
+      for (let x = 0; x < size; x++) {
+        const d = pixelRay([x + 0.5, y + 0.5], size);
+        const b = dot(eye, d), c = dot(eye, eye) - 1, disc = b * b - c;
+        if (!(disc > 0 && Math.sqrt(disc) > 0.15)) px[4 * (y * size + x) + 3] = 0;
+      }
+    }
+    return px;
+  };
+  const reflected = (px) => {
+    const d = pixelRay(measure.brightCentroid(px, MIRROR_SIZE), MIRROR_SIZE);
+    const b = dot(eye, d), c = dot(eye, eye) - 1;
+    const p = add(eye, scale(d, -b - Math.sqrt(Math.max(0, b * b - c))));
+    const nrm = normalize(p);
+    return add(d, scale(nrm, -2 * dot(d, nrm)));
+  };
+  const refMirror = await sphereAt(own, 1, 0, MIRROR_SIZE, 0.5 / ownStats.max);
+  const gotMirror = await sphereAt(ours, 1, 0, MIRROR_SIZE, 0.5 / ourStats.max);
+  out.mirror = { sunError: degrees(reflected(gotMirror), reflected(refMirror)), ownVsCube: degrees(reflected(refMirror), sun) };
+
+  const compareWith = async (reference, tag, refMean) => {
+    const spheres = [];
+    for (const metallic of [1, 0]) {
+      for (const r of roughness) {
+        const want = await sphereAt(reference, metallic, r, SIZE, 0.6 / refMean);
+        const got = await sphereAt(ours, metallic, r, SIZE, 0.6 / ourStats.mean);
+        spheres.push({ metallic, roughness: r, ...measure.compareSpheres(got, want, SIZE) });
+        images[`sphere_m${metallic}_r${r}_${tag}`] = measure.toPng(want, SIZE);
+        images[`sphere_m${metallic}_r${r}_splitsum`] = measure.toPng(got, SIZE);
+      }
+    }
+    return spheres;
+  };
+  out.vsOwn = await compareWith(own, 'babylon', ownStats.mean);
+  out.renderer = engine.description;
+  return { out, images };
+};
+
+window.checkReady = true;
