@@ -333,7 +333,7 @@ fn bake_benchmarks() {
             input,
             &out,
             &BakeOptions::default(),
-            Some(&lut),
+            std::slice::from_ref(&lut),
             &mut |stage| {
                 marks.push((stage, Instant::now(), cpu_seconds().unwrap_or(0.0)));
             },

@@ -12,6 +12,9 @@ export async function launchChromium(puppeteer, executablePath) {
   const browser = await puppeteer.launch({
     executablePath,
     headless: true,
+    // SwiftShader is slow: a page's filtering (the glTF viewer's run-time IBL) can take
+    // minutes within one call.
+    protocolTimeout: 900000,
     args: [
       '--headless=new', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--no-sandbox',
       '--no-first-run', '--disable-background-networking', '--disable-component-update',

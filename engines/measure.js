@@ -1,6 +1,8 @@
-// Image measurements shared by the engine checks' pages (engines/three, engines/filament):
-// every function takes a square RGBA float image of `size`² pixels as a graphics API reads
-// it back (row 0 at the bottom), linear radiance in R, G, B and coverage in A.
+// Image measurements shared by the engine checks' pages (engines/three, engines/filament,
+// engines/gltf, engines/babylon): every image function takes a square RGBA float image of
+// `size`² pixels as a graphics API reads it back (row 0 at the bottom), linear radiance in
+// R, G, B and coverage in A. Below them, the vector and pinhole-camera helpers the checks
+// that cannot read back an engine's own camera use.
 
 export const luminance = (p, i) => 0.2126 * p[i] + 0.7152 * p[i + 1] + 0.0722 * p[i + 2];
 
@@ -76,4 +78,42 @@ export function toPng(px, size) {
   }
   ctx.putImageData(img, 0, 0);
   return canvas.toDataURL('image/png');
+}
+
+// Vectors as 3-arrays.
+export const add = (a, b) => a.map((v, i) => v + b[i]);
+export const scale = (a, k) => a.map((v) => v * k);
+export const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+export const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+export const normalize = (a) => scale(a, 1 / Math.hypot(...a));
+export const degrees = (a, b) => (Math.acos(Math.min(1, Math.max(-1, dot(normalize(a), normalize(b))))) * 180) / Math.PI;
+
+// A pinhole camera: eye, forward, up and vertical field of view; the ray through pixel
+// (x, y) of a read-back image (row 0 at the bottom).
+export function pinhole(eye, target, fov) {
+  const forward = normalize(add(target, scale(eye, -1)));
+  const right = normalize(cross(forward, Math.abs(forward[1]) > 0.999 ? [0, 0, 1] : [0, 1, 0]));
+  const up = cross(right, forward);
+  return { eye, forward, right, up, fov };
+}
+export function pixelRay(cam, [x, y], size) {
+  const t = Math.tan((cam.fov * Math.PI) / 360);
+  const sx = ((2 * x) / size - 1) * t, sy = ((2 * y) / size - 1) * t;
+  return normalize(add(cam.forward, add(scale(cam.right, sx), scale(cam.up, sy))));
+}
+// Where the ray from the camera through (x, y) meets the unit sphere, if it does.
+export function sphereHit(cam, px, size) {
+  const d = pixelRay(cam, px, size);
+  const b = dot(cam.eye, d), c = dot(cam.eye, cam.eye) - 1;
+  const disc = b * b - c;
+  if (disc < 0) return null;
+  return { d, p: add(cam.eye, scale(d, -b - Math.sqrt(disc))), depth: Math.sqrt(disc) };
+}
+
+// The direction `angle` degrees from `sun`, turned towards +y about cross(+y, sun): where
+// the checks put the camera so that a sphere shows its lit and its shaded side.
+export function turnedFrom(sun, angle) {
+  const k = normalize(cross([0, 1, 0], sun));
+  const a = (angle * Math.PI) / 180;
+  return add(add(scale(sun, Math.cos(a)), scale(cross(k, sun), Math.sin(a))), scale(k, dot(k, sun) * (1 - Math.cos(a))));
 }

@@ -1,22 +1,24 @@
 // Exact convolutions over every texel of a small source mip (no noise):
 //   mode 0, prefiltered specular:  sum L D(n.h) (n.l) W / sum D(n.h) (n.l) W,
 //   mode 1, irradiance / pi:       (1/pi) sum max(0, n . M_c) per channel c,
+//   mode 2, prefiltered sheen:     sum L D_Charlie(n.h) (n.l) W / sum D_Charlie(n.h) (n.l) W,
 // with W the source texel's exact solid angle, l its radiance centroid direction and M_c
 // its first radiance moments. CPU mirrors: prefilter_exact_texel in
-// src/cpu/prefilter_specular.rs and irradiance_texel in src/cpu/irradiance.rs.
+// src/cpu/prefilter_specular.rs, irradiance_texel in src/cpu/irradiance.rs and
+// prefilter_charlie_texel in src/cpu/prefilter_sheen.rs.
 
 struct ConvolveParams {
     out_size: u32,
     count: u32,       // source texels
-    mode: u32,        // 0 specular, 1 irradiance
-    roughness: f32,
+    mode: u32,        // 0 specular, 1 irradiance, 2 sheen
+    roughness: f32,   // modes 0 and 2
     hot_count: u32,   // mode 1: hot cells (src/environment/hot.rs), after the source texels
     pad0: u32,
     pad1: u32,
     pad2: u32,
 }
 
-// Mode 0: two vec4 per texel (dir_omega, radiance); mode 1: five (moments of R, G, B,
+// Modes 0 and 2: two vec4 per texel (dir_omega, radiance); mode 1: five (moments of R, G, B,
 // centroid + sin^2 sigma, radiance * omega).
 @group(0) @binding(0) var<uniform> params: ConvolveParams;
 @group(0) @binding(1) var<storage, read> source: array<vec4<f32>>;
@@ -38,6 +40,22 @@ fn prefilter_exact_texel(n: vec3<f32>, roughness: f32) -> vec4<f32> {
             let w = d_ggx(n_dot_h, alpha) * n_dot_l * l.w;
             sum += w * source[2u * k + 1u].rgb;
             weight += w * source[2u * k + 1u].a; // 0 for a hot cell (see Rust)
+        }
+    }
+    return vec4<f32>(sum / weight, 1.0);
+}
+
+fn prefilter_charlie_texel(n: vec3<f32>, roughness: f32) -> vec4<f32> {
+    let alpha = alpha_from_roughness(roughness);
+    var sum = vec3<f32>(0.0);
+    var weight = 0.0;
+    for (var k = 0u; k < params.count; k++) {
+        let l = source[2u * k];
+        let n_dot_l = dot(n, l.xyz);
+        if (n_dot_l > 0.0) {
+            let w = charlie_prefilter_weight(n_dot_l, alpha) * l.w;
+            sum += w * source[2u * k + 1u].rgb;
+            weight += w * source[2u * k + 1u].a;
         }
     }
     return vec4<f32>(sum / weight, 1.0);
@@ -121,6 +139,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     var out: vec4<f32>;
     if (params.mode == 0u) {
         out = prefilter_exact_texel(dir, params.roughness);
+    } else if (params.mode == 2u) {
+        out = prefilter_charlie_texel(dir, params.roughness);
     } else {
         out = irradiance_texel(dir);
     }

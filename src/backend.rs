@@ -65,6 +65,16 @@ pub trait Backend {
         samples: u32,
     ) -> Result<Cubemap>;
 
+    /// The prefiltered Charlie sheen chain of `env` (which has every mip) in `chain`'s
+    /// layout, see [`crate::cpu::prefilter_sheen`]; with the split source its exact sums
+    /// read the hot cells at source resolution.
+    fn prefilter_sheen(
+        &self,
+        env: &Cubemap,
+        split: Option<&IrradianceSource>,
+        chain: SpecularChain,
+    ) -> Result<Cubemap>;
+
     /// The irradiance cube (E/π) of edge `size` from the split source, see
     /// [`crate::cpu::irradiance`] and [`crate::environment::hot`].
     fn irradiance(&self, source: &IrradianceSource, size: u32) -> Result<Cubemap>;
@@ -127,6 +137,15 @@ impl Backend for CpuBackend {
         Ok(cpu::prefilter_specular::prefilter_specular(
             env, split, chain, samples,
         ))
+    }
+
+    fn prefilter_sheen(
+        &self,
+        env: &Cubemap,
+        split: Option<&IrradianceSource>,
+        chain: SpecularChain,
+    ) -> Result<Cubemap> {
+        Ok(cpu::prefilter_sheen::prefilter_sheen(env, split, chain))
     }
 
     fn irradiance(&self, source: &IrradianceSource, size: u32) -> Result<Cubemap> {
@@ -197,6 +216,17 @@ impl Backend for GpuBackend {
     ) -> Result<Cubemap> {
         self.ctx.run_kernel("prefilter_specular", |device, queue| {
             gpu::prefilter::prefilter_specular(device, queue, env, split, chain, samples)
+        })
+    }
+
+    fn prefilter_sheen(
+        &self,
+        env: &Cubemap,
+        split: Option<&IrradianceSource>,
+        chain: SpecularChain,
+    ) -> Result<Cubemap> {
+        self.ctx.run_kernel("prefilter_sheen", |device, queue| {
+            gpu::prefilter::prefilter_sheen(device, queue, env, split, chain)
         })
     }
 
@@ -274,6 +304,15 @@ impl Backend for SoftwareAdapterBackend {
         samples: u32,
     ) -> Result<Cubemap> {
         CpuBackend.prefilter_specular(env, split, chain, samples)
+    }
+
+    fn prefilter_sheen(
+        &self,
+        env: &Cubemap,
+        split: Option<&IrradianceSource>,
+        chain: SpecularChain,
+    ) -> Result<Cubemap> {
+        CpuBackend.prefilter_sheen(env, split, chain)
     }
 
     fn irradiance(&self, source: &IrradianceSource, size: u32) -> Result<Cubemap> {

@@ -18,10 +18,11 @@ use crate::io::cubemap::{encode_texture, to_cross};
 use crate::io::input::{load_input, InputOptions, LoadedEnvironment};
 use crate::io::lut::{encode_lut, LutWriteOptions};
 use crate::io::{dds, env, exr, ktx1, ktx2, sh_text, PixelFormat};
+use crate::lut::LutModel;
 use crate::lut::{BrdfLut, DEFAULT_LUT_SIZE};
 use crate::math::sh::{sh_prescaled, sh_rotated, SH_ORDER};
 use crate::preview::{render_preview, BakedLight, Preview, PreviewOptions, SphereStats};
-use crate::target::{FileSet, Target, GENERIC};
+use crate::target::{FileSet, LutChannels, Target, GENERIC};
 use crate::{Backend, Error, Result};
 
 /// Container of the specular and irradiance outputs.
@@ -106,6 +107,7 @@ impl BakeOptions {
             FileSet::Standard => self.container.extension(),
             FileSet::FilamentKtx1 => "ktx (KTX 1)",
             FileSet::BabylonEnv => "env (Babylon.js)",
+            FileSet::GltfSampleViewer => "ktx2 (glTF-IBL-Sampler's folders)",
         }
     }
 
@@ -137,6 +139,8 @@ pub enum Stage {
     Specular,
     /// Convolving the irradiance cube.
     Irradiance,
+    /// Prefiltering the Charlie sheen chain (targets that read one).
+    Sheen,
     /// Projecting onto spherical harmonics.
     Sh,
     /// Rendering the preview.
@@ -153,6 +157,7 @@ impl Stage {
             Stage::Cubemap => "cubemap",
             Stage::Specular => "specular",
             Stage::Irradiance => "irradiance",
+            Stage::Sheen => "sheen",
             Stage::Sh => "sh",
             Stage::Preview => "preview",
             Stage::Write => "write",
@@ -160,11 +165,12 @@ impl Stage {
     }
 
     /// All stages in order.
-    pub const ALL: [Stage; 7] = [
+    pub const ALL: [Stage; 8] = [
         Stage::Load,
         Stage::Cubemap,
         Stage::Specular,
         Stage::Irradiance,
+        Stage::Sheen,
         Stage::Sh,
         Stage::Preview,
         Stage::Write,
@@ -217,6 +223,9 @@ pub struct BakedEnvironment {
     pub irradiance: Cubemap,
     /// The SH projection, when asked for.
     pub sh: Option<ShCoefficients>,
+    /// The prefiltered Charlie sheen chain, in the specular chain's layout, for targets
+    /// that read one ([`Target::sheen`]).
+    pub sheen: Option<Cubemap>,
 }
 
 impl BakedEnvironment {
@@ -283,7 +292,7 @@ pub fn validate_options(opts: &BakeOptions) -> Result<()> {
             ),
         });
     }
-    if target.files != FileSet::Standard && !opts.sh {
+    if target.files.carries_sh() && !opts.sh {
         return Err(Error::InvalidParameter {
             name: "--no-sh",
             message: format!(
@@ -335,6 +344,12 @@ pub fn bake_environment(
         fit_roughest_level(&mut specular, &irradiance);
         Ok(irradiance)
     })?;
+    let sheen = match opts.target.sheen {
+        false => None,
+        true => Some(timed_stage(Stage::Sheen, progress, timings, || {
+            backend.prefilter_sheen(&env, Some(&irradiance_source), chain)
+        })?),
+    };
     let sh = timed_stage(Stage::Sh, progress, timings, || {
         Ok(opts.sh.then(|| sh_project(&irradiance_source)))
     })?;
@@ -343,6 +358,7 @@ pub fn bake_environment(
         chain,
         irradiance,
         sh,
+        sheen,
     })
 }
 
@@ -489,14 +505,15 @@ pub fn output_dir(out_root: &Path, input: &Path) -> PathBuf {
     out_root.join(crate::io::input::input_stem(input))
 }
 
-/// Bakes one input into `output_dir(out_root, input)`. `lut`, when given, is written as
-/// `brdf_lut.png` beside the other outputs. `progress` is called as each stage starts.
+/// Bakes one input into `output_dir(out_root, input)`. `luts` are written beside the other
+/// outputs as the target's [`Target::luts`] say (one table each, in that order; empty for
+/// none). `progress` is called as each stage starts.
 pub fn bake(
     backend: &dyn Backend,
     input: &Path,
     out_root: &Path,
     opts: &BakeOptions,
-    lut: Option<&BrdfLut>,
+    luts: &[BrdfLut],
     progress: &mut dyn FnMut(Stage),
 ) -> Result<BakeReport> {
     let mut timings = Vec::new();
@@ -504,12 +521,21 @@ pub fn bake(
     let preview = match &opts.preview {
         None => None,
         Some(p) => Some(timed_stage(Stage::Preview, progress, &mut timings, || {
-            preview_baked(backend, &baked, lut, p)
+            // The preview shades with the default model; another target's LUTs don't do.
+            let split_sum_lut = opts
+                .target
+                .luts
+                .iter()
+                .zip(luts)
+                .find(|(s, _)| s.model == LutModel::default() && s.channels == LutChannels::Model)
+                .map(|(_, l)| l);
+            preview_baked(backend, &baked, split_sum_lut, p)
         })?),
     };
     let BakedEnvironment {
         specular,
         irradiance,
+        sheen,
         sh,
         ..
     } = baked;
@@ -537,7 +563,6 @@ pub fn bake(
                 &specular,
                 irradiance.as_ref(),
                 sh.as_ref(),
-                lut,
             )?;
         }
         FileSet::FilamentKtx1 => {
@@ -550,7 +575,13 @@ pub fn bake(
                 warnings.push(w);
             }
         }
+        FileSet::GltfSampleViewer => {
+            let irradiance = target.orientation.apply(irradiance);
+            let sheen = sheen.map(|s| target.orientation.apply(s));
+            stage_gltf(&mut out, &dir, opts, &specular, &irradiance, sheen.as_ref())?;
+        }
     }
+    stage_luts(&mut out, &dir, target, luts)?;
     if let Some(p) = &preview {
         out.add(
             dir.join("preview.png"),
@@ -563,7 +594,7 @@ pub fn bake(
         input,
         backend,
         opts,
-        lut.map(|l| l.width),
+        luts.first().map(|l| l.width),
         preview.as_ref(),
         &out.outputs,
     );
@@ -594,7 +625,6 @@ fn stage_standard(
     specular: &Cubemap,
     irradiance: Option<&Cubemap>,
     sh: Option<&ShCoefficients>,
-    lut: Option<&BrdfLut>,
 ) -> Result<()> {
     let fmt = match opts.container {
         Container::Exr => "rgb32f (OpenEXR cross)",
@@ -616,11 +646,24 @@ fn stage_standard(
             ("sh", "json", 0, 0),
         );
     }
-    if let Some(lut) = lut {
-        let lut_file = opts.target.lut_file;
-        let path = dir.join(lut_file.file_name());
-        let bytes = encode_lut(&path, lut, LutWriteOptions::default())?;
-        out.add(path, bytes, ("brdf_lut", lut_file.format(), lut.width, 1));
+    Ok(())
+}
+
+/// The LUT files of `target` (`luts` holds their tables in the same order).
+fn stage_luts(out: &mut Staging, dir: &Path, target: &Target, luts: &[BrdfLut]) -> Result<()> {
+    for (spec, lut) in target.luts.iter().zip(luts) {
+        let path = dir.join(spec.file);
+        let bytes = match spec.channels {
+            LutChannels::Model => encode_lut(&path, lut, LutWriteOptions::default())?,
+            LutChannels::FirstInBlue => {
+                let blue = BrdfLut {
+                    third: Some(lut.data.iter().map(|t| t[0]).collect()),
+                    ..BrdfLut::new(lut.width, lut.height, vec![[0.0; 2]; lut.data.len()])
+                };
+                encode_lut(&path, &blue, LutWriteOptions::default())?
+            }
+        };
+        out.add(path, bytes, ("brdf_lut", spec.format(), lut.width, 1));
     }
     Ok(())
 }
@@ -673,6 +716,33 @@ fn stage_filament(
             sh_text::sh_txt(sh).into_bytes(),
             ("sh", "text (cmgen --sh-shader)", 0, 0),
         );
+    }
+    Ok(())
+}
+
+/// The glTF Sample Viewer's environment ([`FileSet::GltfSampleViewer`]), as
+/// glTF-IBL-Sampler lays it out: `lambertian/diffuse.ktx2` (E/π), `ggx/specular.ktx2` and
+/// `charlie/sheen.ktx2` (the Charlie chain, in the GGX chain's layout).
+fn stage_gltf(
+    out: &mut Staging,
+    dir: &Path,
+    opts: &BakeOptions,
+    specular: &Cubemap,
+    irradiance: &Cubemap,
+    sheen: Option<&Cubemap>,
+) -> Result<()> {
+    let fmt = opts.pixel_format.name();
+    let mut cube = |folder: &str, name: &str, kind: &'static str, cube: &Cubemap| -> Result<()> {
+        for (path, bytes) in encode_cube(&dir.join(folder), name, cube, opts)? {
+            let levels = cube.levels.len() as u32;
+            out.add(path, bytes, (kind, fmt, cube.size, levels));
+        }
+        Ok(())
+    };
+    cube("lambertian", "diffuse", "irradiance", irradiance)?;
+    cube("ggx", "specular", "specular", specular)?;
+    if let Some(sheen) = sheen {
+        cube("charlie", "sheen", "sheen", sheen)?;
     }
     Ok(())
 }
@@ -918,6 +988,7 @@ pub fn read_bake_dir(dir: &Path) -> Result<(BakedEnvironment, Option<BrdfLut>)> 
             chain,
             irradiance,
             sh: None,
+            sheen: None,
         },
         lut,
     ))

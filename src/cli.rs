@@ -427,6 +427,8 @@ pub enum TargetArg {
     Filament,
     /// Babylon.js (a .env file).
     Babylon,
+    /// The glTF Sample Viewer (glTF-IBL-Sampler's files).
+    Gltf,
 }
 
 impl From<TargetArg> for &'static splitsum::target::Target {
@@ -438,6 +440,7 @@ impl From<TargetArg> for &'static splitsum::target::Target {
             TargetArg::Three => &t_::THREE,
             TargetArg::Filament => &t_::FILAMENT,
             TargetArg::Babylon => &t_::BABYLON,
+            TargetArg::Gltf => &t_::GLTF,
         }
     }
 }

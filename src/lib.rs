@@ -10,9 +10,9 @@
 //! ```no_run
 //! use splitsum::bake::{bake, BakeOptions};
 //! let (backend, _note) = splitsum::create_backend(splitsum::BackendChoice::Auto)?;
-//! let lut = backend.brdf_lut(512, 512)?;
+//! let lut = backend.brdf_lut(512, 512)?; // the generic target's one LUT file
 //! let report = bake(backend.as_ref(), "sky.hdr".as_ref(), "out".as_ref(),
-//!                   &BakeOptions::default(), Some(&lut), &mut |_stage| {})?;
+//!                   &BakeOptions::default(), &[lut], &mut |_stage| {})?;
 //! println!("wrote {}", report.out_dir.display());
 //! # Ok::<(), splitsum::Error>(())
 //! ```

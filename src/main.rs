@@ -221,17 +221,24 @@ fn run_bake(args: BakeArgs) -> anyhow::Result<()> {
             false
         }
     };
+    // One table per LUT file of the target, computed once for every input.
     let lut_size = splitsum::lut::DEFAULT_LUT_SIZE;
-    let compute_lut = |backend: &dyn splitsum::Backend| backend.brdf_lut(lut_size, lut_size);
-    let mut lut = if !write_lut {
-        None
-    } else {
-        let lut = match compute_lut(backend.as_ref()) {
-            Err(e) if fall_back(&e, &mut backend) => compute_lut(backend.as_ref()),
-            r => r,
+    let compute_luts =
+        |backend: &dyn splitsum::Backend| -> splitsum::Result<Vec<splitsum::BrdfLut>> {
+            if !write_lut {
+                return Ok(Vec::new());
+            }
+            target
+                .luts
+                .iter()
+                .map(|spec| backend.brdf_lut_model(lut_size, lut_size, spec.model))
+                .collect()
         };
-        Some(lut.context("computing the BRDF LUT")?)
-    };
+    let mut luts = match compute_luts(backend.as_ref()) {
+        Err(e) if fall_back(&e, &mut backend) => compute_luts(backend.as_ref()),
+        r => r,
+    }
+    .context("computing the BRDF LUT")?;
     let show = !args.quiet && std::io::stderr().is_terminal();
     let mut failed = 0;
     for input in &args.inputs {
@@ -249,20 +256,16 @@ fn run_bake(args: BakeArgs) -> anyhow::Result<()> {
             bar.set_message(stage.name());
             bar.set_position(Stage::ALL.iter().position(|s| *s == stage).unwrap_or(0) as u64);
         };
-        let mut run = |backend: &dyn splitsum::Backend, lut: Option<&splitsum::BrdfLut>| {
-            bake(backend, input, &args.output, &opts, lut, &mut progress)
+        let mut run = |backend: &dyn splitsum::Backend, luts: &[splitsum::BrdfLut]| {
+            bake(backend, input, &args.output, &opts, luts, &mut progress)
         };
-        let result = match run(backend.as_ref(), lut.as_ref()) {
+        let result = match run(backend.as_ref(), &luts) {
             Err(e) if fall_back(&e, &mut backend) => {
-                // Redo everything on the CPU, the LUT included, so the outputs are
+                // Redo everything on the CPU, the LUTs included, so the outputs are
                 // exactly a CPU bake's, as the manifest says.
-                let relut = match lut {
-                    Some(_) => compute_lut(backend.as_ref()).map(Some),
-                    None => Ok(None),
-                };
-                relut.and_then(|l| {
-                    lut = l;
-                    run(backend.as_ref(), lut.as_ref())
+                compute_luts(backend.as_ref()).and_then(|l| {
+                    luts = l;
+                    run(backend.as_ref(), &luts)
                 })
             }
             r => r,

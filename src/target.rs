@@ -13,6 +13,7 @@ use crate::cpu::prefilter_specular::{MipRoughness, DEFAULT_MIN_MIP_SIZE};
 pub const FILAMENT_MIN_MIP_SIZE: u32 = 16;
 use crate::environment::Cubemap;
 use crate::io::PixelFormat;
+use crate::lut::LutModel;
 use crate::math::cubemap::AxisMap;
 
 /// How an engine's shaders read directions, against DESIGN.md's (right-handed, +Y up, the
@@ -62,33 +63,47 @@ impl Orientation {
     }
 }
 
-/// The LUT file a target writes when a LUT is asked for.
+/// How a LUT file holds its model's table.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum LutFile {
-    /// `brdf_lut.png`, 16-bit RGB (B = 0).
-    Png,
-    /// `brdf_lut.ktx2`, R16G16_SFLOAT: browsers decode 16-bit PNGs to 8 bits and three's
-    /// TextureLoader flips PNGs.
-    Ktx2,
+pub enum LutChannels {
+    /// As the model lays it out (`splitsum lut --model`).
+    Model,
+    /// The model's first channel in B, R and G zero: glTF-IBL-Sampler's `lut_charlie`,
+    /// which the glTF Sample Viewer reads as `.b`.
+    FirstInBlue,
 }
 
-impl LutFile {
-    /// File name in the bake folder.
-    pub fn file_name(self) -> &'static str {
-        match self {
-            LutFile::Png => "brdf_lut.png",
-            LutFile::Ktx2 => "brdf_lut.ktx2",
-        }
-    }
+/// One LUT file a target writes when LUTs are asked for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LutSpec {
+    /// File name in the bake folder; the extension picks the container (`io::lut`).
+    pub file: &'static str,
+    /// The model integrated.
+    pub model: LutModel,
+    /// How the file holds it.
+    pub channels: LutChannels,
+}
 
-    /// Format as written in manifests.
-    pub fn format(self) -> &'static str {
-        match self {
-            LutFile::Png => "png rgb16",
-            LutFile::Ktx2 => "ktx2 rg16f",
+impl LutSpec {
+    /// The format as written in manifests.
+    pub fn format(&self) -> &'static str {
+        match (
+            crate::io::extension_of(std::path::Path::new(self.file)).as_str(),
+            self.channels,
+        ) {
+            ("ktx2", _) => "ktx2 rg16f",
+            (_, LutChannels::FirstInBlue) => "png rgb16 (the model in B)",
+            _ => "png rgb16",
         }
     }
 }
+
+/// `brdf_lut.png`: the default model, 16-bit RGB (B = 0).
+const BRDF_LUT_PNG: &[LutSpec] = &[LutSpec {
+    file: "brdf_lut.png",
+    model: LutModel::SchlickGgx,
+    channels: LutChannels::Model,
+}];
 
 /// Which files a bake writes for the engine, each in the container the engine loads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -104,12 +119,22 @@ pub enum FileSet {
     /// Babylon.js's prefiltered environment: `<stem>.env` (the whole chain as RGBD PNGs and
     /// the irradiance as a spherical polynomial, see [`crate::io::env`]).
     BabylonEnv,
+    /// glTF-IBL-Sampler's folders, which the glTF Sample Viewer reads:
+    /// `lambertian/diffuse.ktx2`, `ggx/specular.ktx2`, `charlie/sheen.ktx2`, with the LUTs
+    /// `lut_ggx.png`, `lut_charlie.png` and `lut_sheen_E.png` beside them.
+    GltfSampleViewer,
 }
 
 impl FileSet {
     /// Whether `--pixel-format` chooses how the cubes are stored (a `.env` is always RGBD).
     pub fn has_pixel_format(self) -> bool {
         self != FileSet::BabylonEnv
+    }
+
+    /// Whether the irradiance SH are part of the engine's own file (Filament's IBL,
+    /// Babylon's .env), so they cannot be left out.
+    pub fn carries_sh(self) -> bool {
+        matches!(self, FileSet::FilamentKtx1 | FileSet::BabylonEnv)
     }
 }
 
@@ -132,12 +157,14 @@ pub struct Target {
     pub irradiance: bool,
     /// Whether sh.json is written by default.
     pub sh: bool,
-    /// Whether a LUT is written by default.
+    /// Whether the LUTs are written by default.
     pub lut: bool,
-    /// The LUT file, when one is written.
-    pub lut_file: LutFile,
+    /// The LUT files, when they are written.
+    pub luts: &'static [LutSpec],
     /// The files written and their containers.
     pub files: FileSet,
+    /// Whether the Charlie sheen chain is baked (engines with KHR_materials_sheen).
+    pub sheen: bool,
     /// The extension of `splitsum cubemap`'s default output for this target.
     pub cube_extension: &'static str,
     /// Pixel formats the engine cannot use everywhere, with the reason (a warning).
@@ -157,8 +184,9 @@ pub const GENERIC: Target = Target {
     irradiance: true,
     sh: true,
     lut: true,
-    lut_file: LutFile::Png,
+    luts: BRDF_LUT_PNG,
     files: FileSet::Standard,
+    sheen: false,
     cube_extension: "ktx2",
     format_warnings: &[],
     notes: &[
@@ -184,8 +212,9 @@ pub const BEVY: Target = Target {
     irradiance: true,
     sh: false,
     lut: false,
-    lut_file: LutFile::Png,
+    luts: BRDF_LUT_PNG,
     files: FileSet::Standard,
+    sheen: false,
     cube_extension: "ktx2",
     format_warnings: &[(
         PixelFormat::Rgba32f,
@@ -216,8 +245,14 @@ pub const THREE: Target = Target {
     irradiance: false,
     sh: true,
     lut: false,
-    lut_file: LutFile::Ktx2,
+    // Browsers decode 16-bit PNGs to 8 bits and three's TextureLoader flips PNGs.
+    luts: &[LutSpec {
+        file: "brdf_lut.ktx2",
+        model: LutModel::SchlickGgx,
+        channels: LutChannels::Model,
+    }],
     files: FileSet::Standard,
+    sheen: false,
     cube_extension: "ktx2",
     format_warnings: &[(
         PixelFormat::Rgba32f,
@@ -256,8 +291,9 @@ pub const FILAMENT: Target = Target {
     irradiance: false,
     sh: true,
     lut: false,
-    lut_file: LutFile::Png,
+    luts: BRDF_LUT_PNG,
     files: FileSet::FilamentKtx1,
+    sheen: false,
     cube_extension: "ktx",
     format_warnings: &[
         (
@@ -301,8 +337,9 @@ pub const BABYLON: Target = Target {
     irradiance: false,
     sh: true,
     lut: false,
-    lut_file: LutFile::Png,
+    luts: BRDF_LUT_PNG,
     files: FileSet::BabylonEnv,
+    sheen: false,
     cube_extension: "ktx2",
     format_warnings: &[],
     notes: &[
@@ -313,8 +350,51 @@ pub const BABYLON: Target = Target {
     ],
 };
 
+/// The glTF Sample Viewer (npm `@khronosgroup/gltf-viewer` 1.1), with glTF-IBL-Sampler's
+/// file set and its own chain layout.
+pub const GLTF: Target = Target {
+    name: "gltf",
+    orientation: Orientation::GENERIC,
+    pixel_format: PixelFormat::Rgba16f,
+    zstd: None,
+    // The viewer reads lod = r * (u_MipCount - 1) for GGX and sheen alike.
+    roughness: MipRoughness::Linear,
+    // The viewer's own filtering (iblSampler): 256² with lowestMipLevel 4, five levels to
+    // 16², which also holds the Charlie lobe (its r = 1 level at 4² misses a sun by 3.5 %).
+    min_mip_size: 16,
+    irradiance: true,
+    sh: false,
+    lut: true,
+    luts: &[
+        LutSpec {
+            file: "lut_ggx.png",
+            model: LutModel::SmithCorrelated,
+            channels: LutChannels::Model,
+        },
+        LutSpec {
+            file: "lut_charlie.png",
+            model: LutModel::Charlie,
+            channels: LutChannels::FirstInBlue,
+        },
+        LutSpec {
+            file: "lut_sheen_E.png",
+            model: LutModel::SheenAlbedo,
+            channels: LutChannels::Model,
+        },
+    ],
+    files: FileSet::GltfSampleViewer,
+    sheen: true,
+    cube_extension: "ktx2",
+    format_warnings: &[],
+    notes: &[
+        "lambertian/diffuse.ktx2 (E / pi), ggx/specular.ktx2 and charlie/sheen.ktx2 as the environment's u_LambertianEnvSampler, u_GGXEnvSampler and u_CharlieEnvSampler, u_MipCount = the specular levels",
+        "the viewer samples lod = roughness * (u_MipCount - 1), GGX and sheen alike, at u_EnvRotation * direction",
+        "lut_ggx.png (height-correlated Smith scale and bias), lut_charlie.png (the Charlie albedo in B) and lut_sheen_E.png (the sheen albedo in R) at uv = (n.v, roughness)",
+    ],
+};
+
 /// Every target, for the command line.
-pub const TARGETS: [&Target; 5] = [&GENERIC, &BEVY, &THREE, &FILAMENT, &BABYLON];
+pub const TARGETS: [&Target; 6] = [&GENERIC, &BEVY, &THREE, &FILAMENT, &BABYLON, &GLTF];
 
 impl Target {
     /// The target called `name`.

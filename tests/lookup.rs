@@ -20,51 +20,14 @@ const ROUGHNESS: [f64; 6] = [0.35, 0.5, 0.65, 0.8, 0.9, 1.0];
 /// Random directions per HDRI.
 const DIRECTIONS: usize = 600;
 
-fn luminance(c: [f64; 3]) -> f64 {
-    0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
-}
-
 /// 600 directions uniform on the sphere (the same on every run).
 fn directions() -> Vec<[f64; 3]> {
     common::uniform_directions(DIRECTIONS, 0x5eed)
 }
 
-/// One source texel of the brute-force sum: centre direction, solid angle Ω and Y·Ω.
-struct Term {
-    d: [f64; 3],
-    omega: f64,
-    y_omega: f64,
-}
-
-/// Every texel of the source equirect at full resolution.
-fn source_terms(e: &Equirect) -> Vec<Term> {
-    use std::f64::consts::PI;
-    let (w, h) = (e.width as f64, e.height as f64);
-    let mut out = Vec::with_capacity(e.data.len());
-    for y in 0..e.height {
-        let (t0, t1) = (PI * y as f64 / h, PI * (y + 1) as f64 / h);
-        let omega = 2.0 * PI / w * (t0.cos() - t1.cos());
-        let theta = 0.5 * (t0 + t1);
-        for x in 0..e.width {
-            let phi = 2.0 * PI * ((x as f64 + 0.5) / w - 0.5);
-            let l = e.get(x, y);
-            out.push(Term {
-                d: [
-                    theta.sin() * phi.cos(),
-                    theta.cos(),
-                    theta.sin() * phi.sin(),
-                ],
-                omega,
-                y_omega: luminance([0, 1, 2].map(|c| l[c] as f64)) * omega,
-            });
-        }
-    }
-    out
-}
-
 /// The split-sum prefiltered luminance at `n` for each roughness (n = v = r):
 /// Σ Y Ω D(n·h) (n·l) / Σ Ω D(n·h) (n·l), GGX D with α = r², h = normalize(n + l), in f64.
-fn truth(terms: &[Term], n: [f64; 3], roughness: &[f64]) -> Vec<f64> {
+fn truth(terms: &[common::Term], n: [f64; 3], roughness: &[f64]) -> Vec<f64> {
     let a2: Vec<f64> = roughness.iter().map(|r| r.powi(4)).collect();
     let mut num = vec![0.0; roughness.len()];
     let mut den = vec![0.0; roughness.len()];
@@ -87,7 +50,7 @@ fn truth(terms: &[Term], n: [f64; 3], roughness: &[f64]) -> Vec<f64> {
 /// The truth at every direction of [`directions`] for `roughness`, per direction.
 fn truths(e: &Equirect, roughness: &[f64]) -> Vec<Vec<f64>> {
     use rayon::prelude::*;
-    let terms = source_terms(e);
+    let terms = common::equirect_terms(e);
     directions()
         .par_iter()
         .map(|&n| truth(&terms, n, roughness))
@@ -143,7 +106,7 @@ fn lookup_errors(
             let (mut err, mut total) = (0.0, 0.0);
             for (n, t) in dirs.iter().zip(truth) {
                 let got = sample_cube_lod(&chain, n.map(|v| v as f32), lod);
-                err += (luminance(got.map(|v| v as f64)) - t[k]).abs();
+                err += (common::luminance(got.map(|v| v as f64)) - t[k]).abs();
                 total += t[k];
             }
             err / total
@@ -257,7 +220,7 @@ fn small_chains_match_the_full_resolution_truth() {
     use rayon::prelude::*;
     use splitsum::math::cubemap::cube_texel_direction;
     let e = common::test_equirect("quarry_01_1k.hdr");
-    let terms = source_terms(&e);
+    let terms = common::equirect_terms(&e);
     for size in [64u32, 128] {
         let (chain, _) = baked_chain(
             &CpuBackend,
@@ -281,7 +244,8 @@ fn small_chains_match_the_full_resolution_truth() {
             let mean = truth.iter().sum::<f64>() / truth.len() as f64;
             let (mut err, mut worst) = (0.0, 0.0f64);
             for (t, got) in truth.iter().zip(&chain.levels[m]) {
-                let d = (luminance([got[0] as f64, got[1] as f64, got[2] as f64]) - t).abs();
+                let d =
+                    (common::luminance([got[0] as f64, got[1] as f64, got[2] as f64]) - t).abs();
                 err += d;
                 worst = worst.max(d / t.max(0.01 * mean));
             }

@@ -215,7 +215,7 @@ fn three_target_is_a_pmrem_chain_mirrored_in_x() {
         Path::new("tests/data/quarry_01_1k.hdr"),
         &dir,
         &opts,
-        None,
+        &[],
         &mut |_| {},
     )
     .unwrap();
@@ -673,4 +673,96 @@ fn babylon_target_refuses_what_a_env_cannot_hold_and_warns_of_clipping() {
         err.contains("brighter than the 255 a .env (RGBD) holds"),
         "{err}"
     );
+}
+
+/// `--target gltf`: glTF-IBL-Sampler's folders and LUT files as the glTF Sample Viewer reads
+/// them: the GGX chain is the generic chain of the viewer's layout (to 16²), byte for byte;
+/// the Charlie chain has the same levels; lut_ggx.png is `splitsum lut --model
+/// smith-correlated`, lut_charlie.png holds `--model charlie` in B (the viewer reads `.b`)
+/// and lut_sheen_E.png is `--model sheen-albedo`.
+#[test]
+fn gltf_target_is_the_sample_viewers_file_set() {
+    let dir = common::output_dir("targets-gltf");
+    let gltf = small_bake(&dir.join("t"), &["--target", "gltf"]);
+    let bake64 = |out: &Path, extra: &[&str]| {
+        run(splitsum()
+            .args(["bake", "tests/data/quarry_01_1k.hdr", "--backend", "cpu"])
+            .args([
+                "--specular-size",
+                "64",
+                "--irradiance-size",
+                "8",
+                "-q",
+                "-o",
+            ])
+            .arg(out)
+            .args(extra));
+        out.join("quarry_01_1k")
+    };
+    let gltf64 = bake64(&dir.join("t64"), &["--target", "gltf"]);
+    let generic64 = bake64(&dir.join("g64"), &["--min-mip-size", "16", "--no-lut"]);
+    let m = manifest(&gltf);
+    assert_eq!(m["target"]["name"], "gltf");
+    let files: Vec<&str> = m["outputs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|o| o["file"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        files,
+        [
+            "diffuse.ktx2",
+            "specular.ktx2",
+            "sheen.ktx2",
+            "lut_ggx.png",
+            "lut_charlie.png",
+            "lut_sheen_E.png"
+        ]
+    );
+    for path in [
+        "lambertian/diffuse.ktx2",
+        "ggx/specular.ktx2",
+        "charlie/sheen.ktx2",
+    ] {
+        assert!(gltf.join(path).is_file(), "{path}");
+    }
+    assert_eq!(
+        std::fs::read(gltf64.join("ggx/specular.ktx2")).unwrap(),
+        std::fs::read(generic64.join("specular.ktx2")).unwrap(),
+        "the GGX chain is the generic one"
+    );
+    let chain = |p: &Path| splitsum::io::input::read_ktx2_cube_chain(p).unwrap();
+    let (ggx, sheen) = (
+        chain(&gltf64.join("ggx/specular.ktx2")),
+        chain(&gltf64.join("charlie/sheen.ktx2")),
+    );
+    assert_eq!((ggx.levels.len(), sheen.levels.len()), (3, 3), "64² to 16²");
+    assert_ne!(ggx.levels[1], sheen.levels[1]);
+
+    let lut = |model: &str| {
+        let path = dir.join(format!("{model}.png"));
+        run(splitsum()
+            .args(["lut", "--backend", "cpu", "--model", model, "-o"])
+            .arg(&path));
+        path
+    };
+    assert_eq!(
+        std::fs::read(gltf.join("lut_ggx.png")).unwrap(),
+        std::fs::read(lut("smith-correlated")).unwrap()
+    );
+    assert_eq!(
+        std::fs::read(gltf.join("lut_sheen_E.png")).unwrap(),
+        std::fs::read(lut("sheen-albedo")).unwrap()
+    );
+    let png = |p: &Path| {
+        splitsum::io::png::decode_rgb(&std::fs::read(p).unwrap())
+            .unwrap()
+            .2
+    };
+    let charlie = png(&lut("charlie"));
+    let blue = png(&gltf.join("lut_charlie.png"));
+    for (b, c) in blue.iter().zip(&charlie) {
+        assert_eq!([b[0], b[1], b[2]], [0.0, 0.0, c[0]]);
+    }
 }

@@ -30,11 +30,7 @@ camera.fovMode = B.Camera.FOVMODE_VERTICAL_FIXED;
 camera.minZ = 0.05;
 camera.maxZ = 1000;
 
-const add = (a, b) => a.map((v, i) => v + b[i]);
-const scale = (a, k) => a.map((v) => v * k);
-const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-const normalize = (a) => scale(a, 1 / Math.hypot(...a));
-const degrees = (a, b) => (Math.acos(Math.min(1, Math.max(-1, dot(normalize(a), normalize(b))))) * 180) / Math.PI;
+const { add, scale, dot, normalize, degrees } = measure;
 
 function aim(eye, target, fov) {
   camera.position = new B.Vector3(...eye);
@@ -211,12 +207,7 @@ window.runCheck = async function ({ hdrUrl, envUrl, controlUrl, roughness }) {
   out.irradianceRatio = band0(ours) / band0(own);
 
   // Spheres, the camera 40° from the sun.
-  const up = [0, 1, 0];
-  const axis = normalize([up[1] * sun[2] - up[2] * sun[1], up[2] * sun[0] - up[0] * sun[2], up[0] * sun[1] - up[1] * sun[0]]);
-  const a = (40 * Math.PI) / 180;
-  const k = axis, v = sun;
-  const kxv = [k[1] * v[2] - k[2] * v[1], k[2] * v[0] - k[0] * v[2], k[0] * v[1] - k[1] * v[0]];
-  const viewDir = add(add(scale(v, Math.cos(a)), scale(kxv, Math.sin(a))), scale(k, dot(k, v) * (1 - Math.cos(a))));
+  const viewDir = measure.turnedFrom(sun, 40);
   const eye = scale(viewDir, SPHERE_DISTANCE);
   const sphere = B.MeshBuilder.CreateSphere('sphere', { diameter: 2, segments: 96 }, scene);
   const material = new B.PBRMaterial('material', scene);

@@ -9,6 +9,7 @@
 // radiance. A self-check renders the same view at two exposures and requires the decoded
 // radiance to agree, so a non-linear output would fail the check rather than skew it.
 import * as measure from '/engines/measure.js';
+import { sphereGlb } from '/engines/sphere.js';
 
 const SIZE = 160;
 const MIRROR_SIZE = 512;
@@ -42,36 +43,9 @@ view.setColorGrading(
 renderer.setClearOptions({ clearColor: [0, 0, 0, 1], clear: true });
 const assetLoader = engine.createAssetLoader();
 
-const add = (a, b) => a.map((v, i) => v + b[i]);
-const scale = (a, k) => a.map((v) => v * k);
-const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
-const normalize = (a) => scale(a, 1 / Math.hypot(...a));
-const degrees = (a, b) => (Math.acos(Math.min(1, Math.max(-1, dot(normalize(a), normalize(b))))) * 180) / Math.PI;
+const { add, scale, dot, cross, normalize, degrees, pinhole, pixelRay, sphereHit } = measure;
 const srgbToLinear = (c) => (c <= 0.04045 ? c / 12.92 : ((c + 0.055) / 1.055) ** 2.4);
 const SRGB = Float32Array.from({ length: 256 }, (_, i) => srgbToLinear(i / 255));
-
-// A pinhole camera: eye, forward, up and vertical field of view; the ray through pixel
-// (x, y) of a read-back image (row 0 at the bottom).
-function pinhole(eye, target, fov) {
-  const forward = normalize(add(target, scale(eye, -1)));
-  const right = normalize(cross(forward, Math.abs(forward[1]) > 0.999 ? [0, 0, 1] : [0, 1, 0]));
-  const up = cross(right, forward);
-  return { eye, forward, right, up, fov };
-}
-function pixelRay(cam, [x, y], size) {
-  const t = Math.tan((cam.fov * Math.PI) / 360);
-  const sx = ((2 * x) / size - 1) * t, sy = ((2 * y) / size - 1) * t;
-  return normalize(add(cam.forward, add(scale(cam.right, sx), scale(cam.up, sy))));
-}
-// Where the ray from the camera through (x, y) meets the unit sphere, if it does.
-function sphereHit(cam, px, size) {
-  const d = pixelRay(cam, px, size);
-  const b = dot(cam.eye, d), c = dot(cam.eye, cam.eye) - 1;
-  const disc = b * b - c;
-  if (disc < 0) return null;
-  return { d, p: add(cam.eye, scale(d, -b - Math.sqrt(disc))), depth: Math.sqrt(disc) };
-}
 
 // Sets the camera's exposure (1 / (1.2 · 2^EV100)) to `exposure` through aperture N,
 // shutter time t and sensitivity S, where exposure = t S / (120 N²) (Filament's
@@ -156,62 +130,6 @@ function maskSphere(px, cam, size) {
     }
   }
   return px;
-}
-
-// A UV sphere of radius 1 with one metallic-roughness material, as a GLB for gltfio.
-function sphereGlb(metallic, roughness) {
-  const rings = 96, segments = 192;
-  const pos = [], idx = [];
-  for (let i = 0; i <= rings; i++) {
-    const theta = (Math.PI * i) / rings;
-    for (let j = 0; j <= segments; j++) {
-      const phi = (2 * Math.PI * j) / segments;
-      pos.push(Math.sin(theta) * Math.cos(phi), Math.cos(theta), Math.sin(theta) * Math.sin(phi));
-    }
-  }
-  for (let i = 0; i < rings; i++) {
-    for (let j = 0; j < segments; j++) {
-      const a = i * (segments + 1) + j, b = a + segments + 1;
-      idx.push(a, a + 1, b, a + 1, b + 1, b);
-    }
-  }
-  const positions = new Float32Array(pos);
-  const indices = new Uint16Array(idx);
-  const bin = new Uint8Array(positions.byteLength + indices.byteLength + 3 & ~3);
-  bin.set(new Uint8Array(positions.buffer), 0);
-  bin.set(new Uint8Array(indices.buffer), positions.byteLength);
-  const json = {
-    asset: { version: '2.0' },
-    scene: 0,
-    scenes: [{ nodes: [0] }],
-    nodes: [{ mesh: 0 }],
-    meshes: [{ primitives: [{ attributes: { POSITION: 0, NORMAL: 0 }, indices: 1, material: 0 }] }],
-    materials: [{ pbrMetallicRoughness: { baseColorFactor: [1, 1, 1, 1], metallicFactor: metallic, roughnessFactor: roughness } }],
-    accessors: [
-      { bufferView: 0, componentType: 5126, count: positions.length / 3, type: 'VEC3', min: [-1, -1, -1], max: [1, 1, 1] },
-      { bufferView: 1, componentType: 5123, count: indices.length, type: 'SCALAR' },
-    ],
-    bufferViews: [
-      { buffer: 0, byteOffset: 0, byteLength: positions.byteLength, target: 34962 },
-      { buffer: 0, byteOffset: positions.byteLength, byteLength: indices.byteLength, target: 34963 },
-    ],
-    buffers: [{ byteLength: bin.byteLength }],
-  };
-  let text = new TextEncoder().encode(JSON.stringify(json));
-  const jsonChunk = new Uint8Array(text.length + 3 & ~3).fill(0x20);
-  jsonChunk.set(text);
-  const glb = new Uint8Array(12 + 8 + jsonChunk.length + 8 + bin.length);
-  const dv = new DataView(glb.buffer);
-  dv.setUint32(0, 0x46546c67, true);
-  dv.setUint32(4, 2, true);
-  dv.setUint32(8, glb.length, true);
-  dv.setUint32(12, jsonChunk.length, true);
-  dv.setUint32(16, 0x4e4f534a, true);
-  glb.set(jsonChunk, 20);
-  dv.setUint32(20 + jsonChunk.length, bin.length, true);
-  dv.setUint32(24 + jsonChunk.length, 0x004e4942, true);
-  glb.set(bin, 28 + jsonChunk.length);
-  return glb;
 }
 
 async function loadSphere(metallic, roughness) {
@@ -339,9 +257,7 @@ window.runCheck = async function ({ splitsum, cmgen, fromCmgenCube, control, rou
   scene.setSkybox(null);
 
   // Spheres: the camera 40° from the sun.
-  const axis = normalize(cross([0, 1, 0], sun));
-  const rot = (v, k, ang) => add(add(scale(v, Math.cos(ang)), scale(cross(k, v), Math.sin(ang))), scale(k, dot(k, v) * (1 - Math.cos(ang))));
-  const viewDir = rot(sun, axis, (40 * Math.PI) / 180);
+  const viewDir = measure.turnedFrom(sun, 40);
   const sphereCam = pinhole(scale(viewDir, SPHERE_DISTANCE), [0, 0, 0], SPHERE_FOV);
   const sphereAt = async (metallic, r, light, size, e) => {
     const asset = await loadSphere(metallic, r);

@@ -8,6 +8,7 @@ pub mod cube_sample;
 pub mod equirect_to_cube;
 pub mod irradiance;
 pub mod lut_interpolation;
+pub mod prefilter_sheen;
 pub mod prefilter_specular;
 pub mod preview_split_sum;
 pub mod preview_truth;

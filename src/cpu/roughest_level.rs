@@ -24,8 +24,21 @@ pub fn fit_roughest_level(chain: &mut Cubemap, irradiance: &Cubemap) -> bool {
     if last == 0 || irradiance.size < 2 * n {
         return false;
     }
-    let unknowns = chain.levels[last].len();
-    let fine = irradiance.size;
+    match fit_level_for_lookup(n, irradiance) {
+        Some(level) => {
+            chain.levels[last] = level;
+            true
+        }
+        None => false,
+    }
+}
+
+/// The texels of an `n`² level whose seamless bilinear lookup best matches, in least
+/// squares, level 0 of the finer `target` at its texel centres (see the module
+/// documentation); None when the normal equations are singular.
+pub fn fit_level_for_lookup(n: u32, target: &Cubemap) -> Option<Vec<[f32; 4]>> {
+    let unknowns = Cubemap::level_len(n);
+    let fine = target.size;
     let dirs: Vec<[f32; 3]> = (0..6 * fine * fine)
         .map(|k| {
             let (face, j, i) = (k / (fine * fine), (k % (fine * fine)) / fine, k % fine);
@@ -52,7 +65,7 @@ pub fn fit_roughest_level(chain: &mut Cubemap, irradiance: &Cubemap) -> bool {
     let mut a = vec![0.0f64; unknowns * unknowns];
     let mut b = vec![[0.0f64; 3]; unknowns];
     for (f, row) in weights.iter().enumerate() {
-        let y = irradiance.levels[0][f];
+        let y = target.levels[0][f];
         for &(p, wp) in row {
             for &(q, wq) in row {
                 a[p * unknowns + q] += wp * wq;
@@ -62,17 +75,16 @@ pub fn fit_roughest_level(chain: &mut Cubemap, irradiance: &Cubemap) -> bool {
             }
         }
     }
-    let Some(l) = cholesky(&a, unknowns) else {
-        return false;
-    };
+    let l = cholesky(&a, unknowns)?;
+    let mut level = vec![[0.0f32, 0.0, 0.0, 1.0]; unknowns];
     for c in 0..3 {
         let rhs: Vec<f64> = b.iter().map(|v| v[c]).collect();
         let v = cholesky_solve(&l, unknowns, &rhs);
         for (t, value) in v.into_iter().enumerate() {
-            chain.levels[last][t][c] = value.max(0.0) as f32;
+            level[t][c] = value.max(0.0) as f32;
         }
     }
-    true
+    Some(level)
 }
 
 /// Lower-triangular L with L Lᵀ = `a` (n×n, row-major); None if `a` is not positive

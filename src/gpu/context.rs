@@ -19,7 +19,12 @@ pub const LOSE_DEVICE_ENV: &str = "SPLITSUM_LOSE_DEVICE_AT";
 /// through EGL: they validate and run, but the cube faces they write through per-mip
 /// 2D-array storage views come back wrong). The LUT, a plain 2D storage texture, runs.
 /// With `--backend auto` the refusal sends these kernels to the CPU backend.
-pub const GL_UNSUPPORTED: &[&str] = &["equirect_to_cube", "prefilter_specular", "irradiance"];
+pub const GL_UNSUPPORTED: &[&str] = &[
+    "equirect_to_cube",
+    "prefilter_specular",
+    "prefilter_sheen",
+    "irradiance",
+];
 
 /// A device and queue with the adapter they came from.
 pub struct GpuContext {

@@ -3,6 +3,7 @@
 //! `cpu/irradiance.rs`); the method per level is chosen by the same Rust function.
 
 use crate::cpu::irradiance::{irradiance_source_level, moment_texels, MomentTexel, SourceTexel};
+use crate::cpu::prefilter_sheen::{finish_sheen_level, sheen_level_plan, sheen_level_roughness};
 use crate::cpu::prefilter_specular::{
     exact_source_texels, ggx_lobe_samples, level_method, split_hot_texels, LevelMethod,
     SpecularChain,
@@ -46,9 +47,9 @@ pub struct ConvolveUniform {
     pub out_size: u32,
     /// Number of source texels.
     pub count: u32,
-    /// 0: prefiltered specular, 1: irradiance / π.
+    /// 0: prefiltered specular, 1: irradiance / π, 2: prefiltered sheen.
     pub mode: u32,
-    /// Roughness (mode 0).
+    /// Roughness (modes 0 and 2).
     pub roughness: f32,
     /// Number of hot cells (mode 1).
     pub hot_count: u32,
@@ -97,6 +98,8 @@ pub fn upload_cube(
 enum ExactSource {
     /// Mode 0: prefiltered specular at a roughness.
     Specular(Vec<SourceTexel>, f32),
+    /// Mode 2: prefiltered sheen (Charlie) at a roughness.
+    Sheen(Vec<SourceTexel>, f32),
     /// Mode 1: irradiance, from the cold texels and the hot cells.
     Irradiance(Vec<MomentTexel>, Vec<MomentTexel>),
 }
@@ -113,6 +116,7 @@ fn record_exact(
     let (count, mode, roughness, bytes, hot): (usize, u32, f32, &[u8], &[MomentTexel]) =
         match source {
             ExactSource::Specular(s, r) => (s.len(), 0, *r, bytemuck::cast_slice(s), &[]),
+            ExactSource::Sheen(s, r) => (s.len(), 2, *r, bytemuck::cast_slice(s), &[]),
             ExactSource::Irradiance(m, h) => (m.len(), 1, 0.0, bytemuck::cast_slice(m), h),
         };
     let uniform = ConvolveUniform {
@@ -221,6 +225,53 @@ pub fn prefilter_specular(
         out
     })?;
     read_cubemap(device, queue, &out)
+}
+
+/// The prefiltered Charlie chain of `env` (every mip present), as
+/// `cpu::prefilter_sheen`: each level integrated on the GPU at its integration edge, then
+/// interpolated or fitted by the same CPU function.
+pub fn prefilter_sheen(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    env: &Cubemap,
+    split: Option<&IrradianceSource>,
+    chain: SpecularChain,
+) -> Result<Cubemap> {
+    let exact = ComputeKernel::new(device, "convolve_exact", shaders::CONVOLVE_EXACT, WORKGROUP)?;
+    let levels = chain.levels.clamp(1, Cubemap::full_mip_count(env.size));
+    let chain = SpecularChain { levels, ..chain };
+    let mut out = Cubemap {
+        size: env.size,
+        levels: Vec::with_capacity(levels as usize),
+    };
+    for m in 0..levels {
+        let r = sheen_level_roughness(&chain, m);
+        let plan = sheen_level_plan(env.size, m, r);
+        let texture = with_error_scope(device, "prefilter_sheen dispatch", || {
+            let texture = create_cube_texture(device, "sheen level", plan.integration, 1);
+            let target = cube_mip_view(&texture, 0);
+            let mut encoder = device.create_command_encoder(&Default::default());
+            let source =
+                ExactSource::Sheen(exact_source_texels(env, split, plan.source_mip as usize), r);
+            record_exact(
+                device,
+                &mut encoder,
+                &exact,
+                &source,
+                plan.integration,
+                &target,
+            );
+            queue.submit([encoder.finish()]);
+            texture
+        })?;
+        let integrated = read_cubemap(device, queue, &texture)?.levels.remove(0);
+        out.levels.push(finish_sheen_level(
+            integrated,
+            plan,
+            env.level_size(m as usize),
+        ));
+    }
+    Ok(out)
 }
 
 /// The irradiance cube (E/π) of edge `size`, as `cpu::irradiance`.

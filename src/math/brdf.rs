@@ -24,6 +24,15 @@ pub fn d_ggx(n_dot_h: f32, alpha: f32) -> f32 {
     a2 / (PI * d * d)
 }
 
+/// The Charlie sheen distribution (Estevez & Kulla 2017), D(h) = (2 + 1/α) sin^(1/α)θh /
+/// (2π), times n·l, in a prefiltered sum with n = v, up to a constant factor: there
+/// sin²θh = (1 − n·l)/2, so D ∝ (1 − n·l)^(1/(2α)). The dropped factor
+/// (2 + 1/α) 2^(−1/(2α)) / (2π) cancels in the sum's ratio, and would underflow f32 for
+/// small α.
+pub fn charlie_prefilter_weight(n_dot_l: f32, alpha: f32) -> f32 {
+    (1.0 - n_dot_l).max(0.0).powf(0.5 / alpha) * n_dot_l
+}
+
 /// Schlick-GGX single-direction masking term G1(x) = x / (x (1 − k) + k) (Schlick 1994,
 /// Karis 2013).
 pub fn g1_schlick_ggx(n_dot_x: f32, k: f32) -> f32 {

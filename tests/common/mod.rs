@@ -476,3 +476,41 @@ pub fn skip_peer(why: &str) {
     );
     eprintln!("{why}; skipping");
 }
+
+/// Rec. 709 luminance.
+pub fn luminance(c: [f64; 3]) -> f64 {
+    0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
+}
+
+/// One source texel of a brute-force sum: centre direction, solid angle Ω and Y·Ω.
+pub struct Term {
+    pub d: [f64; 3],
+    pub omega: f64,
+    pub y_omega: f64,
+}
+
+/// Every texel of an equirect at full resolution, for brute-force integrals.
+pub fn equirect_terms(e: &splitsum::Equirect) -> Vec<Term> {
+    use std::f64::consts::PI;
+    let (w, h) = (e.width as f64, e.height as f64);
+    let mut out = Vec::with_capacity(e.data.len());
+    for y in 0..e.height {
+        let (t0, t1) = (PI * y as f64 / h, PI * (y + 1) as f64 / h);
+        let omega = 2.0 * PI / w * (t0.cos() - t1.cos());
+        let theta = 0.5 * (t0 + t1);
+        for x in 0..e.width {
+            let phi = 2.0 * PI * ((x as f64 + 0.5) / w - 0.5);
+            let l = e.get(x, y);
+            out.push(Term {
+                d: [
+                    theta.sin() * phi.cos(),
+                    theta.cos(),
+                    theta.sin() * phi.sin(),
+                ],
+                omega,
+                y_omega: luminance([0, 1, 2].map(|c| l[c] as f64)) * omega,
+            });
+        }
+    }
+    out
+}

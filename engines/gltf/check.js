@@ -1,0 +1,306 @@
+// Runs in the page: renders with the glTF Sample Viewer's own renderer (npm
+// @khronosgroup/gltf-viewer 1.1.0: GltfView, GltfState, ResourceLoader) a generated sphere
+// glTF under two environments: the viewer's own, which it filters at run time from the HDRI
+// (ResourceLoader.loadEnvironment: its iblSampler, 256² to 16², r = m/4), and splitsum's
+// `--target gltf` files, loaded through the viewer's own KTX2 path (its libktx decoder, the
+// one it uses for KTX2 glTF textures) into the environment the viewer built, in place of
+// its run-time textures, as the viewer's former KTX2 environment loader did.
+//
+// The viewer renders to an 8-bit canvas: tone mapping "None" (exposure × radiance, then
+// pow(1/2.2)), each render's exposure lowered until nothing clips, decoded back with
+// pow(2.2) (a self-check compares two exposures).
+import { GltfView, GltfState, ResourceLoader } from '/engines/gltf/node_modules/@khronosgroup/gltf-viewer/dist/gltf-viewer.module.js';
+import * as measure from '/engines/measure.js';
+import { sphereGlb } from '/engines/sphere.js';
+
+const { add, scale, dot, normalize, degrees, pinhole, pixelRay, sphereHit } = measure;
+const LIBS = '/engines/gltf/node_modules/@khronosgroup/gltf-viewer/dist/libs/';
+const SIZE = 160;
+const MIRROR_SIZE = 512;
+const SPHERE_DISTANCE = 4.2;
+const SPHERE_FOV = 30;
+const SKY_FOV = 50;
+// The viewer's linearTosRGB: pow(color, 1/2.2).
+const DECODE = Float32Array.from({ length: 256 }, (_, i) => (i / 255) ** 2.2);
+
+const canvas = document.createElement('canvas');
+canvas.width = canvas.height = MIRROR_SIZE;
+document.body.appendChild(canvas);
+const gl = canvas.getContext('webgl2', { preserveDrawingBuffer: true, antialias: false, alpha: false });
+const view = new GltfView(gl);
+const state = view.createState();
+// The resource loader with the viewer's KTX2 decoder (libktx) and no Draco, which a
+// generated sphere does not need.
+const loader = new ResourceLoader(view, LIBS);
+loader.initKtxLib(window.LIBKTX);
+state.renderingParameters.toneMap = GltfState.ToneMaps.NONE;
+state.renderingParameters.blurEnvironmentMap = false;
+state.renderingParameters.clearColor = [0, 0, 0, 255];
+state.renderingParameters.internalMSAA = 1;
+
+// A camera for the viewer: its UserCamera's transform is the camera-to-world matrix
+// (column-major, looking along −z), set directly: UserCamera.lookAt stores gl-matrix's
+// lookAt, a world-to-camera matrix, which the renderer inverts once more.
+function aim(cam) {
+  state.userCamera.setVerticalFoV((cam.fov * Math.PI) / 180);
+  const [r, u, f, e] = [cam.right, cam.up, cam.forward, cam.eye];
+  state.userCamera.transform = new Float32Array([
+    r[0], r[1], r[2], 0, u[0], u[1], u[2], 0, -f[0], -f[1], -f[2], 0, e[0], e[1], e[2], 1,
+  ]);
+}
+
+async function renderAt(cam, size, e) {
+  aim(cam);
+  state.renderingParameters.exposure = e;
+  canvas.width = canvas.height = size;
+  view.renderFrame(state, size, size);
+  const bytes = new Uint8Array(size * size * 4);
+  gl.bindFramebuffer(gl.READ_FRAMEBUFFER, null);
+  gl.readPixels(0, 0, size, size, gl.RGBA, gl.UNSIGNED_BYTE, bytes);
+  const px = new Float32Array(size * size * 4);
+  let max = 0;
+  for (let i = 0; i < size * size; i++) {
+    let top = 0;
+    for (let c = 0; c < 3; c++) {
+      px[4 * i + c] = DECODE[bytes[4 * i + c]] / e;
+      top = Math.max(top, bytes[4 * i + c]);
+    }
+    px[4 * i + 3] = top < 254 ? 1 : 0;
+    max = Math.max(max, top);
+  }
+  return { px, max };
+}
+
+// Lowers the exposure until nothing clips (the sun may stay clipped: then its centroid is
+// the saturated disc's).
+async function render(cam, size, e0) {
+  let e = e0;
+  for (let k = 0; k < 14; k++, e /= 8) {
+    const { px, max } = await renderAt(cam, size, e);
+    if (max < 254) return { px, clipped: false };
+  }
+  return { ...(await renderAt(cam, size, e)), clipped: true };
+}
+
+// The level-0 texels of a cube texture the viewer holds (RGBA float).
+function readCube(texture, size) {
+  const fb = gl.createFramebuffer();
+  gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
+  const faces = [];
+  for (let f = 0; f < 6; f++) {
+    gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_CUBE_MAP_POSITIVE_X + f, texture, 0);
+    const px = new Float32Array(size * size * 4);
+    gl.readPixels(0, 0, size, size, gl.RGBA, gl.FLOAT, px);
+    faces.push(px);
+  }
+  gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+  gl.deleteFramebuffer(fb);
+  return faces;
+}
+
+// Bright texels' direction, largest value and solid-angle mean of a level 0.
+const faceDirection = (face, s, t) => [[1, -t, -s], [-1, -t, s], [s, 1, t], [s, -1, -t], [s, -t, 1], [-s, -t, -1]][face];
+function cubeStats(level0, n) {
+  let max = 0, sum = 0, total = 0;
+  const texels = [];
+  for (let f = 0; f < 6; f++) {
+    for (let j = 0; j < n; j++) {
+      for (let i = 0; i < n; i++) {
+        const l = measure.luminance(level0[f], 4 * (j * n + i)) || 0;
+        const s = (2 * (i + 0.5)) / n - 1, t = (2 * (j + 0.5)) / n - 1;
+        const w = 1 / (s * s + t * t + 1) ** 1.5;
+        texels.push([l, faceDirection(f, s, t), w]);
+        max = Math.max(max, l);
+        sum += l * w;
+        total += w;
+      }
+    }
+  }
+  let sun = [0, 0, 0];
+  for (const [l, d, w] of texels) if (l >= 0.5 * max) sun = add(sun, scale(normalize(d), l * w));
+  return { sun: normalize(sun), max, mean: sum / total };
+}
+
+function cubeCorrelation(a, b, n) {
+  const blocks = (level0) => {
+    const out = [];
+    for (let f = 0; f < 6; f++) {
+      for (let bj = 0; bj < n / 8; bj++) {
+        for (let bi = 0; bi < n / 8; bi++) {
+          let s = 0;
+          for (let j = 8 * bj; j < 8 * bj + 8; j++) for (let i = 8 * bi; i < 8 * bi + 8; i++) s += measure.luminance(level0[f], 4 * (j * n + i)) || 0;
+          out.push(Math.log1p(s / 64));
+        }
+      }
+    }
+    return out;
+  };
+  const x = blocks(a), y = blocks(b);
+  const m = (v) => v.reduce((p, q) => p + q, 0) / v.length;
+  const mx = m(x), my = m(y);
+  let sxy = 0, sxx = 0, syy = 0;
+  for (let i = 0; i < x.length; i++) {
+    sxy += (x[i] - mx) * (y[i] - my);
+    sxx += (x[i] - mx) ** 2;
+    syy += (y[i] - my) ** 2;
+  }
+  return sxy / Math.sqrt(sxx * syy);
+}
+
+async function image(url) {
+  const img = new Image();
+  img.src = url;
+  await img.decode();
+  return img;
+}
+
+// The viewer's environment with splitsum's files in place of its run-time textures: the
+// images the viewer made (0 Lambertian, 1 GGX, 2 Charlie, 3 lut_ggx, 4 lut_charlie,
+// 5 lut_sheen_E) become splitsum's, the cubes through the viewer's KTX2 decoder with the
+// filtering the viewer gives its own cubes (iblSampler.createCubemapTexture: trilinear for
+// the chains, bilinear for the Lambertian cube; the viewer's texture setup would force
+// environment cubes to one level), the LUTs as PNG images it uploads itself.
+async function withSplitsumFiles(own, dir, levels) {
+  // A copy of the viewer's environment object (a glTF), with its own image and texture
+  // objects; the viewer's filtering runs once, for its own path.
+  const copy = (o) => Object.assign(Object.create(Object.getPrototypeOf(o)), o);
+  const env = copy(own);
+  env.images = own.images.map(copy);
+  env.textures = own.textures.map(copy);
+  const cube = async (k, file, minFilter) => {
+    const texture = await view.ktxDecoder.loadKtxFromUri(`${dir}/${file}`);
+    gl.bindTexture(gl.TEXTURE_CUBE_MAP, texture);
+    gl.texParameteri(gl.TEXTURE_CUBE_MAP, gl.TEXTURE_MIN_FILTER, minFilter);
+    gl.texParameteri(gl.TEXTURE_CUBE_MAP, gl.TEXTURE_MAG_FILTER, gl.LINEAR);
+    gl.texParameteri(gl.TEXTURE_CUBE_MAP, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
+    gl.texParameteri(gl.TEXTURE_CUBE_MAP, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
+    env.images[k].image = texture;
+    env.textures[k].glTexture = undefined;
+    env.textures[k].initialized = true;
+  };
+  const swap = (k, mimeType, content) => {
+    env.images[k].image = content;
+    env.images[k].mimeType = mimeType;
+    env.textures[k].glTexture = undefined;
+    env.textures[k].initialized = false;
+  };
+  await cube(0, 'lambertian/diffuse.ktx2', gl.LINEAR);
+  await cube(1, 'ggx/specular.ktx2', gl.LINEAR_MIPMAP_LINEAR);
+  await cube(2, 'charlie/sheen.ktx2', gl.LINEAR_MIPMAP_LINEAR);
+  swap(3, 'image/png', await image(`${dir}/lut_ggx.png`));
+  swap(4, 'image/png', await image(`${dir}/lut_charlie.png`));
+  env.mipCount = levels;
+  env.iblIntensityScale = 1;
+  return env;
+}
+
+window.runCheck = async function ({ hdrUrl, dir, controlDir, levels, roughness }) {
+  const luts = { lut_sheen_E_file: `${dir}/lut_sheen_E.png` };
+  const own = await loader.loadEnvironment(hdrUrl, luts);
+  const ours = await withSplitsumFiles(own, dir, levels);
+  const control = await withSplitsumFiles(own, controlDir, levels);
+  // One sphere glTF per material, loaded by the viewer (it bakes the factors into the
+  // material's uniforms at load).
+  const spheres = new Map();
+  const setSphere = async (metallic, r) => {
+    const key = `${metallic}/${r}`;
+    if (!spheres.has(key)) spheres.set(key, await loader.loadGltf(sphereGlb(metallic, r).buffer));
+    state.gltf = spheres.get(key);
+  };
+  await setSphere(1, 0);
+  const ownFaces = readCube(own.images[1].image, 256);
+  const ourFaces = readCube(ours.textures[1].glTexture ?? ours.images[1].image, 256);
+  const ownStats = cubeStats(ownFaces, 256), ourStats = cubeStats(ourFaces, 256);
+  // The viewer samples its cubes at u_EnvRotation · d, a turn of environmentRotation
+  // (default 90°) about +Y (gl-matrix rotateY): the cube's sun seen from the world.
+  const turn = (state.renderingParameters.environmentRotation * Math.PI) / 180;
+  const [cx, cy, cz] = ownStats.sun;
+  const sun = [Math.cos(turn) * cx - Math.sin(turn) * cz, cy, Math.sin(turn) * cx + Math.cos(turn) * cz];
+  // The Lambertian cubes (E/π): the viewer's 256² and splitsum's 32², mean over the sphere.
+  const lambertianMean = (env, n) => cubeStats(readCube(env.images[0].image, n), n).mean;
+  const out = {
+    sun,
+    irradianceRatio: lambertianMean(ours, 32) / lambertianMean(own, 256),
+    cube: { correlation: cubeCorrelation(ourFaces, ownFaces, 256), sunError: degrees(ourStats.sun, ownStats.sun), fluxRatio: ourStats.mean / ownStats.mean },
+  };
+  const images = {};
+
+  // Linearity of the read-back.
+  state.environment = own;
+  const skyCam = pinhole([0, 0, 0], sun, SKY_FOV);
+  const eSky = 0.6 / ownStats.mean;
+  const a = (await renderAt(skyCam, SIZE, eSky)).px, b = (await renderAt(skyCam, SIZE, eSky / 4)).px;
+  let sa = 0, sb = 0;
+  for (let i = 0; i < SIZE * SIZE; i++) {
+    const la = measure.luminance(a, 4 * i), lb = measure.luminance(b, 4 * i);
+    if (la * eSky > 0.2 && la * eSky < 0.9) { sa += la; sb += lb; }
+  }
+  out.linearity = sb / sa;
+
+  // Where the viewer shows each environment's sun (the camera sits inside the sphere,
+  // whose back faces are culled): the brightest of six 90° views, then the bright centroid
+  // of a 50° view centred there.
+  const findSun = async (env, e) => {
+    state.environment = env;
+    let best = { l: -1 };
+    for (const d of [[1, 0, 0], [-1, 0, 0], [0, 1, 0.001], [0, -1, 0.001], [0, 0, 1], [0, 0, -1]]) {
+      const cam = pinhole([0, 0, 0], d, 90);
+      const { px } = await render(cam, 96, e);
+      const i = measure.brightestPixel(px, 96);
+      if (measure.luminance(px, 4 * i) > best.l) best = { l: measure.luminance(px, 4 * i), d: pixelRay(cam, [(i % 96) + 0.5, Math.floor(i / 96) + 0.5], 96) };
+    }
+    const cam = pinhole([0, 0, 0], best.d, SKY_FOV);
+    const { px } = await render(cam, SIZE, e);
+    return pixelRay(cam, measure.brightCentroid(px, SIZE), SIZE);
+  };
+  const refSun = await findSun(own, 0.5 / ownStats.max);
+  out.background = { sunError: degrees(await findSun(ours, 0.5 / ourStats.max), refSun) };
+  out.control = { sunError: degrees(await findSun(control, 0.5 / ourStats.max), refSun) };
+  state.environment = own;
+  const refView = (await renderAt(skyCam, SIZE, eSky)).px;
+  state.environment = ours;
+  const gotView = (await renderAt(skyCam, SIZE, 0.6 / ourStats.mean)).px;
+  out.background.logDiff = measure.logDiff(gotView, refView, SIZE);
+  images.sky_viewer = measure.toPng(refView, SIZE);
+  images.sky_splitsum = measure.toPng(gotView, SIZE);
+
+  // Spheres, the camera 40° from the sun.
+  const eye = scale(measure.turnedFrom(sun, 40), SPHERE_DISTANCE);
+  const sphereCam = pinhole(eye, [0, 0, 0], SPHERE_FOV);
+  const sphereAt = async (env, metallic, r, size, e) => {
+    state.environment = env;
+    await setSphere(metallic, r);
+    const { px, clipped } = await render(sphereCam, size, e);
+    if (clipped && r > 0) throw new Error(`sphere r = ${r} saturates`);
+    for (let y = 0; y < size; y++) {
+      for (let x = 0; x < size; x++) {
+        const hit = sphereHit(sphereCam, [x + 0.5, y + 0.5], size);
+        if (!(hit && hit.depth > 0.15)) px[4 * (y * size + x) + 3] = 0;
+      }
+    }
+    return px;
+  };
+  const reflected = (px) => {
+    const hit = sphereHit(sphereCam, measure.brightCentroid(px, MIRROR_SIZE), MIRROR_SIZE);
+    const n = normalize(hit.p);
+    return add(hit.d, scale(n, -2 * dot(hit.d, n)));
+  };
+  const refMirror = await sphereAt(own, 1, 0, MIRROR_SIZE, 0.5 / ownStats.max);
+  const gotMirror = await sphereAt(ours, 1, 0, MIRROR_SIZE, 0.5 / ourStats.max);
+  out.mirror = { sunError: degrees(reflected(gotMirror), reflected(refMirror)), viewerVsCube: degrees(reflected(refMirror), sun) };
+  out.background.viewerVsCube = degrees(refSun, sun);
+  out.spheres = [];
+  for (const metallic of [1, 0]) {
+    for (const r of roughness) {
+      const want = await sphereAt(own, metallic, r, SIZE, 0.6 / ownStats.mean);
+      const got = await sphereAt(ours, metallic, r, SIZE, 0.6 / ourStats.mean);
+      out.spheres.push({ metallic, roughness: r, ...measure.compareSpheres(got, want, SIZE) });
+      images[`sphere_m${metallic}_r${r}_viewer`] = measure.toPng(want, SIZE);
+      images[`sphere_m${metallic}_r${r}_splitsum`] = measure.toPng(got, SIZE);
+    }
+  }
+  out.renderer = gl.getParameter(gl.VERSION);
+  return { out, images };
+};
+
+window.checkReady = true;

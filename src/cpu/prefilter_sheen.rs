@@ -1,0 +1,189 @@
+//! The prefiltered Charlie sheen chain: the environment convolved with the Charlie sheen
+//! distribution (Estevez & Kulla 2017, KHR_materials_sheen's D with α = r²), with n = v as
+//! for GGX, for the glTF Sample Viewer's `u_CharlieEnvSampler` (read at lod = sheen
+//! roughness · (M − 1), the GGX chain's mapping).
+//!
+//! Estimator: the exact sum P(n) = Σ L(l) D(h) (n·l) Ω / Σ D(h) (n·l) Ω over every texel of a
+//! source mip plus the hot cells at the source's resolution ([`exact_source_texels`]), h =
+//! normalize(n + l) — what glTF-IBL-Sampler's Monte Carlo filter converges to: it draws h
+//! with density D(h)(n·h) (sin θ = ξ^(α/(2α + 1))) and weights each l by n·l. With n = v,
+//! sin²θh = (1 − n·l)/2, so D ∝ (1 − n·l)^(1/(2α)): the lobe is a ring towards n's horizon,
+//! about 2α wide in n·l for small α (see [`charlie_prefilter_weight`]).
+//!
+//! The Charlie lobe is broad at every roughness the chain holds past level 0 (the ring at
+//! r = 1/6 spans several degrees), so each level is integrated at a fixed edge
+//! ([`sheen_level_plan`]) from a source mip of at most [`SHEEN_SOURCE_SIZE`] plus the hot
+//! cells; larger levels interpolate the integration (seamless bilinear), the smallest are
+//! fitted to it through the lookup a shader makes. `tests/sheen.rs` measures the result
+//! against a brute-force sum over every texel of the source equirect.
+
+use crate::cpu::cube_sample::sample_cube_lod;
+use crate::cpu::equirect_to_cube::fill_cube_level;
+use crate::cpu::irradiance::SourceTexel;
+use crate::cpu::prefilter_specular::{exact_source_texels, SpecularChain};
+use crate::cpu::roughest_level::fit_level_for_lookup;
+use crate::environment::{Cubemap, IrradianceSource};
+use crate::math::brdf::{alpha_from_roughness, charlie_prefilter_weight};
+use crate::math::cubemap::cube_texel_direction;
+
+/// Edge at which a sheen level is integrated when its lobe is broad (r ≥
+/// [`SHEEN_THIN_RING`]); larger levels interpolate it, smaller ones are fitted to it.
+pub const SHEEN_INTEGRATION_SIZE: u32 = 32;
+/// Edge at which the thin-ring levels (r < [`SHEEN_THIN_RING`]) are integrated: the ring
+/// is a few degrees wide there, and a sun crossing it changes the value within a degree.
+pub const SHEEN_THIN_RING_INTEGRATION_SIZE: u32 = 64;
+/// Below this roughness the Charlie ring is thin (about 2α in n·l).
+pub const SHEEN_THIN_RING: f32 = 0.3;
+/// Largest source mip of a sheen level's exact sum (the hot cells come at the source's
+/// own resolution whatever this is).
+pub const SHEEN_SOURCE_SIZE: u32 = 32;
+/// Levels at most this edge are fitted (least squares, through the bilinear lookup) to
+/// the integrated level instead of holding its values at their own texel centres: a 4² or
+/// 8² face interpolated between centres misses the lobe of a sun by up to 70 % and 36 %.
+pub const SHEEN_FIT_MAX_SIZE: u32 = 8;
+
+/// The roughness sheen level `m` is prefiltered at: the chain's, except level 0, where
+/// sheen roughness 0 has no lobe (D concentrates on half vectors at 90°, whose reflection
+/// is −n; glTF-IBL-Sampler's filter writes black there): it holds the first level's lobe,
+/// the thinnest the chain resolves, so a lookup below that roughness reads it.
+pub fn sheen_level_roughness(chain: &SpecularChain, m: u32) -> f32 {
+    chain.mip_roughness(m.max(1).min(chain.levels.saturating_sub(1)))
+}
+
+/// Exact Charlie-prefiltered radiance around unit `n` at `roughness` over `source` (see the
+/// module documentation). The GPU mirror is mode 2 of `shaders/convolve_exact.wgsl`.
+pub fn prefilter_charlie_texel(source: &[SourceTexel], n: [f32; 3], roughness: f32) -> [f32; 4] {
+    let alpha = alpha_from_roughness(roughness);
+    let mut sum = [0.0f32; 3];
+    let mut weight = 0.0f32;
+    for t in source {
+        let l = t.dir_omega;
+        let n_dot_l = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
+        if n_dot_l > 0.0 {
+            let w = charlie_prefilter_weight(n_dot_l, alpha) * l[3];
+            for (sc, lc) in sum.iter_mut().zip(&t.radiance) {
+                *sc += w * lc;
+            }
+            weight += w * t.radiance[3];
+        }
+    }
+    [sum[0] / weight, sum[1] / weight, sum[2] / weight, 1.0]
+}
+
+/// How a sheen level is made from its integration.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SheenFinish {
+    /// The integrated texels are the level's.
+    AsIs,
+    /// The level interpolates the (smaller) integrated level, seamless bilinear.
+    Interpolate,
+    /// The level's texels are fitted to the (larger) integrated level through the lookup
+    /// (`cpu::roughest_level::fit_level_for_lookup`).
+    Fit,
+}
+
+/// How level `m` (edge `size`, at `roughness`) of an `env_size` chain is computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SheenPlan {
+    /// Edge of the exact sum's output.
+    pub integration: u32,
+    /// The source mip the sum reads.
+    pub source_mip: u32,
+    /// From the integration to the level.
+    pub finish: SheenFinish,
+}
+
+/// The plan of level `m` of an `env_size` chain at `roughness`.
+pub fn sheen_level_plan(env_size: u32, m: u32, roughness: f32) -> SheenPlan {
+    let size = (env_size >> m).max(1);
+    let wanted = if roughness < SHEEN_THIN_RING {
+        SHEEN_THIN_RING_INTEGRATION_SIZE
+    } else {
+        SHEEN_INTEGRATION_SIZE
+    };
+    let source_mip = (env_size / env_size.min(SHEEN_SOURCE_SIZE)).trailing_zeros();
+    let (integration, finish) = if size > wanted {
+        (wanted, SheenFinish::Interpolate)
+    } else if size <= SHEEN_FIT_MAX_SIZE && wanted.min(env_size) >= 2 * size {
+        (wanted.min(env_size), SheenFinish::Fit)
+    } else {
+        (size, SheenFinish::AsIs)
+    };
+    SheenPlan {
+        integration,
+        source_mip,
+        finish,
+    }
+}
+
+/// Level `size`² from its integrated texels (edge `plan.integration`), as `plan` says.
+pub fn finish_sheen_level(integrated: Vec<[f32; 4]>, plan: SheenPlan, size: u32) -> Vec<[f32; 4]> {
+    let small = |texels| Cubemap {
+        size: plan.integration,
+        levels: vec![texels],
+    };
+    match plan.finish {
+        SheenFinish::AsIs => integrated,
+        SheenFinish::Interpolate => {
+            let small = small(integrated);
+            fill_cube_level(size, |face, i, j| {
+                let d = cube_texel_direction(face, i as i32, j as i32, size);
+                let [r, g, b] = sample_cube_lod(&small, d, 0.0);
+                [r, g, b, 1.0]
+            })
+        }
+        SheenFinish::Fit => {
+            let target = small(integrated);
+            fit_level_for_lookup(size, &target).unwrap_or_else(|| {
+                // Singular normal equations (not seen): the values at the texel centres.
+                fill_cube_level(size, |face, i, j| {
+                    let d = cube_texel_direction(face, i as i32, j as i32, size);
+                    let [r, g, b] = sample_cube_lod(&target, d, 0.0);
+                    [r, g, b, 1.0]
+                })
+            })
+        }
+    }
+}
+
+/// The prefiltered Charlie chain of `env` (every mip present) in `chain`'s layout, every
+/// level an exact sum (see the module documentation).
+pub fn prefilter_sheen(
+    env: &Cubemap,
+    split: Option<&IrradianceSource>,
+    chain: SpecularChain,
+) -> Cubemap {
+    let levels = chain.levels.clamp(1, Cubemap::full_mip_count(env.size));
+    let chain = SpecularChain { levels, ..chain };
+    // Levels 0 and 1 share their lobe and integration: integrate once. The key: integration
+    // edge, source mip and the roughness's bits.
+    type Integrated = ((u32, u32, u32), Vec<[f32; 4]>);
+    let mut last: Option<Integrated> = None;
+    let mut out = Vec::with_capacity(levels as usize);
+    for m in 0..levels {
+        let r = sheen_level_roughness(&chain, m);
+        let plan = sheen_level_plan(env.size, m, r);
+        let key = (plan.integration, plan.source_mip, r.to_bits());
+        let integrated = match last.take() {
+            Some((k, texels)) if k == key => texels,
+            _ => {
+                let source = exact_source_texels(env, split, plan.source_mip as usize);
+                let n = plan.integration;
+                fill_cube_level(n, |face, i, j| {
+                    let d = cube_texel_direction(face, i as i32, j as i32, n);
+                    prefilter_charlie_texel(&source, d, r)
+                })
+            }
+        };
+        out.push(finish_sheen_level(
+            integrated.clone(),
+            plan,
+            env.level_size(m as usize),
+        ));
+        last = Some((key, integrated));
+    }
+    Cubemap {
+        size: env.size,
+        levels: out,
+    }
+}
