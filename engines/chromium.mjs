@@ -2,7 +2,7 @@
 // WebGL2, no network, a throw-away profile. Each check passes its own puppeteer-core (its
 // package's node_modules) and the browser path, serves the repository to the page with
 // serveFiles and collects the page's console problems with watchConsole.
-import { mkdtempSync, rmSync, existsSync, readFileSync } from 'node:fs';
+import { mkdtempSync, rmSync, existsSync, readFileSync, writeFileSync } from 'node:fs';
 import { createServer } from 'node:http';
 import { extname, join, normalize } from 'node:path';
 import { tmpdir } from 'node:os';
@@ -69,4 +69,59 @@ export async function serveFiles(root) {
   });
   await new Promise((ok) => server.listen(0, '127.0.0.1', ok));
   return { port: server.address().port, close: () => server.close() };
+}
+
+// Exits with 2 when a tool a check needs is missing: `tools` is [[name, path], …].
+export function requireTools(tools) {
+  for (const [what, path] of tools) {
+    if (!existsSync(path)) {
+      console.error(`error: ${what} not found at ${path}`);
+      process.exit(2);
+    }
+  }
+}
+
+// Runs an engine check page: serves `root`, opens `page` (a path under it) in headless
+// Chromium with `puppeteer`, waits for window.checkReady, and for each of `cases` calls
+// window.runCheck(config(case)), saves the images it returns as <case>_<name>.png in `out`
+// and hands the result to judge(result, { bad, note }): bad(ok, text) prints an ok or FAIL
+// line that fails the check, note(ok, text) an ok or info line that does not. Then the
+// console must be clean; writes results.json with `bars` and exits (1 on a failure).
+export async function runEngineCheck({ puppeteer, chromium, root, page: pagePath, out, cases, config, judge, bars }) {
+  const server = await serveFiles(root);
+  const { browser, close } = await launchChromium(puppeteer, chromium);
+  let consoleProblems = [];
+  let failed = false;
+  const results = {};
+  try {
+    const page = await browser.newPage();
+    consoleProblems = watchConsole(page);
+    await page.goto(`http://127.0.0.1:${server.port}${pagePath}`);
+    await page.waitForFunction('window.checkReady === true', { timeout: 120000 });
+    for (const c of cases) {
+      const { out: r, images } = await page.evaluate((cfg) => window.runCheck(cfg), config(c));
+      results[c] = r;
+      for (const [name, url] of Object.entries(images)) {
+        writeFileSync(join(out, `${c}_${name}.png`), Buffer.from(url.split(',')[1], 'base64'));
+      }
+      const bad = (ok, text) => {
+        console.log(`${ok ? 'ok  ' : 'FAIL'} ${c}: ${text}`);
+        if (!ok) failed = true;
+      };
+      const note = (ok, text) => console.log(`${ok ? 'ok  ' : 'info'} ${c}: ${text}`);
+      judge(r, { bad, note, name: c });
+    }
+  } finally {
+    await close();
+    server.close();
+  }
+  if (consoleProblems.length > 0) {
+    failed = true;
+    console.log('FAIL console:\n  ' + consoleProblems.join('\n  '));
+  } else {
+    console.log('ok   no console errors or warnings');
+  }
+  writeFileSync(join(out, 'results.json'), JSON.stringify({ bars, results, consoleProblems }, null, 2));
+  console.log(`renders and results.json in ${out}`);
+  process.exit(failed ? 1 : 0);
 }

@@ -40,6 +40,20 @@ export function logDiff(a, b, size) {
   return s / n;
 }
 
+const mean = (v) => v.reduce((a, b) => a + b, 0) / v.length;
+
+// Pearson correlation of two equally long lists.
+export function correlation(x, y) {
+  const mx = mean(x), my = mean(y);
+  let sxy = 0, sxx = 0, syy = 0;
+  for (let i = 0; i < x.length; i++) {
+    sxy += (x[i] - mx) * (y[i] - my);
+    sxx += (x[i] - mx) ** 2;
+    syy += (y[i] - my) ** 2;
+  }
+  return sxy / Math.sqrt(sxx * syy);
+}
+
 // Mean luminance ratio and correlation over the pixels both images cover fully (alpha 1).
 export function compareSpheres(got, want, size) {
   const g = [], w = [];
@@ -48,15 +62,70 @@ export function compareSpheres(got, want, size) {
     g.push(luminance(got, 4 * i));
     w.push(luminance(want, 4 * i));
   }
-  const mean = (v) => v.reduce((a, b) => a + b, 0) / v.length;
-  const mg = mean(g), mw = mean(w);
-  let sgw = 0, sgg = 0, sww = 0;
-  for (let i = 0; i < g.length; i++) {
-    sgw += (g[i] - mg) * (w[i] - mw);
-    sgg += (g[i] - mg) ** 2;
-    sww += (w[i] - mw) ** 2;
+  return { pixels: g.length, ratio: mean(g) / mean(w), correlation: correlation(g, w) };
+}
+
+// An 8-bit RGBA read-back decoded to radiance: `decode` maps a byte to the linear value the
+// engine encoded, divided by the exposure `e`; alpha 0 where a channel saturates (254 or
+// more), which carries no radiance. Also returns the largest byte.
+export function decode8(bytes, decode, e) {
+  const px = new Float32Array(bytes.length);
+  let max = 0;
+  for (let i = 0; i < bytes.length; i += 4) {
+    let top = 0;
+    for (let c = 0; c < 3; c++) {
+      px[i + c] = decode[bytes[i + c]] / e;
+      top = Math.max(top, bytes[i + c]);
+    }
+    px[i + 3] = top < 254 ? 1 : 0;
+    max = Math.max(max, top);
   }
-  return { pixels: g.length, ratio: mg / mw, correlation: sgw / Math.sqrt(sgg * sww) };
+  return { px, max };
+}
+
+// The GL cube-face table (DESIGN.md's): the direction through face coordinates (s, t).
+export const faceDirection = (face, s, t) => [[1, -t, -s], [-1, -t, s], [s, 1, t], [s, -1, -t], [s, -t, 1], [-s, -t, -1]][face];
+
+// Of a cube's level 0 (six RGBA float faces of n², rows as GL reads them): the direction of
+// the texels above half the largest luminance, that largest value, and the solid-angle
+// mean. Non-finite texels (an engine's own half-float filtering of a sun) count as 0.
+export function cubeStats(level0, n) {
+  let max = 0, sum = 0, total = 0;
+  const texels = [];
+  for (let f = 0; f < 6; f++) {
+    for (let j = 0; j < n; j++) {
+      for (let i = 0; i < n; i++) {
+        const l = luminance(level0[f], 4 * (j * n + i)) || 0;
+        const s = (2 * (i + 0.5)) / n - 1, t = (2 * (j + 0.5)) / n - 1;
+        const w = 1 / (s * s + t * t + 1) ** 1.5;
+        texels.push([l, faceDirection(f, s, t), w]);
+        max = Math.max(max, l);
+        sum += l * w;
+        total += w;
+      }
+    }
+  }
+  let sun = [0, 0, 0];
+  for (const [l, d, w] of texels) if (l >= 0.5 * max) sun = add(sun, scale(normalize(d), l * w));
+  return { sun: normalize(sun), max, mean: sum / total };
+}
+
+// Correlation of ln(1 + L) between two level-0 cubes, over 8×8-texel blocks.
+export function cubeCorrelation(a, b, n) {
+  const blocks = (level0) => {
+    const out = [];
+    for (let f = 0; f < 6; f++) {
+      for (let bj = 0; bj < n / 8; bj++) {
+        for (let bi = 0; bi < n / 8; bi++) {
+          let s = 0;
+          for (let j = 8 * bj; j < 8 * bj + 8; j++) for (let i = 8 * bi; i < 8 * bi + 8; i++) s += luminance(level0[f], 4 * (j * n + i)) || 0;
+          out.push(Math.log1p(s / 64));
+        }
+      }
+    }
+    return out;
+  };
+  return correlation(blocks(a), blocks(b));
 }
 
 // An RGBA8 PNG (data URL) of a float image, Reinhard-mapped and flipped upright, for the

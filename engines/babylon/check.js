@@ -86,64 +86,11 @@ async function render(meshes, size, e0) {
   throw new Error('every intensity reaches the clamp');
 }
 
-// The GL face table (DESIGN.md's): the direction through face coordinates (s, t).
-const faceDirection = (face, s, t) => [[1, -t, -s], [-1, -t, s], [s, 1, t], [s, -1, -t], [s, -t, 1], [-s, -t, -1]][face];
-
 // Level 0 of a cube texture as Babylon holds it: per face, RGBA floats, rows as read back.
 async function faces(texture) {
   const out = [];
   for (let f = 0; f < 6; f++) out.push(await texture.readPixels(f, 0));
   return out;
-}
-
-// The bright texels' direction, the largest value and the solid-angle mean of level 0.
-function cubeStats(level0, n) {
-  let max = 0, sum = 0, total = 0;
-  const texels = [];
-  for (let f = 0; f < 6; f++) {
-    for (let j = 0; j < n; j++) {
-      for (let i = 0; i < n; i++) {
-        // Babylon's own prefiltering leaves a few NaN texels at quarry_01's sun (half floats).
-        const l = measure.luminance(level0[f], 4 * (j * n + i)) || 0;
-        const s = (2 * (i + 0.5)) / n - 1, t = (2 * (j + 0.5)) / n - 1;
-        const w = 1 / (s * s + t * t + 1) ** 1.5;
-        texels.push([l, faceDirection(f, s, t), w]);
-        max = Math.max(max, l);
-        sum += l * w;
-        total += w;
-      }
-    }
-  }
-  let sun = [0, 0, 0];
-  for (const [l, d, w] of texels) if (l >= 0.5 * max) sun = add(sun, scale(normalize(d), l * w));
-  return { sun: normalize(sun), max, mean: sum / total };
-}
-
-// Correlation of ln(1 + L) between two level-0 cubes, over 8×8-texel blocks.
-function cubeCorrelation(a, b, n) {
-  const blocks = (level0) => {
-    const out = [];
-    for (let f = 0; f < 6; f++) {
-      for (let bj = 0; bj < n / 8; bj++) {
-        for (let bi = 0; bi < n / 8; bi++) {
-          let s = 0;
-          for (let j = 8 * bj; j < 8 * bj + 8; j++) for (let i = 8 * bi; i < 8 * bi + 8; i++) s += measure.luminance(level0[f], 4 * (j * n + i)) || 0;
-          out.push(Math.log1p(s / 64));
-        }
-      }
-    }
-    return out;
-  };
-  const x = blocks(a), y = blocks(b);
-  const m = (v) => v.reduce((p, q) => p + q, 0) / v.length;
-  const mx = m(x), my = m(y);
-  let sxy = 0, sxx = 0, syy = 0;
-  for (let i = 0; i < x.length; i++) {
-    sxy += (x[i] - mx) * (y[i] - my);
-    sxx += (x[i] - mx) ** 2;
-    syy += (y[i] - my) ** 2;
-  }
-  return sxy / Math.sqrt(sxx * syy);
 }
 
 const ready = (texture) => new Promise((ok, fail) => {
@@ -157,15 +104,15 @@ window.runCheck = async function ({ hdrUrl, envUrl, controlUrl, roughness }) {
   const ours = await ready(new B.CubeTexture(envUrl, scene));
   const control = await ready(new B.CubeTexture(controlUrl, scene));
   const ownFaces = await faces(own);
-  const ownStats = cubeStats(ownFaces, 256);
+  const ownStats = measure.cubeStats(ownFaces, 256);
   const ourFaces = await faces(ours);
-  const ourStats = cubeStats(ourFaces, 256);
+  const ourStats = measure.cubeStats(ourFaces, 256);
   const sun = ownStats.sun;
   const out = {
     sun,
     levels: Math.round(Math.log2(ours.getSize().width)) + 1,
     lodGenerationScale: ours.lodGenerationScale,
-    cube: { correlation: cubeCorrelation(ourFaces, ownFaces, 256), sunError: degrees(ourStats.sun, ownStats.sun), fluxRatio: ourStats.mean / ownStats.mean },
+    cube: { correlation: measure.cubeCorrelation(ourFaces, ownFaces, 256), sunError: degrees(ourStats.sun, ownStats.sun), fluxRatio: ourStats.mean / ownStats.mean },
   };
   const images = {};
 

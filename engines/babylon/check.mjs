@@ -11,11 +11,11 @@
 // ../../target/engines/babylon/. Exits 1 when a bar is missed or the console shows an error
 // or warning.
 import { execFileSync } from 'node:child_process';
-import { mkdirSync, writeFileSync, existsSync } from 'node:fs';
+import { mkdirSync } from 'node:fs';
 import { join, resolve, dirname } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import puppeteer from 'puppeteer-core';
-import { launchChromium, serveFiles, watchConsole } from '../chromium.mjs';
+import { requireTools, runEngineCheck } from '../chromium.mjs';
 
 const here = dirname(fileURLToPath(import.meta.url));
 const root = resolve(here, '../..');
@@ -29,12 +29,7 @@ const BARS = { sunDegrees: 1, brightness: 0.05, correlation: 0.98, controlDegree
 const ROUGHNESS = [0.25, 0.5, 1];
 const HDRIS = ['venice_sunset_1k', 'quarry_01_1k'];
 
-for (const [what, path] of [['splitsum', splitsum], ['chromium', chromium]]) {
-  if (!existsSync(path)) {
-    console.error(`error: ${what} not found at ${path}`);
-    process.exit(2);
-  }
-}
+requireTools([['splitsum', splitsum], ['chromium', chromium]]);
 
 mkdirSync(out, { recursive: true });
 const run = (...args) => execFileSync(splitsum, args, { cwd: root, stdio: 'inherit' });
@@ -42,32 +37,21 @@ run('bake', ...HDRIS.map((h) => `tests/data/${h}.hdr`), '--target', 'babylon', '
 // The negative control: the same bake turned a quarter about +Y.
 run('bake', ...HDRIS.map((h) => `tests/data/${h}.hdr`), '--target', 'babylon', '--rotate', '90', '-q', '-o', 'target/engines/babylon/control');
 
-const server = await serveFiles(root);
-const { browser, close } = await launchChromium(puppeteer, chromium);
-let consoleProblems = [];
-let failed = false;
-const results = {};
-try {
-  const page = await browser.newPage();
-  consoleProblems = watchConsole(page);
-  await page.goto(`http://127.0.0.1:${server.port}/engines/babylon/check.html`);
-  await page.waitForFunction('window.checkReady === true', { timeout: 120000 });
-  for (const hdri of HDRIS) {
-    const { out: r, images } = await page.evaluate((cfg) => window.runCheck(cfg), {
-      hdrUrl: `/tests/data/${hdri}.hdr`,
-      envUrl: `/target/engines/babylon/splitsum/${hdri}/${hdri}.env`,
-      controlUrl: `/target/engines/babylon/control/${hdri}/${hdri}.env`,
-      roughness: ROUGHNESS,
-    });
-    results[hdri] = r;
-    for (const [name, url] of Object.entries(images)) {
-      writeFileSync(join(out, `${hdri}_${name}.png`), Buffer.from(url.split(',')[1], 'base64'));
-    }
-    const bad = (ok, text) => {
-      console.log(`${ok ? 'ok  ' : 'FAIL'} ${hdri}: ${text}`);
-      if (!ok) failed = true;
-    };
-    const note = (ok, text) => console.log(`${ok ? 'ok  ' : 'info'} ${hdri}: ${text}`);
+await runEngineCheck({
+  puppeteer,
+  chromium,
+  root,
+  page: '/engines/babylon/check.html',
+  out,
+  cases: HDRIS,
+  bars: BARS,
+  config: (hdri) => ({
+    hdrUrl: `/tests/data/${hdri}.hdr`,
+    envUrl: `/target/engines/babylon/splitsum/${hdri}/${hdri}.env`,
+    controlUrl: `/target/engines/babylon/control/${hdri}/${hdri}.env`,
+    roughness: ROUGHNESS,
+  }),
+  judge: (r, { bad, note, name: hdri }) => {
     bad(r.levels === 9 && Math.abs(r.lodGenerationScale - 0.8) < 1e-6, `the .env loads as a ${r.levels}-level cube with lodGenerationScale ${r.lodGenerationScale}`);
     bad(r.cube.correlation >= BARS.cubeCorrelation && r.cube.sunError <= 0.5,
       `level 0 as Babylon holds it against its own HDRCubeTexture: correlation ${r.cube.correlation.toFixed(4)} of ln(1+L) over 8×8 blocks (bar ${BARS.cubeCorrelation}), bright texels ${r.cube.sunError.toFixed(2)}° apart (bar 0.5°); flux ratio ${r.cube.fluxRatio.toFixed(4)}`);
@@ -88,17 +72,5 @@ try {
       const ok = Math.abs(s.ratio - 1) <= BARS.brightness && s.correlation >= BARS.correlation;
       (kept ? bad : note)(ok, `${s.metallic ? 'metal' : 'dielectric'} r = ${s.roughness}: brightness ${(100 * (s.ratio - 1)).toFixed(2)} % against Babylon's own path, correlation ${s.correlation.toFixed(4)} (${s.pixels} pixels)`);
     }
-  }
-} finally {
-  await close();
-  server.close();
-}
-if (consoleProblems.length > 0) {
-  failed = true;
-  console.log('FAIL console:\n  ' + consoleProblems.join('\n  '));
-} else {
-  console.log('ok   no console errors or warnings');
-}
-writeFileSync(join(out, 'results.json'), JSON.stringify({ bars: BARS, results, consoleProblems }, null, 2));
-console.log(`renders and results.json in ${out}`);
-process.exit(failed ? 1 : 0);
+  },
+});

@@ -93,18 +93,7 @@ async function renderAt(cam, size, e) {
   gl.bindFramebuffer(gl.READ_FRAMEBUFFER, null);
   gl.readPixels(0, 0, size, size, gl.RGBA, gl.UNSIGNED_BYTE, bytes);
   gl.bindFramebuffer(gl.READ_FRAMEBUFFER, previous);
-  const px = new Float32Array(size * size * 4);
-  let max = 0;
-  for (let i = 0; i < size * size; i++) {
-    let top = 0;
-    for (let c = 0; c < 3; c++) {
-      px[4 * i + c] = SRGB[bytes[4 * i + c]] / e;
-      top = Math.max(top, bytes[4 * i + c]);
-    }
-    px[4 * i + 3] = top < 254 ? 1 : 0; // saturated pixels carry no radiance
-    max = Math.max(max, top);
-  }
-  return { px, max };
+  return measure.decode8(bytes, SRGB, e);
 }
 
 // Renders with the exposure lowered until no channel reaches 254 (nothing clipped) or the
@@ -138,43 +127,30 @@ async function loadSphere(metallic, roughness) {
   return asset;
 }
 
-// KTX 1 level 0 of a skybox as RGB floats (R11F_G11F_B10F, as cmgen and splitsum write it).
+// An unsigned float of R11F_G11F_B10F (5-bit exponent, `mantissaBits` mantissa).
 function unpackUfloat(bits, mantissaBits) {
   const e = bits >> mantissaBits, m = bits & ((1 << mantissaBits) - 1);
   if (e === 0) return (m / (1 << mantissaBits)) * 2 ** -14;
   if (e === 31) return m ? NaN : Infinity;
   return (1 + m / (1 << mantissaBits)) * 2 ** (e - 15);
 }
-// The GL face table (the same as DESIGN.md's): the direction through face coordinates (s, t).
-function faceDirection(face, s, t) {
-  return [[1, -t, -s], [-1, -t, s], [s, 1, t], [s, -1, -t], [s, -t, 1], [-s, -t, -1]][face];
-}
+
+// Level 0 of a KTX 1 skybox (R11F_G11F_B10F, as cmgen and splitsum write it) as six RGBA
+// float faces, and its measure.cubeStats.
 function skyStats(bytes) {
   const dv = new DataView(bytes.buffer, bytes.byteOffset);
   const n = dv.getUint32(36, true);
   let p = 64 + dv.getUint32(60, true) + 4;
-  let max = 0, sum = 0;
-  const texels = [];
+  const faces = [];
   for (let f = 0; f < 6; f++) {
-    for (let j = 0; j < n; j++) {
-      for (let i = 0; i < n; i++, p += 4) {
-        const w = dv.getUint32(p, true);
-        const rgb = [unpackUfloat(w & 0x7ff, 6), unpackUfloat((w >> 11) & 0x7ff, 6), unpackUfloat(w >>> 22, 5)];
-        const l = 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
-        const s = (2 * (i + 0.5)) / n - 1, t = (2 * (j + 0.5)) / n - 1;
-        const d = faceDirection(f, s, t);
-        const solid = 1 / (s * s + t * t + 1) ** 1.5;
-        texels.push([l, d, solid]);
-        max = Math.max(max, l);
-        sum += l * solid;
-      }
+    const face = new Float32Array(4 * n * n);
+    for (let k = 0; k < n * n; k++, p += 4) {
+      const w = dv.getUint32(p, true);
+      face.set([unpackUfloat(w & 0x7ff, 6), unpackUfloat((w >> 11) & 0x7ff, 6), unpackUfloat(w >>> 22, 5), 1], 4 * k);
     }
+    faces.push(face);
   }
-  let sun = [0, 0, 0];
-  for (const [l, d, solid] of texels) if (l >= 0.5 * max) sun = add(sun, scale(normalize(d), l * solid));
-  let total = 0;
-  for (const [, , solid] of texels) total += solid;
-  return { sun: normalize(sun), max, mean: sum / total };
+  return measure.cubeStats(faces, n);
 }
 
 async function fetchBytes(url) {

@@ -12,11 +12,11 @@
 // results.json to ../../target/engines/filament/. Exits 1 when a bar is missed or the
 // console shows an error or warning.
 import { execFileSync } from 'node:child_process';
-import { mkdirSync, writeFileSync, existsSync } from 'node:fs';
+import { mkdirSync } from 'node:fs';
 import { join, resolve, dirname } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import puppeteer from 'puppeteer-core';
-import { launchChromium, serveFiles, watchConsole } from '../chromium.mjs';
+import { requireTools, runEngineCheck } from '../chromium.mjs';
 
 const here = dirname(fileURLToPath(import.meta.url));
 const root = resolve(here, '../..');
@@ -32,12 +32,7 @@ const BARS = { sunDegrees: 1, brightness: 0.05, correlation: 0.98, controlDegree
 const ROUGHNESS = [0.25, 0.5, 1];
 const HDRIS = ['venice_sunset_1k', 'quarry_01_1k'];
 
-for (const [what, path] of [['splitsum', splitsum], ['chromium', chromium]]) {
-  if (!existsSync(path)) {
-    console.error(`error: ${what} not found at ${path}`);
-    process.exit(2);
-  }
-}
+requireTools([['splitsum', splitsum], ['chromium', chromium]]);
 
 mkdirSync(out, { recursive: true });
 const rel = (p) => p.slice(root.length);
@@ -64,36 +59,25 @@ for (const h of HDRIS) {
   );
 }
 
-const server = await serveFiles(root);
-const { browser, close } = await launchChromium(puppeteer, chromium);
-let consoleProblems = [];
-let failed = false;
-const results = {};
-try {
-  const page = await browser.newPage();
-  consoleProblems = watchConsole(page);
-  await page.goto(`http://127.0.0.1:${server.port}/engines/filament/check.html`);
-  await page.waitForFunction('window.checkReady === true', { timeout: 120000 });
-  for (const hdri of HDRIS) {
-    const { out: r, images } = await page.evaluate((cfg) => window.runCheck(cfg), {
-      splitsum: { ibl: rel(join(out, 'splitsum', hdri, `${hdri}_ibl.ktx`)), sky: rel(join(out, 'splitsum', hdri, `${hdri}_skybox.ktx`)) },
-      cmgen: { ibl: rel(join(out, 'cmgen', hdri, `${hdri}_ibl.ktx`)), sky: rel(join(out, 'cmgen', hdri, `${hdri}_skybox.ktx`)) },
-      fromCmgenCube: {
-        ibl: rel(join(out, 'from_cmgen_cube', `${hdri}_skybox`, `${hdri}_skybox_ibl.ktx`)),
-        sky: rel(join(out, 'from_cmgen_cube', `${hdri}_skybox`, `${hdri}_skybox_skybox.ktx`)),
-      },
-      control: rel(join(out, 'control', `${hdri}_generic.ktx`)),
-      roughness: ROUGHNESS,
-    });
-    results[hdri] = r;
-    for (const [name, url] of Object.entries(images)) {
-      writeFileSync(join(out, `${hdri}_${name}.png`), Buffer.from(url.split(',')[1], 'base64'));
-    }
-    const bad = (ok, text) => {
-      console.log(`${ok ? 'ok  ' : 'FAIL'} ${hdri}: ${text}`);
-      if (!ok) failed = true;
-    };
-    const note = (ok, text) => console.log(`${ok ? 'ok  ' : 'info'} ${hdri}: ${text}`);
+await runEngineCheck({
+  puppeteer,
+  chromium,
+  root,
+  page: '/engines/filament/check.html',
+  out,
+  cases: HDRIS,
+  bars: BARS,
+  config: (hdri) => ({
+    splitsum: { ibl: rel(join(out, 'splitsum', hdri, `${hdri}_ibl.ktx`)), sky: rel(join(out, 'splitsum', hdri, `${hdri}_skybox.ktx`)) },
+    cmgen: { ibl: rel(join(out, 'cmgen', hdri, `${hdri}_ibl.ktx`)), sky: rel(join(out, 'cmgen', hdri, `${hdri}_skybox.ktx`)) },
+    fromCmgenCube: {
+      ibl: rel(join(out, 'from_cmgen_cube', `${hdri}_skybox`, `${hdri}_skybox_ibl.ktx`)),
+      sky: rel(join(out, 'from_cmgen_cube', `${hdri}_skybox`, `${hdri}_skybox_skybox.ktx`)),
+    },
+    control: rel(join(out, 'control', `${hdri}_generic.ktx`)),
+    roughness: ROUGHNESS,
+  }),
+  judge: (r, { bad, note, name: hdri }) => {
     bad(Math.abs(r.linearity - 1) < 0.02, `read-back linearity: radiance at 1/4 the exposure ${(100 * (r.linearity - 1)).toFixed(2)} % off (bar 2 %)`);
     bad(r.background.sunError <= BARS.sunDegrees,
       `skybox sun ${r.background.sunError.toFixed(2)}° from cmgen's (bar ${BARS.sunDegrees}°; cmgen's is ${r.background.cmgenVsFile.toFixed(2)}° from its file's brightest texels); mean |Δ ln(1+L)| ${r.background.logDiff.toFixed(4)} looking at the sun`);
@@ -121,17 +105,5 @@ try {
     console.log(`     ${hdri}: cmgen's skybox holds ${(100 * cmgenFluxLoss).toFixed(1)} % less flux than splitsum's exact conversion of the HDRI`);
     judge(r.fromHdri, 'splitsum bake of the HDRI', fluxKept);
     judge(r.fromCmgenCube, "splitsum bake of cmgen's cube", true);
-  }
-} finally {
-  await close();
-  server.close();
-}
-if (consoleProblems.length > 0) {
-  failed = true;
-  console.log('FAIL console:\n  ' + consoleProblems.join('\n  '));
-} else {
-  console.log('ok   no console errors or warnings');
-}
-writeFileSync(join(out, 'results.json'), JSON.stringify({ bars: BARS, results, consoleProblems }, null, 2));
-console.log(`renders and results.json in ${out}`);
-process.exit(failed ? 1 : 0);
+  },
+});

@@ -57,18 +57,7 @@ async function renderAt(cam, size, e) {
   const bytes = new Uint8Array(size * size * 4);
   gl.bindFramebuffer(gl.READ_FRAMEBUFFER, null);
   gl.readPixels(0, 0, size, size, gl.RGBA, gl.UNSIGNED_BYTE, bytes);
-  const px = new Float32Array(size * size * 4);
-  let max = 0;
-  for (let i = 0; i < size * size; i++) {
-    let top = 0;
-    for (let c = 0; c < 3; c++) {
-      px[4 * i + c] = DECODE[bytes[4 * i + c]] / e;
-      top = Math.max(top, bytes[4 * i + c]);
-    }
-    px[4 * i + 3] = top < 254 ? 1 : 0;
-    max = Math.max(max, top);
-  }
-  return { px, max };
+  return measure.decode8(bytes, DECODE, e);
 }
 
 // Lowers the exposure until nothing clips (the sun may stay clipped: then its centroid is
@@ -96,55 +85,6 @@ function readCube(texture, size) {
   gl.bindFramebuffer(gl.FRAMEBUFFER, null);
   gl.deleteFramebuffer(fb);
   return faces;
-}
-
-// Bright texels' direction, largest value and solid-angle mean of a level 0.
-const faceDirection = (face, s, t) => [[1, -t, -s], [-1, -t, s], [s, 1, t], [s, -1, -t], [s, -t, 1], [-s, -t, -1]][face];
-function cubeStats(level0, n) {
-  let max = 0, sum = 0, total = 0;
-  const texels = [];
-  for (let f = 0; f < 6; f++) {
-    for (let j = 0; j < n; j++) {
-      for (let i = 0; i < n; i++) {
-        const l = measure.luminance(level0[f], 4 * (j * n + i)) || 0;
-        const s = (2 * (i + 0.5)) / n - 1, t = (2 * (j + 0.5)) / n - 1;
-        const w = 1 / (s * s + t * t + 1) ** 1.5;
-        texels.push([l, faceDirection(f, s, t), w]);
-        max = Math.max(max, l);
-        sum += l * w;
-        total += w;
-      }
-    }
-  }
-  let sun = [0, 0, 0];
-  for (const [l, d, w] of texels) if (l >= 0.5 * max) sun = add(sun, scale(normalize(d), l * w));
-  return { sun: normalize(sun), max, mean: sum / total };
-}
-
-function cubeCorrelation(a, b, n) {
-  const blocks = (level0) => {
-    const out = [];
-    for (let f = 0; f < 6; f++) {
-      for (let bj = 0; bj < n / 8; bj++) {
-        for (let bi = 0; bi < n / 8; bi++) {
-          let s = 0;
-          for (let j = 8 * bj; j < 8 * bj + 8; j++) for (let i = 8 * bi; i < 8 * bi + 8; i++) s += measure.luminance(level0[f], 4 * (j * n + i)) || 0;
-          out.push(Math.log1p(s / 64));
-        }
-      }
-    }
-    return out;
-  };
-  const x = blocks(a), y = blocks(b);
-  const m = (v) => v.reduce((p, q) => p + q, 0) / v.length;
-  const mx = m(x), my = m(y);
-  let sxy = 0, sxx = 0, syy = 0;
-  for (let i = 0; i < x.length; i++) {
-    sxy += (x[i] - mx) * (y[i] - my);
-    sxx += (x[i] - mx) ** 2;
-    syy += (y[i] - my) ** 2;
-  }
-  return sxy / Math.sqrt(sxx * syy);
 }
 
 async function image(url) {
@@ -210,18 +150,18 @@ window.runCheck = async function ({ hdrUrl, dir, controlDir, levels, roughness }
   await setSphere(1, 0);
   const ownFaces = readCube(own.images[1].image, 256);
   const ourFaces = readCube(ours.textures[1].glTexture ?? ours.images[1].image, 256);
-  const ownStats = cubeStats(ownFaces, 256), ourStats = cubeStats(ourFaces, 256);
+  const ownStats = measure.cubeStats(ownFaces, 256), ourStats = measure.cubeStats(ourFaces, 256);
   // The viewer samples its cubes at u_EnvRotation · d, a turn of environmentRotation
   // (default 90°) about +Y (gl-matrix rotateY): the cube's sun seen from the world.
   const turn = (state.renderingParameters.environmentRotation * Math.PI) / 180;
   const [cx, cy, cz] = ownStats.sun;
   const sun = [Math.cos(turn) * cx - Math.sin(turn) * cz, cy, Math.sin(turn) * cx + Math.cos(turn) * cz];
   // The Lambertian cubes (E/π): the viewer's 256² and splitsum's 32², mean over the sphere.
-  const lambertianMean = (env, n) => cubeStats(readCube(env.images[0].image, n), n).mean;
+  const lambertianMean = (env, n) => measure.cubeStats(readCube(env.images[0].image, n), n).mean;
   const out = {
     sun,
     irradianceRatio: lambertianMean(ours, 32) / lambertianMean(own, 256),
-    cube: { correlation: cubeCorrelation(ourFaces, ownFaces, 256), sunError: degrees(ourStats.sun, ownStats.sun), fluxRatio: ourStats.mean / ownStats.mean },
+    cube: { correlation: measure.cubeCorrelation(ourFaces, ownFaces, 256), sunError: degrees(ourStats.sun, ownStats.sun), fluxRatio: ourStats.mean / ownStats.mean },
   };
   const images = {};
 

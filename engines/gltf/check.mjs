@@ -11,11 +11,11 @@
 // ../../target/engines/gltf/. Exits 1 when a bar is missed or the console shows an error
 // or warning.
 import { execFileSync } from 'node:child_process';
-import { mkdirSync, writeFileSync, existsSync } from 'node:fs';
+import { mkdirSync } from 'node:fs';
 import { join, resolve, dirname } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import puppeteer from 'puppeteer-core';
-import { launchChromium, serveFiles, watchConsole } from '../chromium.mjs';
+import { requireTools, runEngineCheck } from '../chromium.mjs';
 
 const here = dirname(fileURLToPath(import.meta.url));
 const root = resolve(here, '../..');
@@ -32,12 +32,7 @@ const HDRIS = ['venice_sunset_1k', 'quarry_01_1k'];
 // The target's chain: 256² to 16².
 const LEVELS = 5;
 
-for (const [what, path] of [['splitsum', splitsum], ['chromium', chromium]]) {
-  if (!existsSync(path)) {
-    console.error(`error: ${what} not found at ${path}`);
-    process.exit(2);
-  }
-}
+requireTools([['splitsum', splitsum], ['chromium', chromium]]);
 
 mkdirSync(out, { recursive: true });
 const run = (...args) => execFileSync(splitsum, args, { cwd: root, stdio: 'inherit' });
@@ -45,33 +40,22 @@ run('bake', ...HDRIS.map((h) => `tests/data/${h}.hdr`), '--target', 'gltf', '-q'
 // The negative control: the same bake turned a quarter about +Y.
 run('bake', ...HDRIS.map((h) => `tests/data/${h}.hdr`), '--target', 'gltf', '--rotate', '90', '-q', '-o', 'target/engines/gltf/control');
 
-const server = await serveFiles(root);
-const { browser, close } = await launchChromium(puppeteer, chromium);
-let consoleProblems = [];
-let failed = false;
-const results = {};
-try {
-  const page = await browser.newPage();
-  consoleProblems = watchConsole(page);
-  await page.goto(`http://127.0.0.1:${server.port}/engines/gltf/check.html`);
-  await page.waitForFunction('window.checkReady === true', { timeout: 120000 });
-  for (const hdri of HDRIS) {
-    const { out: r, images } = await page.evaluate((cfg) => window.runCheck(cfg), {
-      hdrUrl: `/tests/data/${hdri}.hdr`,
-      dir: `/target/engines/gltf/splitsum/${hdri}`,
-      controlDir: `/target/engines/gltf/control/${hdri}`,
-      levels: LEVELS,
-      roughness: ROUGHNESS,
-    });
-    results[hdri] = r;
-    for (const [name, url] of Object.entries(images)) {
-      writeFileSync(join(out, `${hdri}_${name}.png`), Buffer.from(url.split(',')[1], 'base64'));
-    }
-    const bad = (ok, text) => {
-      console.log(`${ok ? 'ok  ' : 'FAIL'} ${hdri}: ${text}`);
-      if (!ok) failed = true;
-    };
-    const note = (ok, text) => console.log(`${ok ? 'ok  ' : 'info'} ${hdri}: ${text}`);
+await runEngineCheck({
+  puppeteer,
+  chromium,
+  root,
+  page: '/engines/gltf/check.html',
+  out,
+  cases: HDRIS,
+  bars: BARS,
+  config: (hdri) => ({
+    hdrUrl: `/tests/data/${hdri}.hdr`,
+    dir: `/target/engines/gltf/splitsum/${hdri}`,
+    controlDir: `/target/engines/gltf/control/${hdri}`,
+    levels: LEVELS,
+    roughness: ROUGHNESS,
+  }),
+  judge: (r, { bad, note, name: hdri }) => {
     bad(Math.abs(r.linearity - 1) < 0.02, `read-back linearity: radiance at 1/4 the exposure ${(100 * (r.linearity - 1)).toFixed(2)} % off (bar 2 %)`);
     bad(r.cube.correlation >= BARS.cubeCorrelation && r.cube.sunError <= 0.5,
       `level 0 of the GGX cube as the viewer holds it against its own: correlation ${r.cube.correlation.toFixed(4)} of ln(1+L) over 8×8 blocks (bar ${BARS.cubeCorrelation}), bright texels ${r.cube.sunError.toFixed(2)}° apart (bar 0.5°); flux ratio ${r.cube.fluxRatio.toFixed(4)}`);
@@ -94,17 +78,5 @@ try {
       const kept = s.metallic ? fluxKept : irradianceKept;
       (kept ? bad : note)(ok, `${s.metallic ? 'metal' : 'dielectric'} r = ${s.roughness}: brightness ${(100 * (s.ratio - 1)).toFixed(2)} % against the viewer's own path, correlation ${s.correlation.toFixed(4)} (${s.pixels} pixels)`);
     }
-  }
-} finally {
-  await close();
-  server.close();
-}
-if (consoleProblems.length > 0) {
-  failed = true;
-  console.log('FAIL console:\n  ' + consoleProblems.join('\n  '));
-} else {
-  console.log('ok   no console errors or warnings');
-}
-writeFileSync(join(out, 'results.json'), JSON.stringify({ bars: BARS, results, consoleProblems }, null, 2));
-console.log(`renders and results.json in ${out}`);
-process.exit(failed ? 1 : 0);
+  },
+});

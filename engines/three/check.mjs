@@ -10,11 +10,11 @@
 // ../../target/engines/three/. Exits 1 when a bar is missed or the console shows a WebGL
 // error or warning.
 import { execFileSync } from 'node:child_process';
-import { mkdirSync, writeFileSync, existsSync } from 'node:fs';
+import { mkdirSync } from 'node:fs';
 import { join, resolve, dirname } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import puppeteer from 'puppeteer-core';
-import { launchChromium, serveFiles, watchConsole } from '../chromium.mjs';
+import { requireTools, runEngineCheck } from '../chromium.mjs';
 
 const here = dirname(fileURLToPath(import.meta.url));
 const root = resolve(here, '../..');
@@ -28,12 +28,7 @@ const BARS = { sunDegrees: 1, brightness: 0.05, correlation: 0.98 };
 const ROUGHNESS = [0.25, 0.5, 1];
 const HDRIS = ['quarry_01_1k', 'venice_sunset_1k'];
 
-for (const [what, path] of [['splitsum', splitsum], ['chromium', chromium]]) {
-  if (!existsSync(path)) {
-    console.error(`error: ${what} not found at ${path}`);
-    process.exit(2);
-  }
-}
+requireTools([['splitsum', splitsum], ['chromium', chromium]]);
 
 mkdirSync(out, { recursive: true });
 execFileSync(
@@ -49,36 +44,21 @@ for (const h of HDRIS) {
   );
 }
 
-const server = await serveFiles(root);
-const port = server.port;
-
-const { browser, close } = await launchChromium(puppeteer, chromium);
-let consoleProblems = [];
-let failed = false;
-const results = {};
-try {
-  const page = await browser.newPage();
-  consoleProblems = watchConsole(page);
-  await page.goto(`http://127.0.0.1:${port}/engines/three/check.html`);
-  await page.waitForFunction('window.checkReady === true', { timeout: 60000 });
-  for (const hdri of HDRIS) {
-    const { out: r, images } = await page.evaluate(
-      (cfg) => window.runCheck(cfg),
-      {
-        hdrUrl: `/tests/data/${hdri}.hdr`,
-        bakeDir: `/target/engines/three/bakes/${hdri}`,
-        cubeUrl: `/target/engines/three/bakes/${hdri}_cube.ktx2`,
-        roughness: ROUGHNESS,
-      },
-    );
-    results[hdri] = r;
-    for (const [name, url] of Object.entries(images)) {
-      writeFileSync(join(out, `${hdri}_${name}.png`), Buffer.from(url.split(',')[1], 'base64'));
-    }
-    const bad = (ok, text) => {
-      console.log(`${ok ? 'ok  ' : 'FAIL'} ${hdri}: ${text}`);
-      if (!ok) failed = true;
-    };
+await runEngineCheck({
+  puppeteer,
+  chromium,
+  root,
+  page: '/engines/three/check.html',
+  out,
+  cases: HDRIS,
+  bars: BARS,
+  config: (hdri) => ({
+    hdrUrl: `/tests/data/${hdri}.hdr`,
+    bakeDir: `/target/engines/three/bakes/${hdri}`,
+    cubeUrl: `/target/engines/three/bakes/${hdri}_cube.ktx2`,
+    roughness: ROUGHNESS,
+  }),
+  judge: (r, { bad }) => {
     bad(r.background.sunError <= BARS.sunDegrees,
       `background sun ${r.background.sunError.toFixed(2)}° from three's equirect path (bar ${BARS.sunDegrees}°; three's own path is ${r.background.threeSunVsEquirect.toFixed(2)}° from the HDRI's sun); mean |Δ ln(1+L)| ${r.background.logDiff.toFixed(4)} at the sun, ${r.background.logDiffAllViews.toFixed(4)} over six views`);
     bad(r.mirror.sunError <= BARS.sunDegrees,
@@ -91,17 +71,5 @@ try {
       bad(Math.abs(r.lightProbe.ratio - 1) <= BARS.brightness && r.lightProbe.correlation >= BARS.correlation,
         `LightProbe from sh.json: brightness ${(100 * (r.lightProbe.ratio - 1)).toFixed(2)} % against three's PMREM diffuse, correlation ${r.lightProbe.correlation.toFixed(4)}`);
     }
-  }
-} finally {
-  await close();
-  server.close();
-}
-if (consoleProblems.length > 0) {
-  failed = true;
-  console.log('FAIL console:\n  ' + consoleProblems.join('\n  '));
-} else {
-  console.log('ok   no console errors or warnings');
-}
-writeFileSync(join(out, 'results.json'), JSON.stringify({ bars: BARS, results, consoleProblems }, null, 2));
-console.log(`renders and results.json in ${out}`);
-process.exit(failed ? 1 : 0);
+  },
+});
