@@ -3,9 +3,10 @@
 //   mode 1, irradiance / pi:       (1/pi) sum max(0, n . M_c) per channel c,
 //   mode 2, prefiltered sheen:     sum L D_Charlie(n.h) (n.l) W / sum D_Charlie(n.h) (n.l) W,
 // with W the source texel's exact solid angle, l its radiance centroid direction and M_c
-// its first radiance moments. CPU mirrors: prefilter_exact_texel in
-// src/cpu/prefilter_specular.rs, irradiance_texel in src/cpu/irradiance.rs and
-// prefilter_charlie_texel in src/cpu/prefilter_sheen.rs.
+// its first radiance moments. CPU mirrors: prefilter_lobe_texel in
+// src/cpu/prefilter_specular.rs (with ggx_prefilter_weight in prefilter_exact_texel, with
+// charlie_prefilter_weight in prefilter_charlie_texel, src/cpu/prefilter_sheen.rs) and
+// irradiance_texel in src/cpu/irradiance.rs.
 
 struct ConvolveParams {
     out_size: u32,
@@ -27,25 +28,15 @@ struct ConvolveParams {
 // each under the 2 MiB that lavapipe reads of a storage binding; one dummy in mode 0).
 @group(0) @binding(3) var<storage, read> hot: array<vec4<f32>>;
 
-fn prefilter_exact_texel(n: vec3<f32>, roughness: f32) -> vec4<f32> {
-    let alpha = alpha_from_roughness(roughness);
-    var sum = vec3<f32>(0.0);
-    var weight = 0.0;
-    for (var k = 0u; k < params.count; k++) {
-        let l = source[2u * k];
-        let n_dot_l = dot(n, l.xyz);
-        if (n_dot_l > 0.0) {
-            // n.h = (1 + n.l) / |n + l| = sqrt((1 + n.l) / 2).
-            let n_dot_h = sqrt(0.5 * (1.0 + n_dot_l));
-            let w = d_ggx(n_dot_h, alpha) * n_dot_l * l.w;
-            sum += w * source[2u * k + 1u].rgb;
-            weight += w * source[2u * k + 1u].a; // 0 for a hot cell (see Rust)
-        }
+// Modes 0 and 2: the lobe's weight of a source texel at n.l > 0, before its solid angle.
+fn lobe_weight(n_dot_l: f32, alpha: f32) -> f32 {
+    if (params.mode == 2u) {
+        return charlie_prefilter_weight(n_dot_l, alpha);
     }
-    return vec4<f32>(sum / weight, 1.0);
+    return ggx_prefilter_weight(n_dot_l, alpha);
 }
 
-fn prefilter_charlie_texel(n: vec3<f32>, roughness: f32) -> vec4<f32> {
+fn prefilter_lobe_texel(n: vec3<f32>, roughness: f32) -> vec4<f32> {
     let alpha = alpha_from_roughness(roughness);
     var sum = vec3<f32>(0.0);
     var weight = 0.0;
@@ -53,9 +44,9 @@ fn prefilter_charlie_texel(n: vec3<f32>, roughness: f32) -> vec4<f32> {
         let l = source[2u * k];
         let n_dot_l = dot(n, l.xyz);
         if (n_dot_l > 0.0) {
-            let w = charlie_prefilter_weight(n_dot_l, alpha) * l.w;
+            let w = lobe_weight(n_dot_l, alpha) * l.w;
             sum += w * source[2u * k + 1u].rgb;
-            weight += w * source[2u * k + 1u].a;
+            weight += w * source[2u * k + 1u].a; // 0 for a hot cell (see Rust)
         }
     }
     return vec4<f32>(sum / weight, 1.0);
@@ -137,12 +128,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let dir = cube_texel_direction(id.z, i32(id.x), i32(id.y), n);
     var out: vec4<f32>;
-    if (params.mode == 0u) {
-        out = prefilter_exact_texel(dir, params.roughness);
-    } else if (params.mode == 2u) {
-        out = prefilter_charlie_texel(dir, params.roughness);
-    } else {
+    if (params.mode == 1u) {
         out = irradiance_texel(dir);
+    } else {
+        out = prefilter_lobe_texel(dir, params.roughness);
     }
     textureStore(output, vec2<i32>(id.xy), i32(id.z), out);
 }

@@ -439,40 +439,46 @@ fn filament_target_is_cmgens_file_set_in_filaments_frame() {
     }
 }
 
-/// What Filament's KTX 1 cannot hold, and options the target ignores, are refused in one
-/// line before any file is written.
-#[test]
-fn filament_target_refuses_what_it_cannot_write() {
-    let dir = common::output_dir("targets-filament-refusals");
-    let _ = std::fs::remove_dir_all(&dir);
-    for (extra, says) in [
-        (
-            &["--pixel-format", "rgb9e5"][..],
-            "rgb9e5 cannot be written as KTX 1",
-        ),
-        (&["--container", "dds"][..], "--container applies to"),
-        (&["--no-sh"][..], "writes the irradiance SH into its file"),
-    ] {
+/// Each of `cases` (extra options, and what the error must say) makes a 32² CPU bake of
+/// `tests/data/<stem>.hdr` for `target` into `dir` exit 1 with that error, before any file
+/// is written.
+fn assert_refused(dir: &Path, stem: &str, target: &str, cases: &[(&[&str], &str)]) {
+    let _ = std::fs::remove_dir_all(dir);
+    for (extra, says) in cases {
         let o = splitsum()
-            .args([
-                "bake",
-                "tests/data/venice_sunset_1k.hdr",
-                "--target",
-                "filament",
-            ])
-            .args(["--specular-size", "32", "--backend", "cpu", "-q", "-o"])
-            .arg(&dir)
-            .args(extra)
+            .arg("bake")
+            .arg(format!("tests/data/{stem}.hdr"))
+            .args(["--target", target, "--specular-size", "32"])
+            .args(["--backend", "cpu", "-q", "-o"])
+            .arg(dir)
+            .args(*extra)
             .output()
             .unwrap();
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(1), "{extra:?}: {err}");
         assert!(err.contains(says), "{extra:?}: {err}");
-        assert!(
-            !dir.join("venice_sunset_1k").exists(),
-            "{extra:?} wrote files"
-        );
+        assert!(!dir.join(stem).exists(), "{extra:?} wrote files");
     }
+}
+
+/// What Filament's KTX 1 cannot hold, and options the target ignores, are refused in one
+/// line before any file is written.
+#[test]
+fn filament_target_refuses_what_it_cannot_write() {
+    let dir = common::output_dir("targets-filament-refusals");
+    assert_refused(
+        &dir,
+        "venice_sunset_1k",
+        "filament",
+        &[
+            (
+                &["--pixel-format", "rgb9e5"],
+                "rgb9e5 cannot be written as KTX 1",
+            ),
+            (&["--container", "dds"], "--container applies to"),
+            (&["--no-sh"], "writes the irradiance SH into its file"),
+        ],
+    );
 }
 
 /// cmgen's faces, which Filament shows as they are, are the Filament target's: level 0 of
@@ -643,24 +649,16 @@ fn babylon_target_is_an_env_in_babylons_frame() {
 #[test]
 fn babylon_target_refuses_what_a_env_cannot_hold_and_warns_of_clipping() {
     let dir = common::output_dir("targets-babylon-refusals");
-    let _ = std::fs::remove_dir_all(&dir);
-    for (extra, says) in [
-        (&["--min-mip-size", "4"][..], "the whole chain down to 1x1"),
-        (&["--pixel-format", "rgba16f"][..], "RGBD PNGs"),
-        (&["--container", "exr"][..], "--container applies to"),
-    ] {
-        let o = splitsum()
-            .args(["bake", "tests/data/quarry_01_1k.hdr", "--target", "babylon"])
-            .args(["--specular-size", "32", "--backend", "cpu", "-q", "-o"])
-            .arg(&dir)
-            .args(extra)
-            .output()
-            .unwrap();
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert_eq!(o.status.code(), Some(1), "{extra:?}: {err}");
-        assert!(err.contains(says), "{extra:?}: {err}");
-        assert!(!dir.join("quarry_01_1k").exists(), "{extra:?} wrote files");
-    }
+    assert_refused(
+        &dir,
+        "quarry_01_1k",
+        "babylon",
+        &[
+            (&["--min-mip-size", "4"], "the whole chain down to 1x1"),
+            (&["--pixel-format", "rgba16f"], "RGBD PNGs"),
+            (&["--container", "exr"], "--container applies to"),
+        ],
+    );
     let o = splitsum()
         .args(["bake", "tests/data/quarry_01_1k.hdr", "--target", "babylon"])
         .args(["--specular-size", "32", "--backend", "cpu", "-q", "-o"])

@@ -20,13 +20,19 @@ fn d_ggx(n_dot_h: f32, alpha: f32) -> f32 {
     return a2 / (PI * d * d);
 }
 
-// Schlick-GGX masking G1(x) = x / (x (1 - k) + k) (Schlick 1994, Karis 2013).
+// GGX D times n.l in a prefiltered sum with n = v (n.l > 0): n.h = (1 + n.l) / |n + l| =
+// sqrt((1 + n.l) / 2).
+fn ggx_prefilter_weight(n_dot_l: f32, alpha: f32) -> f32 {
+    return d_ggx(sqrt(0.5 * (1.0 + n_dot_l)), alpha) * n_dot_l;
+}
+
 // Charlie sheen D (Estevez & Kulla 2017) times n.l in a prefiltered sum with n = v, up to a
 // constant factor: sin^2(theta_h) = (1 - n.l) / 2, so D ~ (1 - n.l)^(1 / (2 alpha)).
 fn charlie_prefilter_weight(n_dot_l: f32, alpha: f32) -> f32 {
     return pow(max(1.0 - n_dot_l, 0.0), 0.5 / alpha) * n_dot_l;
 }
 
+// Schlick-GGX masking G1(x) = x / (x (1 - k) + k) (Schlick 1994, Karis 2013).
 fn g1_schlick_ggx(n_dot_x: f32, k: f32) -> f32 {
     return n_dot_x / (n_dot_x * (1.0 - k) + k);
 }

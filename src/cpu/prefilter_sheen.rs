@@ -20,7 +20,7 @@
 use crate::cpu::cube_sample::sample_cube_lod;
 use crate::cpu::equirect_to_cube::fill_cube_level;
 use crate::cpu::irradiance::SourceTexel;
-use crate::cpu::prefilter_specular::{exact_source_texels, SpecularChain};
+use crate::cpu::prefilter_specular::{exact_source_texels, prefilter_lobe_texel, SpecularChain};
 use crate::cpu::roughest_level::fit_level_for_lookup;
 use crate::environment::{Cubemap, IrradianceSource};
 use crate::math::brdf::{alpha_from_roughness, charlie_prefilter_weight};
@@ -54,20 +54,9 @@ pub fn sheen_level_roughness(chain: &SpecularChain, m: u32) -> f32 {
 /// module documentation). The GPU mirror is mode 2 of `shaders/convolve_exact.wgsl`.
 pub fn prefilter_charlie_texel(source: &[SourceTexel], n: [f32; 3], roughness: f32) -> [f32; 4] {
     let alpha = alpha_from_roughness(roughness);
-    let mut sum = [0.0f32; 3];
-    let mut weight = 0.0f32;
-    for t in source {
-        let l = t.dir_omega;
-        let n_dot_l = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
-        if n_dot_l > 0.0 {
-            let w = charlie_prefilter_weight(n_dot_l, alpha) * l[3];
-            for (sc, lc) in sum.iter_mut().zip(&t.radiance) {
-                *sc += w * lc;
-            }
-            weight += w * t.radiance[3];
-        }
-    }
-    [sum[0] / weight, sum[1] / weight, sum[2] / weight, 1.0]
+    prefilter_lobe_texel(source, n, |n_dot_l| {
+        charlie_prefilter_weight(n_dot_l, alpha)
+    })
 }
 
 /// How a sheen level is made from its integration.

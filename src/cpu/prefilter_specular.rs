@@ -18,7 +18,7 @@ use crate::cpu::cube_sample::BorderedCube;
 use crate::cpu::equirect_to_cube::fill_cube_level;
 use crate::cpu::irradiance::{source_texels, SourceTexel};
 use crate::environment::{Cubemap, IrradianceSource};
-use crate::math::brdf::{alpha_from_roughness, d_ggx};
+use crate::math::brdf::{alpha_from_roughness, d_ggx, ggx_prefilter_weight};
 use crate::math::cubemap::cube_texel_direction;
 use crate::math::sampling::{hammersley, importance_sample_ggx, tangent_frame};
 
@@ -299,15 +299,26 @@ pub fn prefilter_texel(
 /// beyond its true lobe; used where the lobe is wide enough that a small mip resolves it.
 pub fn prefilter_exact_texel(source: &[SourceTexel], n: [f32; 3], roughness: f32) -> [f32; 4] {
     let alpha = alpha_from_roughness(roughness);
+    prefilter_lobe_texel(source, n, |n_dot_l| ggx_prefilter_weight(n_dot_l, alpha))
+}
+
+/// Σ L w(n·l) Ω / Σ w(n·l) Ω over the texels of `source` above n's horizon, for a lobe
+/// weight `lobe` (D times n·l with n = v: [`ggx_prefilter_weight`], or
+/// [`crate::math::brdf::charlie_prefilter_weight`] for sheen). A hot cell's normaliser
+/// weight (`radiance[3]`) is 0: it adds light, not solid angle. The GPU mirror is
+/// `prefilter_lobe_texel` in `shaders/convolve_exact.wgsl`.
+pub fn prefilter_lobe_texel(
+    source: &[SourceTexel],
+    n: [f32; 3],
+    lobe: impl Fn(f32) -> f32,
+) -> [f32; 4] {
     let mut sum = [0.0f32; 3];
     let mut weight = 0.0f32;
     for t in source {
         let l = t.dir_omega;
         let n_dot_l = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
         if n_dot_l > 0.0 {
-            // |n + l|² = 2 + 2 n·l, so n·h = (1 + n·l) / |n + l| = √((1 + n·l) / 2).
-            let n_dot_h = (0.5 * (1.0 + n_dot_l)).sqrt();
-            let w = d_ggx(n_dot_h, alpha) * n_dot_l * l[3];
+            let w = lobe(n_dot_l) * l[3];
             for (sc, lc) in sum.iter_mut().zip(&t.radiance) {
                 *sc += w * lc;
             }

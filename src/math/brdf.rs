@@ -24,6 +24,12 @@ pub fn d_ggx(n_dot_h: f32, alpha: f32) -> f32 {
     a2 / (PI * d * d)
 }
 
+/// GGX D(h) times n·l in a prefiltered sum with n = v, for n·l > 0: |n + l|² = 2 + 2 n·l, so
+/// n·h = (1 + n·l) / |n + l| = √((1 + n·l) / 2).
+pub fn ggx_prefilter_weight(n_dot_l: f32, alpha: f32) -> f32 {
+    d_ggx((0.5 * (1.0 + n_dot_l)).sqrt(), alpha) * n_dot_l
+}
+
 /// The Charlie sheen distribution (Estevez & Kulla 2017), D(h) = (2 + 1/α) sin^(1/α)θh /
 /// (2π), times n·l, in a prefiltered sum with n = v, up to a constant factor: there
 /// sin²θh = (1 − n·l)/2, so D ∝ (1 − n·l)^(1/(2α)). The dropped factor
