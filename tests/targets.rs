@@ -104,22 +104,23 @@ fn cube(path: &Path) -> splitsum::Cubemap {
     splitsum::io::input::read_ktx2_cube(path).unwrap()
 }
 
-/// A small CPU bake of quarry_01 with `extra` options into `dir`/quarry_01_1k.
-fn small_bake(dir: &Path, extra: &[&str]) -> PathBuf {
+/// A CPU bake of quarry_01 with a `specular`² chain, an 8² irradiance cube and `extra`
+/// options into `dir`/quarry_01_1k (emptied first).
+fn quarry_bake(dir: &Path, specular: u32, extra: &[&str]) -> PathBuf {
     let _ = std::fs::remove_dir_all(dir);
     run(splitsum()
         .args(["bake", "tests/data/quarry_01_1k.hdr", "--backend", "cpu"])
-        .args([
-            "--specular-size",
-            "32",
-            "--irradiance-size",
-            "8",
-            "-q",
-            "-o",
-        ])
+        .arg("--specular-size")
+        .arg(specular.to_string())
+        .args(["--irradiance-size", "8", "-q", "-o"])
         .arg(dir)
         .args(extra));
     dir.join("quarry_01_1k")
+}
+
+/// A small (32²) CPU bake of quarry_01 with `extra` options into `dir`/quarry_01_1k.
+fn small_bake(dir: &Path, extra: &[&str]) -> PathBuf {
+    quarry_bake(dir, 32, extra)
 }
 
 /// `--target bevy`: rgb9e5 + zstd, irradiance, no LUT or SH, and, in rgba16f, exactly the
@@ -330,21 +331,7 @@ fn filament_irradiance(sh: &[[f32; 3]; 9], w: [f32; 3]) -> [f32; 3] {
 fn filament_target_is_cmgens_file_set_in_filaments_frame() {
     let dir = common::output_dir("targets-filament");
     let _ = std::fs::remove_dir_all(&dir);
-    let bake = |out: &Path, extra: &[&str]| {
-        run(splitsum()
-            .args(["bake", "tests/data/quarry_01_1k.hdr", "--backend", "cpu"])
-            .args([
-                "--specular-size",
-                "64",
-                "--irradiance-size",
-                "8",
-                "-q",
-                "-o",
-            ])
-            .arg(out)
-            .args(extra));
-        out.join("quarry_01_1k")
-    };
+    let bake = |out: &Path, extra: &[&str]| quarry_bake(out, 64, extra);
     let filament = bake(&dir.join("f"), &["--target", "filament"]);
     let exact = bake(
         &dir.join("f32"),
@@ -682,21 +669,7 @@ fn babylon_target_refuses_what_a_env_cannot_hold_and_warns_of_clipping() {
 fn gltf_target_is_the_sample_viewers_file_set() {
     let dir = common::output_dir("targets-gltf");
     let gltf = small_bake(&dir.join("t"), &["--target", "gltf"]);
-    let bake64 = |out: &Path, extra: &[&str]| {
-        run(splitsum()
-            .args(["bake", "tests/data/quarry_01_1k.hdr", "--backend", "cpu"])
-            .args([
-                "--specular-size",
-                "64",
-                "--irradiance-size",
-                "8",
-                "-q",
-                "-o",
-            ])
-            .arg(out)
-            .args(extra));
-        out.join("quarry_01_1k")
-    };
+    let bake64 = |out: &Path, extra: &[&str]| quarry_bake(out, 64, extra);
     let gltf64 = bake64(&dir.join("t64"), &["--target", "gltf"]);
     let generic64 = bake64(&dir.join("g64"), &["--min-mip-size", "16", "--no-lut"]);
     let m = manifest(&gltf);
