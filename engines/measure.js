@@ -186,3 +186,49 @@ export function turnedFrom(sun, angle) {
   const a = (angle * Math.PI) / 180;
   return add(add(scale(sun, Math.cos(a)), scale(cross(k, sun), Math.sin(a))), scale(k, dot(k, sun) * (1 - Math.cos(a))));
 }
+
+// Renders through `renderAt(e)` (→ { px, max }: the decoded radiance and the largest 8-bit
+// channel value read back) at exposure `e0`, then 8× lower each time until no channel
+// reaches 254 or the exposure reaches `minExposure`; `clipped` says whether pixels are
+// still saturated then (a sun may be: its centroid is still the saturated disc's).
+export async function renderUnclipped(renderAt, e0, minExposure) {
+  let e = Math.max(e0, minExposure);
+  for (;;) {
+    const { px, max } = await renderAt(e);
+    if (max < 254) return { px, clipped: false };
+    if (e <= minExposure) return { px, clipped: true };
+    e = Math.max(e / 8, minExposure);
+  }
+}
+
+// Whether an 8-bit read-back decodes linearly: the radiance decoded from `renderAt(e / 4)`
+// over that from `renderAt(e)` (→ { px }), summed over the pixels between 0.2 and 0.9 of
+// full scale at `e`. 1 for a linear decode.
+export async function readbackLinearity(renderAt, e, size) {
+  const a = (await renderAt(e)).px, b = (await renderAt(e / 4)).px;
+  let sa = 0, sb = 0;
+  for (let i = 0; i < size * size; i++) {
+    const la = luminance(a, 4 * i), lb = luminance(b, 4 * i);
+    if (la * e > 0.2 && la * e < 0.9) { sa += la; sb += lb; }
+  }
+  return sb / sa;
+}
+
+// The six axis directions, the 90° views that cover the sphere.
+const SIX_VIEWS = [[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]];
+
+// Where an engine shows a sky's sun: the brightest pixel of six 90° views (96²), then the
+// bright centroid of a `fov`° view (`size`²) centred there. `look(dir, fov, size)` renders
+// the view towards `dir` and returns { px, ray }: the image and the world ray through a
+// pixel position of it.
+export async function locateSun(look, fov, size) {
+  let best = { l: -1 };
+  for (const d of SIX_VIEWS) {
+    const { px, ray } = await look(d, 90, 96);
+    const i = brightestPixel(px, 96);
+    const l = luminance(px, 4 * i);
+    if (l > best.l) best = { l, d: ray([(i % 96) + 0.5, Math.floor(i / 96) + 0.5]) };
+  }
+  const { px, ray } = await look(best.d, fov, size);
+  return ray(brightCentroid(px, size));
+}

@@ -129,16 +129,11 @@ window.runCheck = async function ({ hdrUrl, envUrl, controlUrl, roughness }) {
   // centroid of a 50° view centred there.
   const findSun = async (texture, e) => {
     const box = scene.createDefaultSkybox(texture, true, 100, 0);
-    let best = { l: -1 };
-    for (const d of [[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]]) {
-      aim([0, 0, 0], d, 90);
-      const px = await render([box], 96, e);
-      const i = measure.brightestPixel(px, 96);
-      if (measure.luminance(px, 4 * i) > best.l) best = { l: measure.luminance(px, 4 * i), d: pixelRay([(i % 96) + 0.5, Math.floor(i / 96) + 0.5], 96) };
-    }
-    aim([0, 0, 0], best.d, SKY_FOV);
-    const px = await render([box], SIZE, e);
-    const sunDir = pixelRay(measure.brightCentroid(px, SIZE), SIZE);
+    const sunDir = await measure.locateSun(async (d, fov, size) => {
+      aim([0, 0, 0], d, fov);
+      const px = await render([box], size, e);
+      return { px, ray: (p) => pixelRay(p, size) };
+    }, SKY_FOV, SIZE);
     box.material.dispose();
     box.dispose();
     return sunDir;

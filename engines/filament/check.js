@@ -96,19 +96,9 @@ async function renderAt(cam, size, e) {
   return measure.decode8(bytes, SRGB, e);
 }
 
-// Renders with the exposure lowered until no channel reaches 254 (nothing clipped) or the
-// exposure reaches Filament's least; `clipped` says whether pixels are still saturated
-// (a sun brighter than 1 / (INTENSITY · MIN_EXPOSURE) ≈ 41000 is; its centroid is still
-// the saturated disc's).
-async function render(cam, size, e0) {
-  let e = Math.max(e0, MIN_EXPOSURE * INTENSITY);
-  for (;;) {
-    const { px, max } = await renderAt(cam, size, e);
-    if (max < 254) return { px, clipped: false };
-    if (e <= MIN_EXPOSURE * INTENSITY) return { px, clipped: true };
-    e = Math.max(e / 8, MIN_EXPOSURE * INTENSITY);
-  }
-}
+// Renders with the exposure lowered until nothing clips or the exposure reaches Filament's
+// least (a sun brighter than 1 / (INTENSITY · MIN_EXPOSURE) ≈ 41000 stays clipped).
+const render = (cam, size, e0) => measure.renderUnclipped((e) => renderAt(cam, size, e), e0, MIN_EXPOSURE * INTENSITY);
 
 // Alpha 1 on the pixels whose ray meets the sphere well inside its silhouette, 0 elsewhere.
 function maskSphere(px, cam, size) {
@@ -186,13 +176,7 @@ window.runCheck = async function ({ splitsum, cmgen, fromCmgenCube, control, rou
   scene.setIndirectLight(ref.light);
   const skyCam = pinhole([0, 0, 0], sun, SKY_FOV);
   const eSky = 0.6 / ref.stats.mean;
-  const a = (await renderAt(skyCam, SIZE, eSky)).px, b = (await renderAt(skyCam, SIZE, eSky / 4)).px;
-  let sa = 0, sb = 0;
-  for (let i = 0; i < SIZE * SIZE; i++) {
-    const la = measure.luminance(a, 4 * i), lb = measure.luminance(b, 4 * i);
-    if (la * eSky > 0.2 && la * eSky < 0.9) { sa += la; sb += lb; }
-  }
-  out.linearity = sb / sa;
+  out.linearity = await measure.readbackLinearity((e) => renderAt(skyCam, SIZE, e), eSky, SIZE);
 
   // Where Filament shows a path's sun: the brightest of six 90° views, then the bright
   // centroid of a 50° view centred there.
@@ -200,18 +184,11 @@ window.runCheck = async function ({ splitsum, cmgen, fromCmgenCube, control, rou
     scene.setSkybox(path.skybox);
     scene.setIndirectLight(path.light);
     const e = 0.5 / path.stats.max;
-    let best = { l: -1 };
-    for (const d of [[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]]) {
-      const cam = pinhole([0, 0, 0], d, 90);
-      const { px } = await render(cam, 96, e);
-      for (let i = 0; i < 96 * 96; i++) {
-        const l = measure.luminance(px, 4 * i);
-        if (l > best.l) best = { l, d: pixelRay(cam, [(i % 96) + 0.5, Math.floor(i / 96) + 0.5], 96) };
-      }
-    }
-    const cam = pinhole([0, 0, 0], best.d, SKY_FOV);
-    const { px } = await render(cam, SIZE, e);
-    return pixelRay(cam, measure.brightCentroid(px, SIZE), SIZE);
+    return measure.locateSun(async (d, fov, size) => {
+      const cam = pinhole([0, 0, 0], d, fov);
+      const { px } = await render(cam, size, e);
+      return { px, ray: (p) => pixelRay(cam, p, size) };
+    }, SKY_FOV, SIZE);
   };
   const refSun = await findSun(ref);
   const eView = (path) => 0.6 / path.stats.mean;

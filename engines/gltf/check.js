@@ -60,16 +60,9 @@ async function renderAt(cam, size, e) {
   return measure.decode8(bytes, DECODE, e);
 }
 
-// Lowers the exposure until nothing clips (the sun may stay clipped: then its centroid is
-// the saturated disc's).
-async function render(cam, size, e0) {
-  let e = e0;
-  for (let k = 0; k < 14; k++, e /= 8) {
-    const { px, max } = await renderAt(cam, size, e);
-    if (max < 254) return { px, clipped: false };
-  }
-  return { ...(await renderAt(cam, size, e)), clipped: true };
-}
+// Renders with the exposure lowered until nothing clips, at most 14 times 8× (the sun may
+// stay clipped: then its centroid is the saturated disc's).
+const render = (cam, size, e0) => measure.renderUnclipped((e) => renderAt(cam, size, e), e0, e0 / 8 ** 14);
 
 // The level-0 texels of a cube texture the viewer holds (RGBA float).
 function readCube(texture, size) {
@@ -169,29 +162,18 @@ window.runCheck = async function ({ hdrUrl, dir, controlDir, levels, roughness }
   state.environment = own;
   const skyCam = pinhole([0, 0, 0], sun, SKY_FOV);
   const eSky = 0.6 / ownStats.mean;
-  const a = (await renderAt(skyCam, SIZE, eSky)).px, b = (await renderAt(skyCam, SIZE, eSky / 4)).px;
-  let sa = 0, sb = 0;
-  for (let i = 0; i < SIZE * SIZE; i++) {
-    const la = measure.luminance(a, 4 * i), lb = measure.luminance(b, 4 * i);
-    if (la * eSky > 0.2 && la * eSky < 0.9) { sa += la; sb += lb; }
-  }
-  out.linearity = sb / sa;
+  out.linearity = await measure.readbackLinearity((e) => renderAt(skyCam, SIZE, e), eSky, SIZE);
 
   // Where the viewer shows each environment's sun (the camera sits inside the sphere,
   // whose back faces are culled): the brightest of six 90° views, then the bright centroid
   // of a 50° view centred there.
-  const findSun = async (env, e) => {
+  const findSun = (env, e) => {
     state.environment = env;
-    let best = { l: -1 };
-    for (const d of [[1, 0, 0], [-1, 0, 0], [0, 1, 0.001], [0, -1, 0.001], [0, 0, 1], [0, 0, -1]]) {
-      const cam = pinhole([0, 0, 0], d, 90);
-      const { px } = await render(cam, 96, e);
-      const i = measure.brightestPixel(px, 96);
-      if (measure.luminance(px, 4 * i) > best.l) best = { l: measure.luminance(px, 4 * i), d: pixelRay(cam, [(i % 96) + 0.5, Math.floor(i / 96) + 0.5], 96) };
-    }
-    const cam = pinhole([0, 0, 0], best.d, SKY_FOV);
-    const { px } = await render(cam, SIZE, e);
-    return pixelRay(cam, measure.brightCentroid(px, SIZE), SIZE);
+    return measure.locateSun(async (d, fov, size) => {
+      const cam = pinhole([0, 0, 0], d, fov);
+      const { px } = await render(cam, size, e);
+      return { px, ray: (p) => pixelRay(cam, p, size) };
+    }, SKY_FOV, SIZE);
   };
   const refSun = await findSun(own, 0.5 / ownStats.max);
   out.background = { sunError: degrees(await findSun(ours, 0.5 / ourStats.max), refSun) };
