@@ -100,6 +100,16 @@ fn manifest(dir: &Path) -> serde_json::Value {
     serde_json::from_slice(&std::fs::read(dir.join("manifest.json")).unwrap()).unwrap()
 }
 
+/// The files a manifest lists, in its order.
+fn output_files(m: &serde_json::Value) -> Vec<&str> {
+    m["outputs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|o| o["file"].as_str().unwrap())
+        .collect()
+}
+
 fn cube(path: &Path) -> splitsum::Cubemap {
     splitsum::io::input::read_ktx2_cube(path).unwrap()
 }
@@ -129,12 +139,8 @@ fn small_bake(dir: &Path, extra: &[&str]) -> PathBuf {
 fn bevy_target_is_the_generic_bake_mirrored_in_z() {
     let generic = small_bake(&common::output_dir("targets-bevy-generic"), &["--no-lut"]);
     let bevy = small_bake(&common::output_dir("targets-bevy"), &["--target", "bevy"]);
-    let files: Vec<String> = manifest(&bevy)["outputs"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|o| o["file"].as_str().unwrap().to_string())
-        .collect();
+    let m = manifest(&bevy);
+    let files = output_files(&m);
     assert_eq!(
         files,
         ["specular.ktx2", "irradiance.ktx2"],
@@ -191,12 +197,7 @@ fn three_target_is_a_pmrem_chain_mirrored_in_x() {
         m["parameters"]["roughness_per_mip"],
         "1 - sqrt(1 - m / (levels - 1))"
     );
-    let files: Vec<&str> = m["outputs"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|o| o["file"].as_str().unwrap())
-        .collect();
+    let files = output_files(&m);
     assert_eq!(files, ["specular.ktx2", "sh.json", "brdf_lut.ktx2"]);
     let lut = std::fs::read(three.join("brdf_lut.ktx2")).unwrap();
     let vk = u32::from_le_bytes(lut[12..16].try_into().unwrap());
@@ -348,12 +349,7 @@ fn filament_target_is_cmgens_file_set_in_filaments_frame() {
         m["parameters"]["roughness_per_mip"],
         "1 - sqrt(1 - m / (levels - 1))"
     );
-    let files: Vec<&str> = m["outputs"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|o| o["file"].as_str().unwrap())
-        .collect();
+    let files = output_files(&m);
     assert_eq!(
         files,
         ["quarry_01_1k_ibl.ktx", "quarry_01_1k_skybox.ktx", "sh.txt"]
@@ -584,12 +580,7 @@ fn babylon_target_is_an_env_in_babylons_frame() {
     assert_eq!(m["target"]["name"], "babylon");
     assert_eq!(m["parameters"]["container"], "env (Babylon.js)");
     assert_eq!(m["parameters"]["specular_levels"], 6, "32² to 1²");
-    let files: Vec<&str> = m["outputs"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|o| o["file"].as_str().unwrap())
-        .collect();
+    let files = output_files(&m);
     assert_eq!(files, ["quarry_01_1k.env"]);
     let path = babylon.join("quarry_01_1k.env");
     let env = splitsum::io::env::decode(&path, &std::fs::read(&path).unwrap()).unwrap();
@@ -674,12 +665,7 @@ fn gltf_target_is_the_sample_viewers_file_set() {
     let generic64 = bake64(&dir.join("g64"), &["--min-mip-size", "16", "--no-lut"]);
     let m = manifest(&gltf);
     assert_eq!(m["target"]["name"], "gltf");
-    let files: Vec<&str> = m["outputs"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|o| o["file"].as_str().unwrap())
-        .collect();
+    let files = output_files(&m);
     assert_eq!(
         files,
         [
