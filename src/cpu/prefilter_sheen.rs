@@ -76,10 +76,14 @@ pub enum SheenFinish {
 pub struct SheenPlan {
     /// Edge of the exact sum's output.
     pub integration: u32,
-    /// The source mip the sum reads.
-    pub source_mip: u32,
     /// From the integration to the level.
     pub finish: SheenFinish,
+}
+
+/// The source mip every level's exact sum reads: the largest of at most
+/// [`SHEEN_SOURCE_SIZE`] (the hot cells come at the source's own resolution).
+pub fn sheen_source_mip(env_size: u32) -> u32 {
+    (env_size / env_size.min(SHEEN_SOURCE_SIZE)).trailing_zeros()
 }
 
 /// The plan of level `m` of an `env_size` chain at `roughness`.
@@ -90,7 +94,6 @@ pub fn sheen_level_plan(env_size: u32, m: u32, roughness: f32) -> SheenPlan {
     } else {
         SHEEN_INTEGRATION_SIZE
     };
-    let source_mip = (env_size / env_size.min(SHEEN_SOURCE_SIZE)).trailing_zeros();
     let (integration, finish) = if size > wanted {
         (wanted, SheenFinish::Interpolate)
     } else if size <= SHEEN_FIT_MAX_SIZE && wanted.min(env_size) >= 2 * size {
@@ -100,7 +103,6 @@ pub fn sheen_level_plan(env_size: u32, m: u32, roughness: f32) -> SheenPlan {
     };
     SheenPlan {
         integration,
-        source_mip,
         finish,
     }
 }
@@ -111,58 +113,51 @@ pub fn finish_sheen_level(integrated: Vec<[f32; 4]>, plan: SheenPlan, size: u32)
         size: plan.integration,
         levels: vec![texels],
     };
+    // The seamless bilinear values of the integration at the level's texel centres.
+    let interpolated = |small: &Cubemap| {
+        fill_cube_level(size, |face, i, j| {
+            let d = cube_texel_direction(face, i as i32, j as i32, size);
+            let [r, g, b] = sample_cube_lod(small, d, 0.0);
+            [r, g, b, 1.0]
+        })
+    };
     match plan.finish {
         SheenFinish::AsIs => integrated,
-        SheenFinish::Interpolate => {
-            let small = small(integrated);
-            fill_cube_level(size, |face, i, j| {
-                let d = cube_texel_direction(face, i as i32, j as i32, size);
-                let [r, g, b] = sample_cube_lod(&small, d, 0.0);
-                [r, g, b, 1.0]
-            })
-        }
+        SheenFinish::Interpolate => interpolated(&small(integrated)),
         SheenFinish::Fit => {
             let target = small(integrated);
-            fit_level_for_lookup(size, &target).unwrap_or_else(|| {
-                // Singular normal equations (not seen): the values at the texel centres.
-                fill_cube_level(size, |face, i, j| {
-                    let d = cube_texel_direction(face, i as i32, j as i32, size);
-                    let [r, g, b] = sample_cube_lod(&target, d, 0.0);
-                    [r, g, b, 1.0]
-                })
-            })
+            // Singular normal equations (not seen): the values at the texel centres.
+            fit_level_for_lookup(size, &target).unwrap_or_else(|| interpolated(&target))
         }
     }
 }
 
-/// The prefiltered Charlie chain of `env` (every mip present) in `chain`'s layout, every
-/// level an exact sum (see the module documentation).
-pub fn prefilter_sheen(
+/// The Charlie chain of `env` (every mip present) in `chain`'s layout, each level from the
+/// exact sum `integrate(source, n, r)` makes over `source` (the texels of
+/// [`sheen_source_mip`] and the hot cells, gathered once) on an `n`² cube at roughness `r`
+/// — [`prefilter_charlie_texel`] at every texel on the CPU, mode 2 of
+/// `convolve_exact.wgsl` on the GPU — then finished as [`sheen_level_plan`] says. Levels
+/// with the same integration and roughness (0 and 1) share one sum.
+pub fn sheen_chain<E>(
     env: &Cubemap,
     split: Option<&IrradianceSource>,
     chain: SpecularChain,
-) -> Cubemap {
+    mut integrate: impl FnMut(&[SourceTexel], u32, f32) -> Result<Vec<[f32; 4]>, E>,
+) -> Result<Cubemap, E> {
     let levels = chain.levels.clamp(1, Cubemap::full_mip_count(env.size));
     let chain = SpecularChain { levels, ..chain };
-    // Levels 0 and 1 share their lobe and integration: integrate once. The key: integration
-    // edge, source mip and the roughness's bits.
-    type Integrated = ((u32, u32, u32), Vec<[f32; 4]>);
+    let source = exact_source_texels(env, split, sheen_source_mip(env.size) as usize);
+    // The last integration, keyed by its edge and the roughness's bits.
+    type Integrated = ((u32, u32), Vec<[f32; 4]>);
     let mut last: Option<Integrated> = None;
     let mut out = Vec::with_capacity(levels as usize);
     for m in 0..levels {
         let r = sheen_level_roughness(&chain, m);
         let plan = sheen_level_plan(env.size, m, r);
-        let key = (plan.integration, plan.source_mip, r.to_bits());
+        let key = (plan.integration, r.to_bits());
         let integrated = match last.take() {
             Some((k, texels)) if k == key => texels,
-            _ => {
-                let source = exact_source_texels(env, split, plan.source_mip as usize);
-                let n = plan.integration;
-                fill_cube_level(n, |face, i, j| {
-                    let d = cube_texel_direction(face, i as i32, j as i32, n);
-                    prefilter_charlie_texel(&source, d, r)
-                })
-            }
+            _ => integrate(&source, plan.integration, r)?,
         };
         out.push(finish_sheen_level(
             integrated.clone(),
@@ -171,8 +166,24 @@ pub fn prefilter_sheen(
         ));
         last = Some((key, integrated));
     }
-    Cubemap {
+    Ok(Cubemap {
         size: env.size,
         levels: out,
-    }
+    })
+}
+
+/// The prefiltered Charlie chain of `env` (every mip present) in `chain`'s layout on the
+/// CPU (see the module documentation and [`sheen_chain`]).
+pub fn prefilter_sheen(
+    env: &Cubemap,
+    split: Option<&IrradianceSource>,
+    chain: SpecularChain,
+) -> Cubemap {
+    let Ok(cube) = sheen_chain::<std::convert::Infallible>(env, split, chain, |source, n, r| {
+        Ok(fill_cube_level(n, |face, i, j| {
+            let d = cube_texel_direction(face, i as i32, j as i32, n);
+            prefilter_charlie_texel(source, d, r)
+        }))
+    });
+    cube
 }

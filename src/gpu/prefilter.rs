@@ -3,7 +3,7 @@
 //! `cpu/irradiance.rs`); the method per level is chosen by the same Rust function.
 
 use crate::cpu::irradiance::{irradiance_source_level, moment_texels, MomentTexel, SourceTexel};
-use crate::cpu::prefilter_sheen::{finish_sheen_level, sheen_level_plan, sheen_level_roughness};
+use crate::cpu::prefilter_sheen::sheen_chain;
 use crate::cpu::prefilter_specular::{
     exact_source_texels, ggx_lobe_samples, level_method, split_hot_texels, LevelMethod,
     SpecularChain,
@@ -95,13 +95,13 @@ pub fn upload_cube(
 }
 
 /// What an exact convolution sums.
-enum ExactSource {
+enum ExactSource<'a> {
     /// Mode 0: prefiltered specular at a roughness.
-    Specular(Vec<SourceTexel>, f32),
+    Specular(&'a [SourceTexel], f32),
     /// Mode 2: prefiltered sheen (Charlie) at a roughness.
-    Sheen(Vec<SourceTexel>, f32),
+    Sheen(&'a [SourceTexel], f32),
     /// Mode 1: irradiance, from the cold texels and the hot cells.
-    Irradiance(Vec<MomentTexel>, Vec<MomentTexel>),
+    Irradiance(&'a [MomentTexel], &'a [MomentTexel]),
 }
 
 /// Records one exact convolution into `target` (a mip view).
@@ -109,7 +109,7 @@ fn record_exact(
     device: &wgpu::Device,
     encoder: &mut wgpu::CommandEncoder,
     kernel: &ComputeKernel,
-    source: &ExactSource,
+    source: &ExactSource<'_>,
     out_size: u32,
     target: &wgpu::TextureView,
 ) {
@@ -185,10 +185,8 @@ pub fn prefilter_specular(
             let target = cube_mip_view(&out, m);
             match level_method(env.size, m, r, samples) {
                 LevelMethod::Exact { source_mip } => {
-                    let source = ExactSource::Specular(
-                        exact_source_texels(env, source_split, source_mip as usize),
-                        r,
-                    );
+                    let texels = exact_source_texels(env, source_split, source_mip as usize);
+                    let source = ExactSource::Specular(&texels, r);
                     record_exact(device, &mut encoder, &exact, &source, n, &target)
                 }
                 LevelMethod::Sampled { samples } => {
@@ -228,8 +226,7 @@ pub fn prefilter_specular(
 }
 
 /// The prefiltered Charlie chain of `env` (every mip present), as
-/// `cpu::prefilter_sheen`: each level integrated on the GPU at its integration edge, then
-/// interpolated or fitted by the same CPU function.
+/// `cpu::prefilter_sheen`: the same [`sheen_chain`], its exact sums on the GPU.
 pub fn prefilter_sheen(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
@@ -238,40 +235,18 @@ pub fn prefilter_sheen(
     chain: SpecularChain,
 ) -> Result<Cubemap> {
     let exact = ComputeKernel::new(device, "convolve_exact", shaders::CONVOLVE_EXACT, WORKGROUP)?;
-    let levels = chain.levels.clamp(1, Cubemap::full_mip_count(env.size));
-    let chain = SpecularChain { levels, ..chain };
-    let mut out = Cubemap {
-        size: env.size,
-        levels: Vec::with_capacity(levels as usize),
-    };
-    for m in 0..levels {
-        let r = sheen_level_roughness(&chain, m);
-        let plan = sheen_level_plan(env.size, m, r);
+    sheen_chain(env, split, chain, |source, n, r| {
         let texture = with_error_scope(device, "prefilter_sheen dispatch", || {
-            let texture = create_cube_texture(device, "sheen level", plan.integration, 1);
+            let texture = create_cube_texture(device, "sheen level", n, 1);
             let target = cube_mip_view(&texture, 0);
             let mut encoder = device.create_command_encoder(&Default::default());
-            let source =
-                ExactSource::Sheen(exact_source_texels(env, split, plan.source_mip as usize), r);
-            record_exact(
-                device,
-                &mut encoder,
-                &exact,
-                &source,
-                plan.integration,
-                &target,
-            );
+            let source = ExactSource::Sheen(source, r);
+            record_exact(device, &mut encoder, &exact, &source, n, &target);
             queue.submit([encoder.finish()]);
             texture
         })?;
-        let integrated = read_cubemap(device, queue, &texture)?.levels.remove(0);
-        out.levels.push(finish_sheen_level(
-            integrated,
-            plan,
-            env.level_size(m as usize),
-        ));
-    }
-    Ok(out)
+        Ok(read_cubemap(device, queue, &texture)?.levels.remove(0))
+    })
 }
 
 /// The irradiance cube (E/π) of edge `size`, as `cpu::irradiance`.
@@ -286,10 +261,8 @@ pub fn irradiance(
         let out = create_cube_texture(device, "irradiance", size, 1);
         let target = cube_mip_view(&out, 0);
         let mut encoder = device.create_command_encoder(&Default::default());
-        let source = ExactSource::Irradiance(
-            moment_texels(&src.cold, irradiance_source_level(&src.cold)),
-            src.hot.clone(),
-        );
+        let cold = moment_texels(&src.cold, irradiance_source_level(&src.cold));
+        let source = ExactSource::Irradiance(&cold, &src.hot);
         record_exact(device, &mut encoder, &exact, &source, size, &target);
         queue.submit([encoder.finish()]);
         out
