@@ -16,7 +16,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::cpu::prefilter_specular::BABYLON_LOD_SCALE;
 use crate::environment::Cubemap;
-use crate::io::ldr::srgb_to_linear;
+use crate::io::ldr::{srgb8, srgb_to_linear};
 use crate::math::cubemap::FACES;
 use crate::{Error, Result};
 
@@ -118,16 +118,8 @@ pub fn encode_rgbd(rgb: [f32; 3]) -> [u8; 4] {
     let m = rgb[0].max(rgb[1]).max(rgb[2]).max(1e-7);
     let k = (RGBD_MAX / m).floor().clamp(1.0, 255.0);
     let d = k / 255.0;
-    let oetf = |c: f32| {
-        let c = (c * d).clamp(0.0, 1.0);
-        let e = if c <= 0.0031308 {
-            12.92 * c
-        } else {
-            1.055 * c.powf(1.0 / 2.4) - 0.055
-        };
-        (e * 255.0).round() as u8
-    };
-    [oetf(rgb[0]), oetf(rgb[1]), oetf(rgb[2]), k as u8]
+    let [r, g, b] = rgb.map(|c| srgb8(c * d));
+    [r, g, b, k as u8]
 }
 
 /// Linear RGB of an RGBD texel (Babylon's `fromRGBD`).

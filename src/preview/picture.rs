@@ -18,6 +18,7 @@ use ab_glyph::{Font, FontRef, PxScale, ScaleFont};
 use image::{Rgb, RgbImage};
 
 use crate::environment::Cubemap;
+use crate::io::ldr::srgb8;
 use crate::math::cubemap::cube_texel_solid_angle;
 use crate::preview::scene::{Scene, MATERIALS, ROUGHNESS};
 
@@ -76,17 +77,6 @@ pub fn pbr_neutral(c: [f32; 3]) -> [f32; 3] {
     let c = c.map(|v| v * new_peak / peak);
     let g = 1.0 - 1.0 / (DESATURATION * (peak - new_peak) + 1.0);
     c.map(|v| v + (new_peak - v) * g)
-}
-
-/// The sRGB transfer function (IEC 61966-2-1) of a linear value in [0, 1], as 8 bits.
-pub fn srgb8(v: f32) -> u8 {
-    let v = v.clamp(0.0, 1.0);
-    let e = if v <= 0.003_130_8 {
-        12.92 * v
-    } else {
-        1.055 * v.powf(1.0 / 2.4) - 0.055
-    };
-    (e * 255.0).round() as u8
 }
 
 /// A linear radiance, exposed and tone-mapped, as an sRGB pixel.
