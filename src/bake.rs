@@ -224,7 +224,7 @@ pub struct BakedEnvironment {
     /// The SH projection, when asked for.
     pub sh: Option<ShCoefficients>,
     /// The prefiltered Charlie sheen chain, in the specular chain's layout, for targets
-    /// that read one ([`Target::sheen`]).
+    /// that read one ([`FileSet::has_sheen`]).
     pub sheen: Option<Cubemap>,
 }
 
@@ -344,7 +344,7 @@ pub fn bake_environment(
         fit_roughest_level(&mut specular, &irradiance);
         Ok(irradiance)
     })?;
-    let sheen = match opts.target.sheen {
+    let sheen = match opts.target.files.has_sheen() {
         false => None,
         true => Some(timed_stage(Stage::Sheen, progress, timings, || {
             backend.prefilter_sheen(&env, Some(&irradiance_source), chain)
@@ -498,6 +498,24 @@ impl Staging {
         });
         self.staged.push((path, bytes));
     }
+
+    /// Adds the files of one cube (`encode_cube`'s: one, or six faces), of `kind` in
+    /// `format`, with the cube's edge and level count.
+    fn add_cube(
+        &mut self,
+        files: Vec<(PathBuf, Vec<u8>)>,
+        kind: &'static str,
+        format: &str,
+        cube: &Cubemap,
+    ) {
+        for (path, bytes) in files {
+            self.add(
+                path,
+                bytes,
+                (kind, format, cube.size, cube.levels.len() as u32),
+            );
+        }
+    }
 }
 
 /// The output folder of `input` under `out_root`: `<out_root>/<stem>`.
@@ -550,6 +568,7 @@ pub fn bake(
     }
     let specular = target.orientation.apply(specular);
     let dir = output_dir(out_root, input);
+    let stem = crate::io::input::input_stem(input);
     let mut out = Staging::default();
     match target.files {
         FileSet::Standard => {
@@ -566,11 +585,9 @@ pub fn bake(
             )?;
         }
         FileSet::FilamentKtx1 => {
-            let stem = crate::io::input::input_stem(input);
             stage_filament(&mut out, &dir, &stem, opts, &specular, sh.as_ref())?;
         }
         FileSet::BabylonEnv => {
-            let stem = crate::io::input::input_stem(input);
             if let Some(w) = stage_babylon(&mut out, &dir, &stem, opts, &specular, sh.as_ref())? {
                 warnings.push(w);
             }
@@ -630,14 +647,19 @@ fn stage_standard(
         Container::Exr => "rgb32f (OpenEXR cross)",
         _ => opts.pixel_format.name(),
     };
-    for (path, bytes) in encode_cube(dir, "specular", specular, opts)? {
-        let levels = specular.levels.len() as u32;
-        out.add(path, bytes, ("specular", fmt, specular.size, levels));
-    }
+    out.add_cube(
+        encode_cube(dir, "specular", specular, opts)?,
+        "specular",
+        fmt,
+        specular,
+    );
     if let Some(irradiance) = irradiance {
-        for (path, bytes) in encode_cube(dir, "irradiance", irradiance, opts)? {
-            out.add(path, bytes, ("irradiance", fmt, irradiance.size, 1));
-        }
+        out.add_cube(
+            encode_cube(dir, "irradiance", irradiance, opts)?,
+            "irradiance",
+            fmt,
+            irradiance,
+        );
     }
     if let Some(sh) = sh {
         out.add(
@@ -733,10 +755,12 @@ fn stage_gltf(
 ) -> Result<()> {
     let fmt = opts.pixel_format.name();
     let mut cube = |folder: &str, name: &str, kind: &'static str, cube: &Cubemap| -> Result<()> {
-        for (path, bytes) in encode_cube(&dir.join(folder), name, cube, opts)? {
-            let levels = cube.levels.len() as u32;
-            out.add(path, bytes, (kind, fmt, cube.size, levels));
-        }
+        out.add_cube(
+            encode_cube(&dir.join(folder), name, cube, opts)?,
+            kind,
+            fmt,
+            cube,
+        );
         Ok(())
     };
     cube("lambertian", "diffuse", "irradiance", irradiance)?;

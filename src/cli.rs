@@ -58,8 +58,8 @@ pub enum Command {
     /// m/(levels−1), down to --min-mip-size), irradiance.<ext> (E/π: multiply by the
     /// diffuse albedo), sh.json (9 SH coefficients, radiance and E/π), brdf_lut.png and
     /// manifest.json (version, target, parameters, every output with its SHA-256).
-    /// --target bevy|three|filament write what that engine reads, as it samples it (see the
-    /// README's "Engine targets"). Every input is baked even when another fails; the
+    /// --target bevy|three|filament|babylon|gltf write what that engine reads, as it samples
+    /// it (see the README's "Engine targets"). Every input is baked even when another fails; the
     /// exit code is 1 if any failed.
     Bake(BakeArgs),
 
@@ -87,7 +87,7 @@ pub enum Command {
     after_help = "Exit codes: 0 every input baked, 1 an input failed (the others are still baked), 2 usage error, 130 interrupted (Ctrl-C or SIGTERM: files being written are removed, finished inputs stay)."
 )]
 pub struct BakeArgs {
-    /// Input environments (equirects, crosses, KTX2/DDS cubemaps, face patterns).
+    /// Input environments (equirects, crosses, KTX2/DDS/KTX cubemaps, face patterns).
     #[arg(required = true)]
     pub inputs: Vec<PathBuf>,
 
@@ -103,13 +103,17 @@ pub struct BakeArgs {
     /// z mirrored, rgb9e5 + zstd, no LUT or SH), three (three.js r187: x mirrored, a PMREM
     /// chain to 8×8 at r = 1 − √(1 − m/(levels − 1)), no irradiance cube or LUT), filament
     /// (cmgen's files: <stem>_ibl.ktx with the SH, <stem>_skybox.ktx and sh.txt, KTX 1
-    /// rg11b10f, a quarter turn about +Y, the chain to 16×16 at three's roughness).
+    /// rg11b10f, a quarter turn about +Y, the chain to 16×16 at three's roughness), babylon
+    /// (<stem>.env: the whole chain as RGBD PNGs at Babylon's roughness per mip and the SH as
+    /// its spherical polynomial, x and z swapped), gltf (the glTF Sample Viewer's
+    /// glTF-IBL-Sampler folders: lambertian, ggx and a Charlie sheen chain to 16×16, and its
+    /// three LUTs).
     #[arg(long, value_enum, default_value_t = TargetArg::Generic)]
     pub target: TargetArg,
 
     /// Edge of the smallest specular mip (power of two; 1 for the full chain to 1×1): the
     /// chain has log2(specular-size / min-mip-size) + 1 levels [default: 4; three: 8;
-    /// filament: 16].
+    /// filament and gltf: 16; babylon: 1, the only one it takes].
     #[arg(long)]
     pub min_mip_size: Option<u32>,
 
@@ -123,15 +127,16 @@ pub struct BakeArgs {
     pub container: ContainerArg,
 
     /// Pixel format of KTX2/DDS/KTX outputs [default: the target's: rgba16f; bevy: rgb9e5;
-    /// filament: rg11b10f].
+    /// filament: rg11b10f; refused for babylon, whose .env is RGBD].
     #[arg(long, value_enum)]
     pub pixel_format: Option<PixelFormatArg>,
 
     #[command(flatten)]
     pub zstd: ZstdArgs,
 
-    /// Write the BRDF LUT (the target's default: generic yes as brdf_lut.png; bevy and
-    /// three no, and three's is brdf_lut.ktx2, RG16F).
+    /// Write the BRDF LUT (the target's default: generic yes as brdf_lut.png; gltf yes as
+    /// lut_ggx.png, lut_charlie.png and lut_sheen_E.png; bevy, three, filament and babylon
+    /// no, and three's is brdf_lut.ktx2, RG16F).
     #[arg(long, conflicts_with = "no_lut")]
     pub lut: bool,
 

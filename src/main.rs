@@ -89,7 +89,8 @@ fn run_cubemap(args: CubemapArgs) -> anyhow::Result<()> {
     let target: &'static splitsum::target::Target = args.target.into();
     let output = args.output.clone().unwrap_or_else(|| {
         let stem = splitsum::io::input::input_stem(&first_input);
-        std::path::PathBuf::from("out").join(format!("{stem}_cubemap.{}", target.cube_extension))
+        std::path::PathBuf::from("out")
+            .join(format!("{stem}_cubemap.{}", target.files.cube_extension()))
     });
     check_cube_path(&output)?;
     if let Some(size) = args.size {
@@ -107,7 +108,7 @@ fn run_cubemap(args: CubemapArgs) -> anyhow::Result<()> {
         return Err(splitsum::Error::InvalidParameter {
             name: "--target",
             message: format!(
-                "an equirect is not a cube: --target {} re-orients cube faces, so it applies to .ktx2, .dds and the faces or cross layouts",
+                "an equirect is not a cube: --target {} re-orients cube faces, so it applies to .ktx2, .dds, .ktx and the faces or cross layouts",
                 target.name
             ),
         }

@@ -8,13 +8,13 @@
 //! outputs in the engine (`engines/bevy`, `engines/three`; the README's "Engine targets").
 
 use crate::cpu::prefilter_specular::{MipRoughness, DEFAULT_MIN_MIP_SIZE};
-
-/// The smallest mip of the Filament target's chain: cmgen's default (`--ibl-min-lod-size`).
-pub const FILAMENT_MIN_MIP_SIZE: u32 = 16;
 use crate::environment::Cubemap;
 use crate::io::PixelFormat;
 use crate::lut::LutModel;
 use crate::math::cubemap::AxisMap;
+
+/// The smallest mip of the Filament target's chain: cmgen's default (`--ibl-min-lod-size`).
+pub const FILAMENT_MIN_MIP_SIZE: u32 = 16;
 
 /// How an engine's shaders read directions, against DESIGN.md's (right-handed, +Y up, the
 /// equirect's centre along +X).
@@ -136,6 +136,20 @@ impl FileSet {
     pub fn carries_sh(self) -> bool {
         matches!(self, FileSet::FilamentKtx1 | FileSet::BabylonEnv)
     }
+
+    /// Whether the set holds a Charlie sheen chain (glTF's `charlie/sheen.ktx2`, for
+    /// KHR_materials_sheen), so the bake prefilters one.
+    pub fn has_sheen(self) -> bool {
+        self == FileSet::GltfSampleViewer
+    }
+
+    /// The extension of `splitsum cubemap`'s default output: the engine's cube container.
+    pub fn cube_extension(self) -> &'static str {
+        match self {
+            FileSet::FilamentKtx1 => "ktx",
+            _ => "ktx2",
+        }
+    }
 }
 
 /// One engine's conventions.
@@ -163,10 +177,6 @@ pub struct Target {
     pub luts: &'static [LutSpec],
     /// The files written and their containers.
     pub files: FileSet,
-    /// Whether the Charlie sheen chain is baked (engines with KHR_materials_sheen).
-    pub sheen: bool,
-    /// The extension of `splitsum cubemap`'s default output for this target.
-    pub cube_extension: &'static str,
     /// Pixel formats the engine cannot use everywhere, with the reason (a warning).
     pub format_warnings: &'static [(PixelFormat, &'static str)],
     /// How the engine reads the files, for the manifest.
@@ -186,8 +196,6 @@ pub const GENERIC: Target = Target {
     lut: true,
     luts: BRDF_LUT_PNG,
     files: FileSet::Standard,
-    sheen: false,
-    cube_extension: "ktx2",
     format_warnings: &[],
     notes: &[
         "sample specular at lod = roughness * (levels - 1), seamless trilinear",
@@ -214,8 +222,6 @@ pub const BEVY: Target = Target {
     lut: false,
     luts: BRDF_LUT_PNG,
     files: FileSet::Standard,
-    sheen: false,
-    cube_extension: "ktx2",
     format_warnings: &[(
         PixelFormat::Rgba32f,
         "rgba32f is not filterable under WebGPU's limits: Bevy fails to bind it without the native FLOAT32_FILTERABLE feature; rgba16f or rgb9e5 render everywhere",
@@ -252,8 +258,6 @@ pub const THREE: Target = Target {
         channels: LutChannels::Model,
     }],
     files: FileSet::Standard,
-    sheen: false,
-    cube_extension: "ktx2",
     format_warnings: &[(
         PixelFormat::Rgba32f,
         "rgba32f cubes are filtered only where WebGL has OES_texture_float_linear; rgba16f is filterable everywhere",
@@ -293,8 +297,6 @@ pub const FILAMENT: Target = Target {
     lut: false,
     luts: BRDF_LUT_PNG,
     files: FileSet::FilamentKtx1,
-    sheen: false,
-    cube_extension: "ktx",
     format_warnings: &[
         (
             PixelFormat::Rgba16f,
@@ -339,8 +341,6 @@ pub const BABYLON: Target = Target {
     lut: false,
     luts: BRDF_LUT_PNG,
     files: FileSet::BabylonEnv,
-    sheen: false,
-    cube_extension: "ktx2",
     format_warnings: &[],
     notes: &[
         "<stem>.env: new CubeTexture(url, scene) (or CubeTexture.CreateFromPrefilteredData) as scene.environmentTexture; scene.createDefaultSkybox(texture) for the background",
@@ -383,8 +383,6 @@ pub const GLTF: Target = Target {
         },
     ],
     files: FileSet::GltfSampleViewer,
-    sheen: true,
-    cube_extension: "ktx2",
     format_warnings: &[],
     notes: &[
         "lambertian/diffuse.ktx2 (E / pi), ggx/specular.ktx2 and charlie/sheen.ktx2 as the environment's u_LambertianEnvSampler, u_GGXEnvSampler and u_CharlieEnvSampler, u_MipCount = the specular levels",

@@ -1,7 +1,8 @@
 //! Writes a cubemap in the container its path's extension names: `.ktx2`, `.dds` and
-//! `.ktx` (KTX 1, as Filament loads it) hold every mip level in a GPU pixel format; `.exr` and `.hdr` hold level 0 for inspection,
-//! as six face files `<stem>_px.<ext>` … `<stem>_nz.<ext>`, a horizontal cross, or an
-//! equirect. All files of one output are staged and renamed together.
+//! `.ktx` (KTX 1, as Filament loads it) hold every mip level in a GPU pixel format; `.exr`
+//! and `.hdr` hold level 0 for inspection, as six face files `<stem>_px.<ext>` …
+//! `<stem>_nz.<ext>`, a horizontal cross, or an equirect. All files of one output are
+//! staged and renamed together.
 
 use std::path::{Path, PathBuf};
 

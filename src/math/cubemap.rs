@@ -120,15 +120,6 @@ impl AxisMap {
         }
         m
     }
-
-    /// Whether it turns rather than mirrors (determinant +1).
-    pub fn is_rotation(&self) -> bool {
-        let m = self.matrix();
-        let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-        det > 0.0
-    }
 }
 
 /// Normalises a vector.
