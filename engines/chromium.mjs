@@ -1,7 +1,8 @@
-// Headless Chromium for the engine checks (engines/three, engines/gltf): SwiftShader
-// WebGL2, no network, a throw-away profile. Each check passes its own puppeteer-core (its
-// package's node_modules) and the browser path, serves the repository to the page with
-// serveFiles and collects the page's console problems with watchConsole.
+// Headless Chromium for the engine checks (engines/three, filament, babylon, gltf):
+// SwiftShader WebGL2, no network, a throw-away profile. Each check passes its own
+// puppeteer-core (its package's node_modules) and the browser path to runEngineCheck, which
+// serves the repository to the page (serveFiles) and collects the page's console problems
+// (watchConsole); the glTF LUT run uses the pieces directly.
 import { mkdtempSync, rmSync, existsSync, readFileSync, writeFileSync } from 'node:fs';
 import { createServer } from 'node:http';
 import { extname, join, normalize } from 'node:path';

@@ -4,6 +4,16 @@
 // R, G, B and coverage in A. Below them, the vector and pinhole-camera helpers the checks
 // that cannot read back an engine's own camera use.
 
+// The views the Filament, Babylon and glTF checks render: SIZE² images (MIRROR_SIZE² for the
+// mirror sphere), spheres of radius 1 at the origin seen from SPHERE_DISTANCE with a
+// SPHERE_FOV° vertical field of view (a sphere fills most of the image), the sky in
+// SKY_FOV° views.
+export const SIZE = 160;
+export const MIRROR_SIZE = 512;
+export const SPHERE_DISTANCE = 4.2;
+export const SPHERE_FOV = 30;
+export const SKY_FOV = 50;
+
 export const luminance = (p, i) => 0.2126 * p[i] + 0.7152 * p[i + 1] + 0.0722 * p[i + 2];
 
 // Index of the pixel of largest luminance.
@@ -170,13 +180,36 @@ export function pixelRay(cam, [x, y], size) {
   const sx = ((2 * x) / size - 1) * t, sy = ((2 * y) / size - 1) * t;
   return normalize(add(cam.forward, add(scale(cam.right, sx), scale(cam.up, sy))));
 }
-// Where the ray from the camera through (x, y) meets the unit sphere, if it does.
-export function sphereHit(cam, px, size) {
-  const d = pixelRay(cam, px, size);
-  const b = dot(cam.eye, d), c = dot(cam.eye, cam.eye) - 1;
+// Where the ray from `eye` along unit `d` meets the unit sphere at the origin, if it does:
+// the point, and half the chord (how deep inside the silhouette the ray passes).
+function sphereHit(eye, d) {
+  const b = dot(eye, d), c = dot(eye, eye) - 1;
   const disc = b * b - c;
   if (disc < 0) return null;
-  return { d, p: add(cam.eye, scale(d, -b - Math.sqrt(disc))), depth: Math.sqrt(disc) };
+  return { d, p: add(eye, scale(d, -b - Math.sqrt(disc))), depth: Math.sqrt(disc) };
+}
+
+// The sphere renders of the checks (the unit sphere at the origin seen from `eye`; `ray`
+// gives the world ray through a pixel position of the `size`² image): alpha 0 on the pixels
+// whose ray misses it or crosses it along a half chord of at most 0.15 (its rim), so that a
+// comparison covers the sphere well inside its silhouette only.
+export function maskSphere(px, eye, ray, size) {
+  for (let y = 0; y < size; y++) {
+    for (let x = 0; x < size; x++) {
+      const hit = sphereHit(eye, ray([x + 0.5, y + 0.5]));
+      if (!(hit && hit.depth > 0.15)) px[4 * (y * size + x) + 3] = 0;
+    }
+  }
+  return px;
+}
+
+// Where a mirror sphere's image (as for maskSphere) shows the sun: the direction its bright
+// centroid reflects the view ray to.
+export function mirrorSun(px, eye, ray, size) {
+  const hit = sphereHit(eye, ray(brightCentroid(px, size)));
+  if (!hit) throw new Error("the mirror sphere's bright spot lies off the sphere");
+  const n = normalize(hit.p);
+  return add(hit.d, scale(n, -2 * dot(hit.d, n)));
 }
 
 // The direction `angle` degrees from `sun`, turned towards +y about cross(+y, sun): where

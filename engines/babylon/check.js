@@ -10,11 +10,7 @@
 import * as measure from '/engines/measure.js';
 
 const B = window.BABYLON;
-const SIZE = 160;
-const MIRROR_SIZE = 512;
-const SPHERE_DISTANCE = 4.2;
-const SPHERE_FOV = 30;
-const SKY_FOV = 50;
+const { SIZE, MIRROR_SIZE, SPHERE_DISTANCE, SPHERE_FOV, SKY_FOV, add, scale, normalize, degrees } = measure;
 // Babylon's PBR output clamp with the image processing as a post-process (pbr.fragment).
 const CLAMP = 30;
 
@@ -29,8 +25,6 @@ const camera = new B.FreeCamera('camera', new B.Vector3(0, 0, 0), scene);
 camera.fovMode = B.Camera.FOVMODE_VERTICAL_FIXED;
 camera.minZ = 0.05;
 camera.maxZ = 1000;
-
-const { add, scale, dot, normalize, degrees } = measure;
 
 function aim(eye, target, fov) {
   camera.position = new B.Vector3(...eye);
@@ -164,23 +158,10 @@ window.runCheck = async function ({ hdrUrl, envUrl, controlUrl, roughness }) {
     aim(eye, [0, 0, 0], SPHERE_FOV);
     const px = await render([sphere], size, e);
     sphere.setEnabled(false);
-    // Coverage well inside the silhouette only.
-    for (let y = 0; y < size; y++) {
-      for (let x = 0; x < size; x++) {
-        const d = pixelRay([x + 0.5, y + 0.5], size);
-        const b = dot(eye, d), c = dot(eye, eye) - 1, disc = b * b - c;
-        if (!(disc > 0 && Math.sqrt(disc) > 0.15)) px[4 * (y * size + x) + 3] = 0;
-      }
-    }
-    return px;
+    return measure.maskSphere(px, eye, (p) => pixelRay(p, size), size);
   };
-  const reflected = (px) => {
-    const d = pixelRay(measure.brightCentroid(px, MIRROR_SIZE), MIRROR_SIZE);
-    const b = dot(eye, d), c = dot(eye, eye) - 1;
-    const p = add(eye, scale(d, -b - Math.sqrt(Math.max(0, b * b - c))));
-    const nrm = normalize(p);
-    return add(d, scale(nrm, -2 * dot(d, nrm)));
-  };
+  // pixelRay reads Babylon's camera, which sphereAt leaves on the sphere.
+  const reflected = (px) => measure.mirrorSun(px, eye, (p) => pixelRay(p, MIRROR_SIZE), MIRROR_SIZE);
   const refMirror = await sphereAt(own, 1, 0, MIRROR_SIZE, 0.5 / ownStats.max);
   const gotMirror = await sphereAt(ours, 1, 0, MIRROR_SIZE, 0.5 / ourStats.max);
   out.mirror = { sunError: degrees(reflected(gotMirror), reflected(refMirror)), ownVsCube: degrees(reflected(refMirror), sun) };

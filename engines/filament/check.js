@@ -11,13 +11,7 @@
 import * as measure from '/engines/measure.js';
 import { sphereGlb } from '/engines/sphere.js';
 
-const SIZE = 160;
-const MIRROR_SIZE = 512;
-// Sphere and camera: radius 1 at the origin, the camera 4.2 away with a 30° field of view,
-// 40° from the sun so that each sphere shows its lit and its shaded side.
-const SPHERE_DISTANCE = 4.2;
-const SPHERE_FOV = 30;
-const SKY_FOV = 50;
+const { SIZE, MIRROR_SIZE, SPHERE_DISTANCE, SPHERE_FOV, SKY_FOV, add, scale, degrees, pinhole, pixelRay } = measure;
 // Filament's default intensity of a Skybox and an IndirectLight (FIndirectLight::
 // DEFAULT_INTENSITY, lux); the web build's createSkyFromKtx1 keeps it, and the IBL is set to
 // it, so both show radiance × INTENSITY × the camera's exposure.
@@ -43,7 +37,6 @@ view.setColorGrading(
 renderer.setClearOptions({ clearColor: [0, 0, 0, 1], clear: true });
 const assetLoader = engine.createAssetLoader();
 
-const { add, scale, dot, cross, normalize, degrees, pinhole, pixelRay, sphereHit } = measure;
 const srgbToLinear = (c) => (c <= 0.04045 ? c / 12.92 : ((c + 0.055) / 1.055) ** 2.4);
 const SRGB = Float32Array.from({ length: 256 }, (_, i) => srgbToLinear(i / 255));
 
@@ -99,17 +92,6 @@ async function renderAt(cam, size, e) {
 // Renders with the exposure lowered until nothing clips or the exposure reaches Filament's
 // least (a sun brighter than 1 / (INTENSITY · MIN_EXPOSURE) ≈ 41000 stays clipped).
 const render = (cam, size, e0) => measure.renderUnclipped((e) => renderAt(cam, size, e), e0, MIN_EXPOSURE * INTENSITY);
-
-// Alpha 1 on the pixels whose ray meets the sphere well inside its silhouette, 0 elsewhere.
-function maskSphere(px, cam, size) {
-  for (let y = 0; y < size; y++) {
-    for (let x = 0; x < size; x++) {
-      const hit = sphereHit(cam, [x + 0.5, y + 0.5], size);
-      px[4 * (y * size + x) + 3] = hit && hit.depth > 0.15 ? 1 : 0;
-    }
-  }
-  return px;
-}
 
 async function loadSphere(metallic, roughness) {
   const asset = assetLoader.createAsset(sphereGlb(metallic, roughness));
@@ -220,15 +202,11 @@ window.runCheck = async function ({ splitsum, cmgen, fromCmgenCube, control, rou
     scene.removeEntities(asset.getEntities());
     assetLoader.destroyAsset(asset);
     if (clipped && r > 0) throw new Error(`sphere r = ${r} saturates at Filament's least exposure`);
-    return maskSphere(px, sphereCam, size);
+    return measure.maskSphere(px, sphereCam.eye, (p) => pixelRay(sphereCam, p, size), size);
   };
 
   // The mirror sphere: the sun's reflection.
-  const reflected = (px) => {
-    const hit = sphereHit(sphereCam, measure.brightCentroid(px, MIRROR_SIZE), MIRROR_SIZE);
-    const n = normalize(hit.p);
-    return add(hit.d, scale(n, -2 * dot(hit.d, n)));
-  };
+  const reflected = (px) => measure.mirrorSun(px, sphereCam.eye, (p) => pixelRay(sphereCam, p, MIRROR_SIZE), MIRROR_SIZE);
   const refMirror = await sphereAt(1, 0, ref.light, MIRROR_SIZE, 0.5 / ref.stats.max);
   const gotMirror = await sphereAt(1, 0, ours.light, MIRROR_SIZE, 0.5 / ours.stats.max);
   out.mirror = { sunError: degrees(reflected(gotMirror), reflected(refMirror)), cmgenVsSkybox: degrees(reflected(refMirror), sun) };

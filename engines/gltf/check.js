@@ -13,13 +13,8 @@ import { GltfView, GltfState, ResourceLoader } from '/engines/gltf/node_modules/
 import * as measure from '/engines/measure.js';
 import { sphereGlb } from '/engines/sphere.js';
 
-const { add, scale, dot, normalize, degrees, pinhole, pixelRay, sphereHit } = measure;
 const LIBS = '/engines/gltf/node_modules/@khronosgroup/gltf-viewer/dist/libs/';
-const SIZE = 160;
-const MIRROR_SIZE = 512;
-const SPHERE_DISTANCE = 4.2;
-const SPHERE_FOV = 30;
-const SKY_FOV = 50;
+const { SIZE, MIRROR_SIZE, SPHERE_DISTANCE, SPHERE_FOV, SKY_FOV, scale, degrees, pinhole, pixelRay } = measure;
 // The viewer's linearTosRGB: pow(color, 1/2.2).
 const DECODE = Float32Array.from({ length: 256 }, (_, i) => (i / 255) ** 2.2);
 
@@ -194,19 +189,9 @@ window.runCheck = async function ({ hdrUrl, dir, controlDir, levels, roughness }
     await setSphere(metallic, r);
     const { px, clipped } = await render(sphereCam, size, e);
     if (clipped && r > 0) throw new Error(`sphere r = ${r} saturates`);
-    for (let y = 0; y < size; y++) {
-      for (let x = 0; x < size; x++) {
-        const hit = sphereHit(sphereCam, [x + 0.5, y + 0.5], size);
-        if (!(hit && hit.depth > 0.15)) px[4 * (y * size + x) + 3] = 0;
-      }
-    }
-    return px;
+    return measure.maskSphere(px, eye, (p) => pixelRay(sphereCam, p, size), size);
   };
-  const reflected = (px) => {
-    const hit = sphereHit(sphereCam, measure.brightCentroid(px, MIRROR_SIZE), MIRROR_SIZE);
-    const n = normalize(hit.p);
-    return add(hit.d, scale(n, -2 * dot(hit.d, n)));
-  };
+  const reflected = (px) => measure.mirrorSun(px, eye, (p) => pixelRay(sphereCam, p, MIRROR_SIZE), MIRROR_SIZE);
   const refMirror = await sphereAt(own, 1, 0, MIRROR_SIZE, 0.5 / ownStats.max);
   const gotMirror = await sphereAt(ours, 1, 0, MIRROR_SIZE, 0.5 / ourStats.max);
   out.mirror = { sunError: degrees(reflected(gotMirror), reflected(refMirror)), viewerVsCube: degrees(reflected(refMirror), sun) };
