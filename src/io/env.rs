@@ -5,10 +5,15 @@
 //! level, the full chain down to 1×1, rows bottom to top, each texel RGBD-encoded.
 //!
 //! RGBD (Babylon's `toRGBD` / `fromRGBD`, helperFunctions.fx): the largest channel m picks
-//! D = clamp(floor(255 / m), 1, 255) / 255, stored in alpha; R, G, B hold the sRGB encoding
-//! of colour × D (the exact sRGB curve: Babylon's WebGL2 and WebGPU builds decode with
-//! `toLinearSpaceExact`). A texel decodes as sRGB⁻¹(rgb) / a, so the format holds radiance
-//! up to 255 (D = 1/255); brighter texels are clipped there.
+//! D = clamp(floor(255 / m), 1, 255) / 255, stored in alpha; R, G, B hold (colour × D)^(1/2.2)
+//! in 8 bits. Babylon's `toGammaSpace` / `toLinearSpace` are the power 2.2
+//! (`LinearEncodePowerApprox`) unless an engine is created with `useExactSrgbConversions`,
+//! which defaults to false (ThinEngine); its `.env` decode (`rgbdDecode`, no defines of its
+//! own) and encode (`EnvironmentTextureTools`) follow the engine, so a default engine's
+//! `.env` files are power-2.2 RGBD (measured in Babylon 9.35: with the sRGB curve instead,
+//! venice_sunset's level 0 came out 1.2 % brighter than the cube it encodes). A texel
+//! decodes as (rgb)^2.2 / a, so the format holds radiance up to 255 (D = 1/255); brighter
+//! texels are clipped there.
 
 use std::path::Path;
 
@@ -16,7 +21,6 @@ use serde::{Deserialize, Serialize};
 
 use crate::cpu::prefilter_specular::BABYLON_LOD_SCALE;
 use crate::environment::Cubemap;
-use crate::io::ldr::{srgb8, srgb_to_linear};
 use crate::math::cubemap::FACES;
 use crate::{Error, Result};
 
@@ -24,6 +28,8 @@ use crate::{Error, Result};
 pub const MAGIC: [u8; 8] = [0x86, 0x16, 0x87, 0x96, 0xf6, 0xd6, 0x96, 0x36];
 /// The largest radiance RGBD holds (Babylon's `rgbdMaxRange`).
 pub const RGBD_MAX: f32 = 255.0;
+/// The power RGBD's colour is stored under (Babylon's `LinearEncodePowerApprox`).
+pub const RGBD_GAMMA: f32 = 2.2;
 
 /// The irradiance as Babylon's `SphericalPolynomial`: per RGB channel, the coefficients of
 /// x, y, z, x², y², z², yz, zx, xy. Babylon makes one with `SphericalPolynomial.
@@ -118,14 +124,15 @@ pub fn encode_rgbd(rgb: [f32; 3]) -> [u8; 4] {
     let m = rgb[0].max(rgb[1]).max(rgb[2]).max(1e-7);
     let k = (RGBD_MAX / m).floor().clamp(1.0, 255.0);
     let d = k / 255.0;
-    let [r, g, b] = rgb.map(|c| srgb8(c * d));
+    let [r, g, b] =
+        rgb.map(|c| ((c * d).clamp(0.0, 1.0).powf(1.0 / RGBD_GAMMA) * 255.0).round() as u8);
     [r, g, b, k as u8]
 }
 
 /// Linear RGB of an RGBD texel (Babylon's `fromRGBD`).
 pub fn decode_rgbd(p: [u8; 4]) -> [f32; 3] {
     let d = p[3].max(1) as f32 / 255.0;
-    std::array::from_fn(|c| srgb_to_linear(p[c] as f32 / 255.0) / d)
+    std::array::from_fn(|c| (p[c] as f32 / 255.0).powf(RGBD_GAMMA) / d)
 }
 
 /// One face of one level as an 8-bit RGBA PNG of RGBD texels, its last row (t = 1) at the
@@ -299,9 +306,10 @@ mod tests {
             let rgb = [v, v * 0.5, v * 0.25];
             let back = decode_rgbd(encode_rgbd(rgb));
             for c in 0..3 {
-                // 8-bit sRGB of colour × D: within 1.5 % of the largest channel and 4 % of
-                // the others where the curve is a power; in its linear segment (below
-                // 0.0031308) half a step is 0.5 / 255 / 12.92 = 1.5e-4, over D ≈ 1 / max(1, v).
+                // 8 bits of (colour × D)^(1/2.2): half a step is 2.2 × 0.5 / code of the
+                // value, within 1.5 % of the largest channel (code ≥ 11 from 0.001 up) and
+                // 4 % of the others (code ≥ 6); the smallest codes are a larger fraction of
+                // tiny values, 1.6e-4 absolute over D ≈ 1 / max(1, v).
                 let tol = if c == 0 { 0.015 } else { 0.04 } * rgb[c] + 1.6e-4 * v.max(1.0);
                 assert!((back[c] - rgb[c]).abs() <= tol, "{v}: {back:?} vs {rgb:?}");
             }
