@@ -93,12 +93,23 @@ const ready = (texture) => new Promise((ok, fail) => {
   setTimeout(() => fail(new Error(`${texture.name} did not load`)), 120000);
 });
 
-window.runCheck = async function ({ hdrUrl, envUrl, controlUrl, roughness }) {
+window.runCheck = async function ({ hdrUrl, exactUrl, envUrl, controlUrl, roughness }) {
   const own = await ready(new B.HDRCubeTexture(hdrUrl, scene, 256, false, true, false, true));
+  // Babylon's own path from splitsum's exact cube (engines/panorama.mjs): its SH and its
+  // prefiltering of the cube splitsum bakes from, with the clamp its SH projection puts on
+  // every texel lifted (MAX_HDRI_VALUE, 4096, a public setting): quarry_01's exact cube
+  // peaks at 40 852, and with the clamp Babylon's irradiance holds 38 % less than the exact
+  // E/π, which its PBR shader also uses for rough reflections (measured: giving splitsum's
+  // .env Babylon's clamped polynomial dims a metal r = 1 sphere by 38 %).
+  const clamp = B.CubeMapToSphericalPolynomialTools.MAX_HDRI_VALUE;
+  B.CubeMapToSphericalPolynomialTools.MAX_HDRI_VALUE = Infinity;
+  const ownExact = await ready(new B.HDRCubeTexture(exactUrl, scene, 256, false, true, false, true));
+  B.CubeMapToSphericalPolynomialTools.MAX_HDRI_VALUE = clamp;
   const ours = await ready(new B.CubeTexture(envUrl, scene));
   const control = await ready(new B.CubeTexture(controlUrl, scene));
   const ownFaces = await faces(own);
   const ownStats = measure.cubeStats(ownFaces, 256);
+  const ownExactStats = measure.cubeStats(await faces(ownExact), 256);
   const ourFaces = await faces(ours);
   const ourStats = measure.cubeStats(ourFaces, 256);
   const sun = ownStats.sun;
@@ -141,6 +152,7 @@ window.runCheck = async function ({ hdrUrl, envUrl, controlUrl, roughness }) {
   // The irradiance each texture carries: its polynomial's mean over the sphere (band 0).
   const band0 = (t) => (t.sphericalPolynomial.xx.y + t.sphericalPolynomial.yy.y + t.sphericalPolynomial.zz.y) / 3;
   out.irradianceRatio = band0(ours) / band0(own);
+  out.exact = { irradianceRatio: band0(ours) / band0(ownExact) };
 
   // Spheres, the camera 40° from the sun.
   const viewDir = measure.turnedFrom(sun, 40);
@@ -180,6 +192,7 @@ window.runCheck = async function ({ hdrUrl, envUrl, controlUrl, roughness }) {
     return spheres;
   };
   out.vsOwn = await compareWith(own, 'babylon', ownStats.mean);
+  out.vsOwnExact = await compareWith(ownExact, 'babylon_exact', ownExactStats.mean);
   out.renderer = engine.description;
   return { out, images };
 };
