@@ -120,6 +120,80 @@ export function cubeStats(level0, n) {
   return { sun: normalize(sun), max, mean: sum / total };
 }
 
+// The texel of an n² cube (faces as GL reads them back, the table above) that direction d
+// falls in: [face, i, j].
+export function cubeTexel(d, n) {
+  const [x, y, z] = d, ax = Math.abs(x), ay = Math.abs(y), az = Math.abs(z);
+  let face, s, t;
+  if (ax >= ay && ax >= az) [face, s, t] = x > 0 ? [0, -z / ax, -y / ax] : [1, z / ax, -y / ax];
+  else if (ay >= az) [face, s, t] = y > 0 ? [2, x / ay, z / ay] : [3, x / ay, -z / ay];
+  else [face, s, t] = z > 0 ? [4, x / az, -y / az] : [5, -x / az, -y / az];
+  const index = (u) => Math.min(n - 1, Math.max(0, Math.floor(((u + 1) / 2) * n)));
+  return [face, index(s), index(t)];
+}
+
+// The irradiance over π, E(d)/π = (1/π) ∫ L(l) max(0, d·l) dω, RGB for each direction of
+// `dirs`, summed over every texel of a level-0 cube (each texel's solid angle
+// (2/n)² / (s² + t² + 1)^1.5 at its centre): a brute-force truth for an engine's
+// Lambertian cube, computed from the radiance cube the engine holds. Non-finite texels
+// count as 0.
+export function bruteIrradiance(level0, n, dirs) {
+  const count = 6 * n * n, texels = new Float32Array(6 * count);
+  let k = 0;
+  for (let f = 0; f < 6; f++) {
+    for (let j = 0; j < n; j++) {
+      for (let i = 0; i < n; i++, k++) {
+        const s = (2 * (i + 0.5)) / n - 1, t = (2 * (j + 0.5)) / n - 1;
+        const omega = 4 / (n * n) / (s * s + t * t + 1) ** 1.5 / Math.PI;
+        const d = normalize(faceDirection(f, s, t));
+        for (let c = 0; c < 3; c++) {
+          const v = level0[f][4 * (j * n + i) + c];
+          texels[6 * k + c] = d[c];
+          texels[6 * k + 3 + c] = Number.isFinite(v) ? v * omega : 0;
+        }
+      }
+    }
+  }
+  return dirs.map(([x, y, z]) => {
+    let r = 0, g = 0, b = 0;
+    for (let i = 0; i < 6 * count; i += 6) {
+      const c = x * texels[i] + y * texels[i + 1] + z * texels[i + 2];
+      if (c > 0) {
+        r += c * texels[i + 3];
+        g += c * texels[i + 4];
+        b += c * texels[i + 5];
+      }
+    }
+    return [r, g, b];
+  });
+}
+
+// The texel-centre directions of an n² cube, face by face, rows as GL reads them back.
+export function cubeDirections(n) {
+  const dirs = [];
+  for (let f = 0; f < 6; f++) {
+    for (let j = 0; j < n; j++) {
+      for (let i = 0; i < n; i++) dirs.push(normalize(faceDirection(f, (2 * (i + 0.5)) / n - 1, (2 * (j + 0.5)) / n - 1)));
+    }
+  }
+  return dirs;
+}
+
+// A Lambertian cube (n², as GL reads it back) against bruteIrradiance of the radiance cube
+// it was made from (`truth`, at `dirs`): the ratio of their luminance sums (the cube's
+// brightness over those directions) and the largest |ratio − 1| of a single direction.
+export function lambertianError(lambertian, n, truth, dirs) {
+  let got = 0, want = 0, worst = 0;
+  dirs.forEach((d, k) => {
+    const [f, i, j] = cubeTexel(d, n);
+    const v = luminance(lambertian[f], 4 * (j * n + i)), e = luminance(truth[k], 0);
+    got += v;
+    want += e;
+    worst = Math.max(worst, Math.abs(v / e - 1));
+  });
+  return { ratio: got / want, worst };
+}
+
 // Correlation of ln(1 + L) between two level-0 cubes, over 8×8-texel blocks.
 export function cubeCorrelation(a, b, n) {
   const blocks = (level0) => {

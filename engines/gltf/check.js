@@ -15,6 +15,9 @@ import { sphereGlb } from '/engines/sphere.js';
 
 const LIBS = '/engines/gltf/node_modules/@khronosgroup/gltf-viewer/dist/libs/';
 const { SIZE, MIRROR_SIZE, SPHERE_DISTANCE, SPHERE_FOV, SKY_FOV, scale, degrees, pinhole, pixelRay } = measure;
+// The brute-force Lambertian cube's size: E/π is smooth enough that a 16² cube read
+// bilinearly holds it (a point sun's cosine lobe bends by (5.6°)²/8 ≈ 0.1 % between texels).
+const TRUTH_SIZE = 16;
 // The viewer's linearTosRGB: pow(color, 1/2.2).
 const DECODE = Float32Array.from({ length: 256 }, (_, i) => (i / 255) ** 2.2);
 
@@ -88,24 +91,32 @@ async function image(url) {
 // filtering the viewer gives its own cubes (iblSampler.createCubemapTexture: trilinear for
 // the chains, bilinear for the Lambertian cube; the viewer's texture setup would force
 // environment cubes to one level), the LUTs as PNG images it uploads itself.
-async function withSplitsumFiles(own, dir, levels) {
-  // A copy of the viewer's environment object (a glTF), with its own image and texture
-  // objects; the viewer's filtering runs once, for its own path.
+// A copy of the viewer's environment object (a glTF), with its own image and texture
+// objects, so that cubes can be swapped in it; the viewer's filtering runs once, for its own
+// path.
+function copyEnvironment(own) {
   const copy = (o) => Object.assign(Object.create(Object.getPrototypeOf(o)), o);
   const env = copy(own);
   env.images = own.images.map(copy);
   env.textures = own.textures.map(copy);
-  const cube = async (k, file, minFilter) => {
-    const texture = await view.ktxDecoder.loadKtxFromUri(`${dir}/${file}`);
-    gl.bindTexture(gl.TEXTURE_CUBE_MAP, texture);
-    gl.texParameteri(gl.TEXTURE_CUBE_MAP, gl.TEXTURE_MIN_FILTER, minFilter);
-    gl.texParameteri(gl.TEXTURE_CUBE_MAP, gl.TEXTURE_MAG_FILTER, gl.LINEAR);
-    gl.texParameteri(gl.TEXTURE_CUBE_MAP, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
-    gl.texParameteri(gl.TEXTURE_CUBE_MAP, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
-    env.images[k].image = texture;
-    env.textures[k].glTexture = undefined;
-    env.textures[k].initialized = true;
-  };
+  return env;
+}
+
+// Makes cube texture `texture` image k of `env`, with the filtering the viewer gives its own.
+function setCube(env, k, texture, minFilter) {
+  gl.bindTexture(gl.TEXTURE_CUBE_MAP, texture);
+  gl.texParameteri(gl.TEXTURE_CUBE_MAP, gl.TEXTURE_MIN_FILTER, minFilter);
+  gl.texParameteri(gl.TEXTURE_CUBE_MAP, gl.TEXTURE_MAG_FILTER, gl.LINEAR);
+  gl.texParameteri(gl.TEXTURE_CUBE_MAP, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
+  gl.texParameteri(gl.TEXTURE_CUBE_MAP, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
+  env.images[k].image = texture;
+  env.textures[k].glTexture = undefined;
+  env.textures[k].initialized = true;
+}
+
+async function withSplitsumFiles(own, dir, levels) {
+  const env = copyEnvironment(own);
+  const cube = async (k, file, minFilter) => setCube(env, k, await view.ktxDecoder.loadKtxFromUri(`${dir}/${file}`), minFilter);
   const swap = (k, mimeType, content) => {
     env.images[k].image = content;
     env.images[k].mimeType = mimeType;
@@ -146,8 +157,32 @@ window.runCheck = async function ({ hdrUrl, dir, controlDir, levels, roughness }
   const sun = [Math.cos(turn) * cx - Math.sin(turn) * cz, cy, Math.sin(turn) * cx + Math.cos(turn) * cz];
   // The Lambertian cubes (E/π): the viewer's 256² and splitsum's 32², mean over the sphere.
   const lambertianMean = (env, n) => measure.cubeStats(readCube(env.images[0].image, n), n).mean;
+  // Each Lambertian cube against a brute-force E/π of the radiance cube it stands for (the
+  // level-0 GGX cube as the viewer holds it: the viewer filters its own from that cube), at
+  // texel centres: the viewer's 256² cube at those of a 16² cube (1536 directions),
+  // splitsum's 32² one at every other texel centre of its own (1536).
+  const dirs = measure.cubeDirections(TRUTH_SIZE);
+  const ownTruth = measure.bruteIrradiance(ownFaces, 256, dirs);
+  const ourDirs = measure.cubeDirections(32).filter((_, k) => k % 2 === 1 && Math.floor(k / 32) % 2 === 1);
+  const lambertian = {
+    viewer: measure.lambertianError(readCube(own.images[0].image, 256), 256, ownTruth, dirs),
+    splitsum: measure.lambertianError(readCube(ours.images[0].image, 32), 32, measure.bruteIrradiance(ourFaces, 256, ourDirs), ourDirs),
+  };
+  // The viewer's own path with its Lambertian filter replaced by that brute force: the
+  // 16² cube of E/π of its own cube (bilinear, as the viewer filters its Lambertian cube).
+  const ownExactDiffuse = copyEnvironment(own);
+  const truthCube = gl.createTexture();
+  gl.bindTexture(gl.TEXTURE_CUBE_MAP, truthCube);
+  for (let f = 0; f < 6; f++) {
+    const texels = ownTruth.slice(f * TRUTH_SIZE * TRUTH_SIZE, (f + 1) * TRUTH_SIZE * TRUTH_SIZE);
+    const data = Float32Array.from(texels.flatMap(([r, g, b]) => [r, g, b, 1]));
+    gl.texImage2D(gl.TEXTURE_CUBE_MAP_POSITIVE_X + f, 0, gl.RGBA16F, TRUTH_SIZE, TRUTH_SIZE, 0, gl.RGBA, gl.FLOAT, data);
+  }
+  gl.texParameteri(gl.TEXTURE_CUBE_MAP, gl.TEXTURE_MAX_LEVEL, 0);
+  setCube(ownExactDiffuse, 0, truthCube, gl.LINEAR);
   const out = {
     sun,
+    lambertian,
     irradianceRatio: lambertianMean(ours, 32) / lambertianMean(own, 256),
     cube: { correlation: measure.cubeCorrelation(ourFaces, ownFaces, 256), sunError: degrees(ourStats.sun, ownStats.sun), fluxRatio: ourStats.mean / ownStats.mean },
   };
@@ -201,7 +236,13 @@ window.runCheck = async function ({ hdrUrl, dir, controlDir, levels, roughness }
     for (const r of roughness) {
       const want = await sphereAt(own, metallic, r, SIZE, 0.6 / ownStats.mean);
       const got = await sphereAt(ours, metallic, r, SIZE, 0.6 / ourStats.mean);
-      out.spheres.push({ metallic, roughness: r, ...measure.compareSpheres(got, want, SIZE) });
+      const sphere = { metallic, roughness: r, ...measure.compareSpheres(got, want, SIZE) };
+      if (!metallic) {
+        const wantExact = await sphereAt(ownExactDiffuse, metallic, r, SIZE, 0.6 / ownStats.mean);
+        sphere.exactDiffuse = measure.compareSpheres(got, wantExact, SIZE);
+        images[`sphere_m${metallic}_r${r}_viewer_exact_diffuse`] = measure.toPng(wantExact, SIZE);
+      }
+      out.spheres.push(sphere);
       images[`sphere_m${metallic}_r${r}_viewer`] = measure.toPng(want, SIZE);
       images[`sphere_m${metallic}_r${r}_splitsum`] = measure.toPng(got, SIZE);
     }
