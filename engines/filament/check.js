@@ -146,7 +146,7 @@ async function loadPath({ ibl, sky }) {
   return { light, withSh, skybox: engine.createSkyFromKtx1(skyBytes), stats: skyStats(skyBytes), sh: light.shfloats };
 }
 
-window.runCheck = async function ({ splitsum, cmgen, fromCmgenCube, control, roughness }) {
+window.runCheck = async function ({ splitsum, cmgen, fromCmgenCube, cmgenOfExact, control, roughness }) {
   const ours = await loadPath(splitsum);
   const ref = await loadPath(cmgen);
   const sun = ref.stats.sun; // the sun as Filament's own path (cmgen) places it
@@ -211,25 +211,25 @@ window.runCheck = async function ({ splitsum, cmgen, fromCmgenCube, control, rou
   const gotMirror = await sphereAt(1, 0, ours.light, MIRROR_SIZE, 0.5 / ours.stats.max);
   out.mirror = { sunError: degrees(reflected(gotMirror), reflected(refMirror)), cmgenVsSkybox: degrees(reflected(refMirror), sun) };
 
-  // Spheres and SH-lit diffuse against cmgen's, for splitsum's bake of the HDRI and for its
-  // bake of cmgen's own level-0 cube (the same cube on both sides: only the prefiltering
-  // and the SH differ).
-  const compareWith = async (path, tag) => {
+  // Spheres and SH-lit diffuse against a cmgen bake (by default cmgen's of the HDRI), for
+  // splitsum's bake of the HDRI and for its bake of cmgen's own level-0 cube (the same
+  // cube on both sides: only the prefiltering and the SH differ).
+  const compareWith = async (path, tag, reference = ref, refTag = 'cmgen') => {
     const spheres = [];
     for (const metallic of [1, 0]) {
       for (const r of roughness) {
-        const want = await sphereAt(metallic, r, ref.light, SIZE, eView(ref));
+        const want = await sphereAt(metallic, r, reference.light, SIZE, eView(reference));
         const got = await sphereAt(metallic, r, path.light, SIZE, eView(path));
         spheres.push({ metallic, roughness: r, ...measure.compareSpheres(got, want, SIZE) });
-        images[`sphere_m${metallic}_r${r}_cmgen`] = measure.toPng(want, SIZE);
+        images[`sphere_m${metallic}_r${r}_${refTag}`] = measure.toPng(want, SIZE);
         images[`sphere_m${metallic}_r${r}_${tag}`] = measure.toPng(got, SIZE);
       }
     }
     // Diffuse from the SH in each file (IndirectLight::Builder::irradiance(3, sh)): a
     // white rough dielectric, whose light is almost all diffuse.
-    const wantSh = await sphereAt(0, 1, ref.withSh, SIZE, eView(ref));
+    const wantSh = await sphereAt(0, 1, reference.withSh, SIZE, eView(reference));
     const gotSh = await sphereAt(0, 1, path.withSh, SIZE, eView(path));
-    images.sh_cmgen = measure.toPng(wantSh, SIZE);
+    images[`sh_${refTag}`] = measure.toPng(wantSh, SIZE);
     images[`sh_${tag}`] = measure.toPng(gotSh, SIZE);
     // The bake's SH against its own last level: the two diffuse sources agree.
     const gotLevel = await sphereAt(0, 1, path.light, SIZE, eView(path));
@@ -237,11 +237,14 @@ window.runCheck = async function ({ splitsum, cmgen, fromCmgenCube, control, rou
       spheres,
       sh: measure.compareSpheres(gotSh, wantSh, SIZE),
       shVsLastLevel: measure.compareSpheres(gotSh, gotLevel, SIZE),
-      fluxVsCmgen: path.stats.mean / ref.stats.mean,
+      fluxVsCmgen: path.stats.mean / reference.stats.mean,
     };
   };
   out.fromHdri = await compareWith(ours, 'splitsum');
   out.fromCmgenCube = await compareWith(await loadPath(fromCmgenCube), 'splitsum_from_cmgen_cube');
+  // splitsum's bake of the HDRI against cmgen's bake of splitsum's exact cube of it
+  // (engines/panorama.mjs): cmgen's prefiltering and SH of the cube splitsum bakes from.
+  out.vsCmgenOfExact = await compareWith(ours, 'splitsum', await loadPath(cmgenOfExact), 'cmgen_of_exact');
   out.renderer = gl.getParameter(gl.VERSION);
   return { out, images };
 };
