@@ -388,13 +388,24 @@ impl ExactSource {
     fn prefilter_lanes(&self, n: [f32; 3], roughness: f32) -> [f32; 4] {
         let alpha = alpha_from_roughness(roughness);
         let k = alpha * alpha - 1.0;
+        self.lobe_sum(n, |n_dot_l, omega| {
+            // D(n·h) ∝ 1 / ((n·h)² (α² − 1) + 1)², (n·h)² = (1 + n·l) / 2
+            let q = (0.5 + 0.5 * n_dot_l) * k + 1.0;
+            n_dot_l * omega / (q * q)
+        })
+    }
+
+    /// Σ L w / Σ w over these texels, `lobe(n·l, Ω)` giving a texel's weight w (the lobe
+    /// times the solid angle) from its n·l, clamped at 0 (a texel below the horizon must
+    /// get weight 0 from `lobe`), and its solid angle. Each lane keeps its own partial
+    /// sums, added at the end; a `lobe` without calls or loops vectorises across lanes.
+    #[inline(always)]
+    pub fn lobe_sum(&self, n: [f32; 3], lobe: impl Fn(f32, f32) -> f32) -> [f32; 4] {
         let mut acc = [[0.0f32; LANES]; 4];
         for (d, rad) in self.dir_omega.iter().zip(&self.radiance) {
             for l in 0..LANES {
                 let n_dot_l = (n[0] * d[0][l] + n[1] * d[1][l] + n[2] * d[2][l]).max(0.0);
-                // D(n·h) ∝ 1 / ((n·h)² (α² − 1) + 1)², (n·h)² = (1 + n·l) / 2
-                let q = (0.5 + 0.5 * n_dot_l) * k + 1.0;
-                let w = n_dot_l * d[3][l] / (q * q);
+                let w = lobe(n_dot_l, d[3][l]);
                 for c in 0..4 {
                     acc[c][l] += w * rad[c][l];
                 }
