@@ -260,7 +260,7 @@ pub fn prefilter_sheen(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cpu::irradiance::source_texels;
+    use crate::cpu::prefilter_specular::{lane_test_normals, lane_test_source};
 
     /// The lane-packed sum gives the texel-by-texel reference's value at every roughness
     /// of the viewer's chain and between (each kind of power: squarings at r = 1/4 and 1/2,
@@ -270,10 +270,7 @@ mod tests {
     /// count that is not a multiple of the lane width.
     #[test]
     fn lane_sum_equals_the_reference() {
-        let mut cube = crate::cpu::cube_sample::patterned_chain(16, 5);
-        cube.levels[0][1000][0] += 5000.0;
-        let mut texels = source_texels(&cube, 0);
-        texels.truncate(texels.len() - 3);
+        let texels = lane_test_source();
         let lanes = ExactSource::new(&texels);
         for (r, power) in [
             (0.25f32, LanePower::Squarings(3)),
@@ -284,12 +281,7 @@ mod tests {
         ] {
             let exponent = 0.5 / alpha_from_roughness(r);
             assert_eq!(LanePower::new(exponent), power, "r {r}");
-            for k in 0..200 {
-                let n = crate::math::cubemap::normalize([
-                    (k as f32 * 0.37).sin(),
-                    (k as f32 * 0.91).cos(),
-                    (k as f32 * 0.13).sin() - 0.2,
-                ]);
+            for n in lane_test_normals() {
                 let want = prefilter_charlie_texel(&texels, n, r);
                 let got = prefilter_charlie_lanes(&lanes, n, r);
                 for c in 0..3 {

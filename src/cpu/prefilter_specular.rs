@@ -581,6 +581,29 @@ pub fn prefilter_specular(
     out
 }
 
+/// The lane sums' test source: 1533 texels (not a multiple of [`LANES`]) of a patterned
+/// 16² cube with a bright spot.
+#[cfg(test)]
+pub(crate) fn lane_test_source() -> Vec<SourceTexel> {
+    let mut cube = crate::cpu::cube_sample::patterned_chain(16, 5);
+    cube.levels[0][1000][0] += 5000.0;
+    let mut texels = source_texels(&cube, 0);
+    texels.truncate(texels.len() - 3);
+    texels
+}
+
+/// The lane sums' test directions: 200 unit vectors spread over the sphere.
+#[cfg(test)]
+pub(crate) fn lane_test_normals() -> impl Iterator<Item = [f32; 3]> {
+    (0..200).map(|k| {
+        crate::math::cubemap::normalize([
+            (k as f32 * 0.37).sin(),
+            (k as f32 * 0.91).cos(),
+            (k as f32 * 0.13).sin() - 0.2,
+        ])
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -630,18 +653,10 @@ mod tests {
     /// lane width.
     #[test]
     fn lane_sum_equals_the_reference() {
-        let mut cube = crate::cpu::cube_sample::patterned_chain(16, 5);
-        cube.levels[0][1000][0] += 5000.0;
-        let mut texels = source_texels(&cube, 0);
-        texels.truncate(texels.len() - 3);
+        let texels = lane_test_source();
         let lanes = ExactSource::new(&texels);
         for r in [0.2f32, 0.35, 0.5, 0.8, 1.0] {
-            for k in 0..200 {
-                let n = crate::math::cubemap::normalize([
-                    (k as f32 * 0.37).sin(),
-                    (k as f32 * 0.91).cos(),
-                    (k as f32 * 0.13).sin() - 0.2,
-                ]);
+            for n in lane_test_normals() {
                 let want = prefilter_exact_texel(&texels, n, r);
                 let got = lanes.prefilter(n, r);
                 let alpha2 = alpha_from_roughness(r).powi(2);
