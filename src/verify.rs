@@ -31,7 +31,7 @@ pub struct VerifyRow {
 }
 
 /// Compares two cubes texel by texel: |a − b| ≤ tol·|b| + floor·max(level).
-fn compare(kernel: &'static str, a: &Cubemap, b: &Cubemap, tol: f32, floor: f32) -> VerifyRow {
+pub fn compare(kernel: &'static str, a: &Cubemap, b: &Cubemap, tol: f32, floor: f32) -> VerifyRow {
     let (mut max_abs, mut max_rel, mut pass) = (0.0f32, 0.0f32, a.levels.len() == b.levels.len());
     for (la, lb) in a.levels.iter().zip(&b.levels) {
         let max = lb

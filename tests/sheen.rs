@@ -5,11 +5,10 @@
 mod common;
 
 use splitsum::cpu::cube_sample::sample_cube_lod;
-use splitsum::cpu::equirect_to_cube::fill_cube_level;
-use splitsum::cpu::prefilter_sheen::{prefilter_charlie_texel, sheen_chain, sheen_level_roughness};
+use splitsum::cpu::prefilter_sheen::{prefilter_sheen_reference, sheen_level_roughness};
 use splitsum::cpu::prefilter_specular::{chain_levels, SpecularChain};
 use splitsum::environment::{Environment, Equirect, IrradianceSource};
-use splitsum::math::cubemap::cube_texel_direction;
+use splitsum::verify::{compare, CONVOLUTION_TOLERANCE};
 use splitsum::{Backend, Cubemap};
 
 /// The chain the glTF target bakes: 256² to 16², r = m/4 (the Sample Viewer's own).
@@ -142,7 +141,7 @@ fn sheen_matches_brute_force_at_full_resolution() {
 /// 1.1e-4 relative at worst, almost all of it the reference's single running sum: against
 /// the same sum in f64 the lane sum is within 1.3e-5 and the reference 1.1e-4): against
 /// the reference within 1e-3 of the texel plus 1e-5 of the level's maximum, the bar
-/// `tests/specular.rs` holds the GGX backends to.
+/// `tests/specular.rs` holds the GGX backends to (`verify::compare`, as `splitsum verify`).
 #[test]
 fn sheen_gpu_matches_cpu() {
     let Some(ctx) = common::gpu() else {
@@ -152,14 +151,7 @@ fn sheen_gpu_matches_cpu() {
     let e = common::test_equirect("quarry_01_1k.hdr");
     let (env, split) = cube_and_split(&splitsum::CpuBackend, e, 64);
     let chain = SpecularChain::linear(chain_levels(64, 4));
-    let reference =
-        sheen_chain::<std::convert::Infallible>(&env, Some(&split), chain, |source, n, r| {
-            Ok(fill_cube_level(n, |face, i, j| {
-                let d = cube_texel_direction(face, i as i32, j as i32, n);
-                prefilter_charlie_texel(source, d, r)
-            }))
-        })
-        .unwrap();
+    let reference = prefilter_sheen_reference(&env, Some(&split), chain);
     let cpu = splitsum::CpuBackend
         .prefilter_sheen(&env, Some(&split), chain)
         .unwrap();
@@ -177,24 +169,16 @@ fn sheen_gpu_matches_cpu() {
     }
     println!("sheen GPU vs the CPU reference: {worst:.2e} relative");
     assert!(worst <= 1e-4, "{worst}");
-    let mut worst = 0.0f32;
-    for (m, (la, lb)) in cpu.levels.iter().zip(&reference.levels).enumerate() {
-        let max = lb
-            .iter()
-            .flat_map(|t| t[..3].to_vec())
-            .fold(0.0f32, f32::max);
-        for (a, b) in la.iter().zip(lb) {
-            for c in 0..3 {
-                let d = (a[c] - b[c]).abs();
-                worst = worst.max(d / b[c].abs().max(1e-3));
-                assert!(
-                    d <= 1e-3 * b[c].abs() + 1e-5 * max,
-                    "level {m}: {} vs {}",
-                    a[c],
-                    b[c]
-                );
-            }
-        }
-    }
-    println!("sheen CPU backend (lane sum) vs the CPU reference: {worst:.2e} relative");
+    let lanes = compare(
+        "sheen lane sum",
+        &cpu,
+        &reference,
+        CONVOLUTION_TOLERANCE,
+        1e-5,
+    );
+    assert!(lanes.pass, "{lanes:?}");
+    println!(
+        "sheen CPU backend (lane sum) vs the CPU reference: {:.2e} relative",
+        lanes.max_rel
+    );
 }

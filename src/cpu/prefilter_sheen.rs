@@ -241,7 +241,8 @@ pub fn sheen_chain<E>(
 }
 
 /// The prefiltered Charlie chain of `env` (every mip present) in `chain`'s layout on the
-/// CPU (see the module documentation and [`sheen_chain`]).
+/// CPU (see the module documentation and [`sheen_chain`]): the CPU backend's, each texel
+/// summed in lanes ([`prefilter_charlie_lanes`]).
 pub fn prefilter_sheen(
     env: &Cubemap,
     split: Option<&IrradianceSource>,
@@ -249,12 +250,33 @@ pub fn prefilter_sheen(
 ) -> Cubemap {
     let Ok(cube) = sheen_chain::<std::convert::Infallible>(env, split, chain, |source, n, r| {
         let lanes = ExactSource::new(source);
-        Ok(fill_cube_level(n, |face, i, j| {
-            let d = cube_texel_direction(face, i as i32, j as i32, n);
+        Ok(at_texel_centres(n, |d| {
             prefilter_charlie_lanes(&lanes, d, r)
         }))
     });
     cube
+}
+
+/// [`prefilter_sheen`] with the texel-by-texel reference sum ([`prefilter_charlie_texel`]),
+/// the one the GPU kernel mirrors.
+pub fn prefilter_sheen_reference(
+    env: &Cubemap,
+    split: Option<&IrradianceSource>,
+    chain: SpecularChain,
+) -> Cubemap {
+    let Ok(cube) = sheen_chain::<std::convert::Infallible>(env, split, chain, |source, n, r| {
+        Ok(at_texel_centres(n, |d| {
+            prefilter_charlie_texel(source, d, r)
+        }))
+    });
+    cube
+}
+
+/// An n² cube level of `sum(d)` at every texel centre d.
+fn at_texel_centres(n: u32, sum: impl Fn([f32; 3]) -> [f32; 4] + Sync) -> Vec<[f32; 4]> {
+    fill_cube_level(n, |face, i, j| {
+        sum(cube_texel_direction(face, i as i32, j as i32, n))
+    })
 }
 
 #[cfg(test)]
