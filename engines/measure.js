@@ -96,25 +96,33 @@ export function decode8(bytes, decode, e) {
 // The GL cube-face table (DESIGN.md's): the direction through face coordinates (s, t).
 export const faceDirection = (face, s, t) => [[1, -t, -s], [-1, -t, s], [s, 1, t], [s, -1, -t], [s, -t, 1], [-s, -t, -1]][face];
 
+// Calls visit(face, i, j, s, t, w) for every texel of an n² cube, face by face, rows as GL
+// reads them back: (s, t) its centre's face coordinates, w = 1 / (s² + t² + 1)^1.5 its
+// solid angle over that of a (2/n)² patch at the face's centre.
+export function forEachTexel(n, visit) {
+  for (let f = 0; f < 6; f++) {
+    for (let j = 0; j < n; j++) {
+      for (let i = 0; i < n; i++) {
+        const s = (2 * (i + 0.5)) / n - 1, t = (2 * (j + 0.5)) / n - 1;
+        visit(f, i, j, s, t, 1 / (s * s + t * t + 1) ** 1.5);
+      }
+    }
+  }
+}
+
 // Of a cube's level 0 (six RGBA float faces of n², rows as GL reads them): the direction of
 // the texels above half the largest luminance, that largest value, and the solid-angle
 // mean. Non-finite texels (an engine's own half-float filtering of a sun) count as 0.
 export function cubeStats(level0, n) {
   let max = 0, sum = 0, total = 0;
   const texels = [];
-  for (let f = 0; f < 6; f++) {
-    for (let j = 0; j < n; j++) {
-      for (let i = 0; i < n; i++) {
-        const l = luminance(level0[f], 4 * (j * n + i)) || 0;
-        const s = (2 * (i + 0.5)) / n - 1, t = (2 * (j + 0.5)) / n - 1;
-        const w = 1 / (s * s + t * t + 1) ** 1.5;
-        texels.push([l, faceDirection(f, s, t), w]);
-        max = Math.max(max, l);
-        sum += l * w;
-        total += w;
-      }
-    }
-  }
+  forEachTexel(n, (f, i, j, s, t, w) => {
+    const l = luminance(level0[f], 4 * (j * n + i)) || 0;
+    texels.push([l, faceDirection(f, s, t), w]);
+    max = Math.max(max, l);
+    sum += l * w;
+    total += w;
+  });
   let sun = [0, 0, 0];
   for (const [l, d, w] of texels) if (l >= 0.5 * max) sun = add(sun, scale(normalize(d), l * w));
   return { sun: normalize(sun), max, mean: sum / total };
@@ -140,20 +148,16 @@ export function cubeTexel(d, n) {
 export function bruteIrradiance(level0, n, dirs) {
   const count = 6 * n * n, texels = new Float32Array(6 * count);
   let k = 0;
-  for (let f = 0; f < 6; f++) {
-    for (let j = 0; j < n; j++) {
-      for (let i = 0; i < n; i++, k++) {
-        const s = (2 * (i + 0.5)) / n - 1, t = (2 * (j + 0.5)) / n - 1;
-        const omega = 4 / (n * n) / (s * s + t * t + 1) ** 1.5 / Math.PI;
-        const d = normalize(faceDirection(f, s, t));
-        for (let c = 0; c < 3; c++) {
-          const v = level0[f][4 * (j * n + i) + c];
-          texels[6 * k + c] = d[c];
-          texels[6 * k + 3 + c] = Number.isFinite(v) ? v * omega : 0;
-        }
-      }
+  forEachTexel(n, (f, i, j, s, t, w) => {
+    const omega = (4 / (n * n)) * w / Math.PI;
+    const d = normalize(faceDirection(f, s, t));
+    for (let c = 0; c < 3; c++) {
+      const v = level0[f][4 * (j * n + i) + c];
+      texels[6 * k + c] = d[c];
+      texels[6 * k + 3 + c] = Number.isFinite(v) ? v * omega : 0;
     }
-  }
+    k++;
+  });
   return dirs.map(([x, y, z]) => {
     let r = 0, g = 0, b = 0;
     for (let i = 0; i < 6 * count; i += 6) {
@@ -171,11 +175,7 @@ export function bruteIrradiance(level0, n, dirs) {
 // The texel-centre directions of an n² cube, face by face, rows as GL reads them back.
 export function cubeDirections(n) {
   const dirs = [];
-  for (let f = 0; f < 6; f++) {
-    for (let j = 0; j < n; j++) {
-      for (let i = 0; i < n; i++) dirs.push(normalize(faceDirection(f, (2 * (i + 0.5)) / n - 1, (2 * (j + 0.5)) / n - 1)));
-    }
-  }
+  forEachTexel(n, (f, i, j, s, t) => dirs.push(normalize(faceDirection(f, s, t))));
   return dirs;
 }
 

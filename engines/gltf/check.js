@@ -156,7 +156,7 @@ window.runCheck = async function ({ hdrUrl, dir, controlDir, levels, roughness }
   const [cx, cy, cz] = ownStats.sun;
   const sun = [Math.cos(turn) * cx - Math.sin(turn) * cz, cy, Math.sin(turn) * cx + Math.cos(turn) * cz];
   // The Lambertian cubes (E/π): the viewer's 256² and splitsum's 32², mean over the sphere.
-  const lambertianMean = (env, n) => measure.cubeStats(readCube(env.images[0].image, n), n).mean;
+  const ownLambertian = readCube(own.images[0].image, 256), ourLambertian = readCube(ours.images[0].image, 32);
   // Each Lambertian cube against a brute-force E/π of the radiance cube it stands for (the
   // level-0 GGX cube as the viewer holds it: the viewer filters its own from that cube), at
   // texel centres: the viewer's 256² cube at those of a 16² cube (1536 directions),
@@ -165,8 +165,8 @@ window.runCheck = async function ({ hdrUrl, dir, controlDir, levels, roughness }
   const ownTruth = measure.bruteIrradiance(ownFaces, 256, dirs);
   const ourDirs = measure.cubeDirections(32).filter((_, k) => k % 2 === 1 && Math.floor(k / 32) % 2 === 1);
   const lambertian = {
-    viewer: measure.lambertianError(readCube(own.images[0].image, 256), 256, ownTruth, dirs),
-    splitsum: measure.lambertianError(readCube(ours.images[0].image, 32), 32, measure.bruteIrradiance(ourFaces, 256, ourDirs), ourDirs),
+    viewer: measure.lambertianError(ownLambertian, 256, ownTruth, dirs),
+    splitsum: measure.lambertianError(ourLambertian, 32, measure.bruteIrradiance(ourFaces, 256, ourDirs), ourDirs),
   };
   // The viewer's own path with its Lambertian filter replaced by that brute force: the
   // 16² cube of E/π of its own cube (bilinear, as the viewer filters its Lambertian cube).
@@ -183,7 +183,7 @@ window.runCheck = async function ({ hdrUrl, dir, controlDir, levels, roughness }
   const out = {
     sun,
     lambertian,
-    irradianceRatio: lambertianMean(ours, 32) / lambertianMean(own, 256),
+    irradianceRatio: measure.cubeStats(ourLambertian, 32).mean / measure.cubeStats(ownLambertian, 256).mean,
     cube: { correlation: measure.cubeCorrelation(ourFaces, ownFaces, 256), sunError: degrees(ourStats.sun, ownStats.sun), fluxRatio: ourStats.mean / ownStats.mean },
   };
   const images = {};
