@@ -211,40 +211,40 @@ window.runCheck = async function ({ splitsum, cmgen, fromCmgenCube, cmgenOfExact
   const gotMirror = await sphereAt(1, 0, ours.light, MIRROR_SIZE, 0.5 / ours.stats.max);
   out.mirror = { sunError: degrees(reflected(gotMirror), reflected(refMirror)), cmgenVsSkybox: degrees(reflected(refMirror), sun) };
 
-  // Spheres and SH-lit diffuse against a cmgen bake (by default cmgen's of the HDRI), for
-  // splitsum's bake of the HDRI and for its bake of cmgen's own level-0 cube (the same
-  // cube on both sides: only the prefiltering and the SH differ).
-  const compareWith = async (path, tag, reference = ref, refTag = 'cmgen') => {
+  // Each path's spheres (metal and white dielectric at each roughness), a white r = 1
+  // sphere lit by its file's SH (IndirectLight::Builder::irradiance(3, sh): light almost
+  // all diffuse) and the same lit by its last level, rendered once and saved as `tag`.
+  const renderPath = async (path, tag) => {
     const spheres = [];
     for (const metallic of [1, 0]) {
       for (const r of roughness) {
-        const want = await sphereAt(metallic, r, reference.light, SIZE, eView(reference));
-        const got = await sphereAt(metallic, r, path.light, SIZE, eView(path));
-        spheres.push({ metallic, roughness: r, ...measure.compareSpheres(got, want, SIZE) });
-        images[`sphere_m${metallic}_r${r}_${refTag}`] = measure.toPng(want, SIZE);
-        images[`sphere_m${metallic}_r${r}_${tag}`] = measure.toPng(got, SIZE);
+        const px = await sphereAt(metallic, r, path.light, SIZE, eView(path));
+        spheres.push({ metallic, roughness: r, px });
+        images[`sphere_m${metallic}_r${r}_${tag}`] = measure.toPng(px, SIZE);
       }
     }
-    // Diffuse from the SH in each file (IndirectLight::Builder::irradiance(3, sh)): a
-    // white rough dielectric, whose light is almost all diffuse.
-    const wantSh = await sphereAt(0, 1, reference.withSh, SIZE, eView(reference));
-    const gotSh = await sphereAt(0, 1, path.withSh, SIZE, eView(path));
-    images[`sh_${refTag}`] = measure.toPng(wantSh, SIZE);
-    images[`sh_${tag}`] = measure.toPng(gotSh, SIZE);
-    // The bake's SH against its own last level: the two diffuse sources agree.
-    const gotLevel = await sphereAt(0, 1, path.light, SIZE, eView(path));
-    return {
-      spheres,
-      sh: measure.compareSpheres(gotSh, wantSh, SIZE),
-      shVsLastLevel: measure.compareSpheres(gotSh, gotLevel, SIZE),
-      fluxVsCmgen: path.stats.mean / reference.stats.mean,
-    };
+    const sh = await sphereAt(0, 1, path.withSh, SIZE, eView(path));
+    images[`sh_${tag}`] = measure.toPng(sh, SIZE);
+    const level = await sphereAt(0, 1, path.light, SIZE, eView(path));
+    return { path, spheres, sh, level };
   };
-  out.fromHdri = await compareWith(ours, 'splitsum');
-  out.fromCmgenCube = await compareWith(await loadPath(fromCmgenCube), 'splitsum_from_cmgen_cube');
+  // A path's renders against a cmgen bake's: spheres, SH-lit diffuse, and the path's SH
+  // against its own last level (the two diffuse sources agree).
+  const compare = (got, want) => ({
+    spheres: got.spheres.map(({ metallic, roughness: r, px }, k) => ({ metallic, roughness: r, ...measure.compareSpheres(px, want.spheres[k].px, SIZE) })),
+    sh: measure.compareSpheres(got.sh, want.sh, SIZE),
+    shVsLastLevel: measure.compareSpheres(got.sh, got.level, SIZE),
+    fluxVsCmgen: got.path.stats.mean / want.path.stats.mean,
+  });
+  const cmgenRenders = await renderPath(ref, 'cmgen');
+  const ourRenders = await renderPath(ours, 'splitsum');
+  // splitsum's bake of the HDRI and its bake of cmgen's own level-0 cube (the same cube on
+  // both sides: only the prefiltering and the SH differ) against cmgen's bake of the HDRI.
+  out.fromHdri = compare(ourRenders, cmgenRenders);
+  out.fromCmgenCube = compare(await renderPath(await loadPath(fromCmgenCube), 'splitsum_from_cmgen_cube'), cmgenRenders);
   // splitsum's bake of the HDRI against cmgen's bake of splitsum's exact cube of it
   // (engines/panorama.mjs): cmgen's prefiltering and SH of the cube splitsum bakes from.
-  out.vsCmgenOfExact = await compareWith(ours, 'splitsum', await loadPath(cmgenOfExact), 'cmgen_of_exact');
+  out.vsCmgenOfExact = compare(ourRenders, await renderPath(await loadPath(cmgenOfExact), 'cmgen_of_exact'));
   out.renderer = gl.getParameter(gl.VERSION);
   return { out, images };
 };
