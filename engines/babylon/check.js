@@ -178,19 +178,21 @@ window.runCheck = async function ({ hdrUrl, exactUrl, envUrl, controlUrl, roughn
   const gotMirror = await sphereAt(ours, 1, 0, MIRROR_SIZE, 0.5 / ourStats.max);
   out.mirror = { sunError: degrees(reflected(gotMirror), reflected(refMirror)), ownVsCube: degrees(reflected(refMirror), sun) };
 
-  const compareWith = async (reference, tag, refMean) => {
+  // Each texture's spheres, rendered once and saved as `tag`; then compared.
+  const renderSpheres = async (texture, tag, mean) => {
     const spheres = [];
     for (const metallic of [1, 0]) {
       for (const r of roughness) {
-        const want = await sphereAt(reference, metallic, r, SIZE, 0.6 / refMean);
-        const got = await sphereAt(ours, metallic, r, SIZE, 0.6 / ourStats.mean);
-        spheres.push({ metallic, roughness: r, ...measure.compareSpheres(got, want, SIZE) });
-        images[`sphere_m${metallic}_r${r}_${tag}`] = measure.toPng(want, SIZE);
-        images[`sphere_m${metallic}_r${r}_splitsum`] = measure.toPng(got, SIZE);
+        const px = await sphereAt(texture, metallic, r, SIZE, 0.6 / mean);
+        spheres.push({ metallic, roughness: r, px });
+        images[`sphere_m${metallic}_r${r}_${tag}`] = measure.toPng(px, SIZE);
       }
     }
     return spheres;
   };
+  const ourSpheres = await renderSpheres(ours, 'splitsum', ourStats.mean);
+  const compareWith = async (reference, tag, refMean) => (await renderSpheres(reference, tag, refMean))
+    .map(({ metallic, roughness: r, px }, k) => ({ metallic, roughness: r, ...measure.compareSpheres(ourSpheres[k].px, px, SIZE) }));
   out.vsOwn = await compareWith(own, 'babylon', ownStats.mean);
   out.vsOwnExact = await compareWith(ownExact, 'babylon_exact', ownExactStats.mean);
   out.renderer = engine.description;
