@@ -11,9 +11,9 @@ mod common;
 
 use std::time::Instant;
 
-use splitsum::lut::{lut_texel_coords, LutQuadrature};
 use splitsum::math::brdf::{fresnel_schlick_weight, g1_schlick_ggx, k_ibl};
 use splitsum::math::sampling::{hammersley, importance_sample_ggx};
+use splitsum::plan::lut::{lut_texel_coords, LutQuadrature};
 
 /// The sum of two consecutive clock-tick fields of /proc/self/stat, from `first` (counted
 /// after the command name), in seconds (Linux; USER_HZ is 100 on every mainstream
@@ -213,8 +213,8 @@ fn synthetic_equirect(width: u32) -> splitsum::Equirect {
 }
 
 fn cubemap_benchmarks() {
-    use splitsum::convert::environment_to_cube;
     use splitsum::environment::{Environment, EquirectIntegral};
+    use splitsum::stages::convert::environment_to_cube;
     println!("\n## HDRI → cubemap 512 with mips\n");
     println!("| input | stage | backend | wall s | CPU s |");
     println!("|---|---|---|---|---|");
@@ -235,7 +235,7 @@ fn cubemap_benchmarks() {
     .into_iter()
     .flatten()
     .collect();
-    let gpu = splitsum::GpuBackend::new().ok();
+    let gpu = splitsum::backend::GpuBackend::new().ok();
     for (name, env) in &inputs {
         let Environment::Equirect(e) = env else {
             continue;
@@ -246,8 +246,8 @@ fn cubemap_benchmarks() {
         println!(
             "| {name} | cumulative tables (part of each conversion below) | cpu | {wall:.3} | {cpu:.3} |"
         );
-        let mut backends: Vec<(&str, &dyn splitsum::Backend)> =
-            vec![("cpu", &splitsum::CpuBackend)];
+        let mut backends: Vec<(&str, &dyn splitsum::backend::Backend)> =
+            vec![("cpu", &splitsum::backend::CpuBackend)];
         if let Some(g) = &gpu {
             backends.push(("gpu", g));
         }
@@ -263,10 +263,11 @@ fn cubemap_benchmarks() {
 /// Where the CPU backend's specular time goes: each level of venice_sunset_1k's default
 /// 256 chain with its method.
 fn specular_benchmarks() {
-    use splitsum::cpu::prefilter_specular::{
-        chain_levels, level_method, mip_roughness, prefilter_level, split_hot_texels,
-        DEFAULT_MIN_MIP_SIZE, DEFAULT_SAMPLES,
+    use splitsum::backend::cpu::specular::prefilter_level;
+    use splitsum::plan::chain::{
+        chain_levels, level_method, mip_roughness, DEFAULT_MIN_MIP_SIZE, DEFAULT_SAMPLES,
     };
+    use splitsum::plan::sources::split_hot_texels;
     println!("\n## CPU specular chain of venice_sunset_1k.hdr (256, default levels), per level\n");
     println!("| level | size | roughness | method | wall s | CPU s |");
     println!("|---|---|---|---|---|---|");
@@ -275,9 +276,14 @@ fn specular_benchmarks() {
         &Default::default(),
     )
     .unwrap();
-    let env =
-        splitsum::convert::environment_to_cube(&splitsum::CpuBackend, &loaded.env, 256, true, 0.0)
-            .unwrap();
+    let env = splitsum::stages::convert::environment_to_cube(
+        &splitsum::backend::CpuBackend,
+        &loaded.env,
+        256,
+        true,
+        0.0,
+    )
+    .unwrap();
     let levels = chain_levels(env.size, DEFAULT_MIN_MIP_SIZE);
     let (wall, cpu) = measure(1, || {
         split_hot_texels(&env);
@@ -299,24 +305,25 @@ fn specular_benchmarks() {
 /// A full default bake of venice_sunset_1k.hdr (cubemap 256 with mips, specular 256 × 9
 /// levels, irradiance 32, SH, LUT 512) per stage, on each backend.
 /// The CPU backend, and the GPU one when an adapter exists.
-fn cpu_and_gpu_backends() -> Vec<(&'static str, Box<dyn splitsum::Backend>)> {
-    let mut backends: Vec<(&str, Box<dyn splitsum::Backend>)> =
-        vec![("cpu", Box::new(splitsum::CpuBackend))];
-    if let Ok(g) = splitsum::GpuBackend::new() {
+fn cpu_and_gpu_backends() -> Vec<(&'static str, Box<dyn splitsum::backend::Backend>)> {
+    let mut backends: Vec<(&str, Box<dyn splitsum::backend::Backend>)> =
+        vec![("cpu", Box::new(splitsum::backend::CpuBackend))];
+    if let Ok(g) = splitsum::backend::GpuBackend::new() {
         backends.push(("gpu", Box::new(g)));
     }
     backends
 }
 
 fn bake_benchmarks() {
-    use splitsum::bake::{bake, BakeOptions, Stage};
+    use splitsum::bake::{bake, BakeOptions};
+    use splitsum::Stage;
     println!("\n## Full default bake of venice_sunset_1k.hdr, per stage\n");
     println!("| backend | stage | wall s | CPU s |");
     println!("|---|---|---|---|");
     let input = std::path::Path::new("tests/data/venice_sunset_1k.hdr");
     let out = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench-bake");
     let mut backends = cpu_and_gpu_backends();
-    if let Ok((auto, _)) = splitsum::create_backend(splitsum::BackendChoice::Auto) {
+    if let Ok((auto, _)) = splitsum::backend::create_backend(splitsum::BackendChoice::Auto) {
         backends.push(("auto", auto));
     }
     for (label, backend) in &backends {
@@ -461,10 +468,10 @@ fn main() {
 /// split-sum render (what `bake --preview` must add ≤ 0.5 CPU-s for) and the ground truth
 /// at 512 and 2048 (the default) points.
 fn preview_benchmarks() {
+    use splitsum::backend::Backend;
     use splitsum::bake::{bake_environment, BakeOptions};
     use splitsum::environment::Environment;
-    use splitsum::preview::{render_preview, PreviewOptions};
-    use splitsum::Backend;
+    use splitsum::stages::preview::{render_preview, PreviewOptions};
     println!("\n## Preview of venice_sunset_1k.hdr (default bake, 64-pixel cells)\n");
     println!("| backend | truth points | split-sum wall s | truth wall s | whole preview CPU s |");
     println!("|---|---|---|---|---|");
@@ -476,7 +483,7 @@ fn preview_benchmarks() {
     let Environment::Equirect(e) = loaded.env else {
         unreachable!("the bundled HDRI is an equirect")
     };
-    let cpu = splitsum::CpuBackend;
+    let cpu = splitsum::backend::CpuBackend;
     let baked = bake_environment(
         &cpu,
         Environment::Equirect(e),
@@ -495,7 +502,14 @@ fn preview_benchmarks() {
             };
             let mut p = None;
             let (_, cpu_s) = measure(1, || {
-                p = Some(render_preview(backend.as_ref(), &baked.light(&lut), &opts).unwrap());
+                p = Some(
+                    render_preview(
+                        backend.as_ref(),
+                        &splitsum::stages::preview::BakedLight::of(&baked, &lut),
+                        &opts,
+                    )
+                    .unwrap(),
+                );
             });
             let p = p.unwrap();
             println!(
@@ -539,7 +553,12 @@ fn lut_benchmarks() {
             Err(e) => println!("| {size} | gpu | - | - | unavailable: {e} |"),
         }
         let (wall, cpu) = measure(3, || {
-            splitsum::cpu::lut_interpolation::brdf_lut(size, size, &quad, Default::default());
+            splitsum::backend::cpu::lut_interpolation::brdf_lut(
+                size,
+                size,
+                &quad,
+                Default::default(),
+            );
         });
         println!(
             "| {size} | cpu | {wall:.3} | {cpu:.3} | rayon, {} threads |",

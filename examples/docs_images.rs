@@ -21,7 +21,7 @@ fn save_png(path: &str, w: u32, h: u32, rgb: &[[f32; 3]]) {
 
 fn main() {
     std::fs::create_dir_all("docs").unwrap();
-    let lut = splitsum::cpu::lut_interpolation::brdf_lut(
+    let lut = splitsum::backend::cpu::lut_interpolation::brdf_lut(
         128,
         128,
         &Default::default(),
@@ -43,8 +43,14 @@ fn main() {
         height: h,
         data,
     });
-    let cube = splitsum::convert::environment_to_cube(&splitsum::CpuBackend, &env, 64, false, 0.0)
-        .unwrap();
+    let cube = splitsum::stages::convert::environment_to_cube(
+        &splitsum::backend::CpuBackend,
+        &env,
+        64,
+        false,
+        0.0,
+    )
+    .unwrap();
     let (cw, ch, mut cross) = splitsum::io::cubemap::to_cross(&cube);
     for (col, row) in splitsum::io::input::HORIZONTAL_CROSS {
         for k in 0..64 {

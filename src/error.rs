@@ -63,17 +63,20 @@ pub enum Error {
         message: String,
     },
 
-    /// A parameter is outside the range splitsum supports.
-    #[error("invalid {name}: {message}")]
-    InvalidParameter {
-        /// The parameter's name as the user knows it (for example "--size").
-        name: &'static str,
-        /// What is wrong and what is allowed.
+    /// An option is outside what splitsum supports, or contradicts another (checked before
+    /// any input is read).
+    #[error("invalid {option}: {message}")]
+    InvalidOption {
+        /// The option's field name in the library's options (for example
+        /// `"specular_size"` of [`crate::BakeOptions`]; `"preview.cell"` for a field of its
+        /// preview options).
+        option: &'static str,
+        /// What is wrong and what is allowed, in words.
         message: String,
     },
 
-    /// `--backend gpu` was requested but no wgpu adapter could be found.
-    #[error("no GPU adapter found ({reason}); on Linux without a GPU install Mesa's lavapipe (apt-get install mesa-vulkan-drivers libvulkan1), or use --backend cpu")]
+    /// The GPU backend was requested but no wgpu adapter could be found.
+    #[error("no GPU adapter found ({reason}); on Linux without a GPU install Mesa's lavapipe (apt-get install mesa-vulkan-drivers libvulkan1), or use the CPU backend")]
     NoAdapter {
         /// What wgpu reported.
         reason: String,

@@ -5,49 +5,107 @@
 //! and spherical harmonics, with WGSL compute kernels run through wgpu, checked against a
 //! CPU reference that is written function for function like the WGSL.
 //!
-//! A whole bake from a `build.rs`:
+//! A whole bake, as a `build.rs` or an asset server calls it: [`Baker`] validates the
+//! options (an [`Error::InvalidOption`] names the field), picks the backend with the
+//! command line's fallback policy, computes the LUTs the target names, and writes exactly
+//! what `splitsum bake --target T` writes.
 //!
 //! ```no_run
-//! use splitsum::bake::{bake, BakeOptions};
-//! let (backend, _note) = splitsum::create_backend(splitsum::BackendChoice::Auto)?;
-//! let lut = backend.brdf_lut(512, 512)?; // the generic target's one LUT file
-//! let report = bake(backend.as_ref(), "sky.hdr".as_ref(), "out".as_ref(),
-//!                   &BakeOptions::default(), &[lut], &mut |_stage| {})?;
-//! println!("wrote {}", report.out_dir.display());
+//! use splitsum::{BakeOptions, Baker, TARGETS};
+//! for target in TARGETS {
+//!     let mut baker = Baker::new(BakeOptions::for_target(target))?;
+//!     let report = baker.bake("sky.hdr".as_ref(), format!("out/{}", target.name).as_ref())?;
+//!     for warning in &report.warnings {
+//!         eprintln!("warning: {warning}");
+//!     }
+//! }
 //! # Ok::<(), splitsum::Error>(())
 //! ```
 //!
-//! Or just the LUT:
-//!
-//! ```no_run
-//! use splitsum::{create_backend, BackendChoice};
-//! use splitsum::io::lut::{write_lut, LutWriteOptions};
-//!
-//! let (backend, _note) = create_backend(BackendChoice::Auto)?;
-//! let lut = backend.brdf_lut(512, 512)?;
-//! write_lut("out/brdf_lut.png".as_ref(), &lut, LutWriteOptions::default())?;
-//! # Ok::<(), splitsum::Error>(())
-//! ```
+//! The in-memory pieces, for callers that write their own files: [`Baker::load`],
+//! [`Baker::bake_environment`] (a [`BakedEnvironment`]: the specular chain, irradiance,
+//! SH), [`Baker::lut`] (a [`BrdfLut`]), [`Baker::cubemap`] (an HDRI as a [`Cubemap`]),
+//! and the writers [`write_cubemap`] and [`write_lut`].
 //!
 //! The library never prints and never panics on bad input; every failure is an [`Error`].
+//! Its conventions (orientation, texel centres, roughness per mip, units, LUT axes, each
+//! target's frame) are in `docs/conventions.md`.
+//!
+//! # Layers
+//!
+//! The modules, from the bottom; none imports from a layer above its own
+//! (`tests/layers.rs` checks it), and no two modules import each other:
+//!
+//! 0. `error`: the error type.
+//! 1. `math`: the maths shared with `shaders/common/*.wgsl` (BRDF, sampling, cube
+//!    directions, SH, trigonometry, quadrature).
+//! 2. `environment`: equirects and cubemaps in memory, their texel walk and sampling, the
+//!    hot-texel split and the source texels the exact kernels read.
+//! 3. `plan`: what both backends compute: the specular chain's layout and method per
+//!    level, the prepared sources, the sheen chain's driver, the LUT models, the preview's
+//!    scene.
+//! 4. `cpu` (the CPU twins of the WGSL kernels, one file each) and `gpu` (wgpu, one file
+//!    per kernel binding).
+//! 5. `backend`: the `Backend` trait with its CPU and GPU implementations.
+//! 6. `stages`: conversion, the in-memory bake of one environment, SH, the preview.
+//! 7. `io` (every format, read and written in its own module, and the one cube container
+//!    dispatcher) and `targets` (one module per engine: its table and its writer).
+//! 8. `bake` (the whole bake, the manifest, [`Baker`]) and `verify`.
+//! 9. the command line (`src/main.rs`, `src/cli/`), which only uses what is exported here.
 
-pub mod backend;
-pub mod bake;
-pub mod convert;
-pub mod cpu;
-pub mod environment;
-pub mod error;
-pub mod gpu;
-pub mod io;
-pub mod lut;
-pub mod math;
-pub mod preview;
-pub mod target;
-pub mod verify;
+#![warn(missing_docs)]
 
-pub use backend::{
-    create_backend, Backend, BackendChoice, CpuBackend, GpuBackend, SoftwareAdapterBackend,
-};
+/// Declares the crate's internal modules: `pub(crate)`, or public but hidden from the
+/// documentation with the `internals` feature (the project's own tests, benchmarks and fuzz
+/// targets reach the kernels through it; it is not part of the API and may change).
+macro_rules! internal_modules {
+    ($($name:ident),* $(,)?) => {
+        $(
+            #[cfg(feature = "internals")]
+            #[doc(hidden)]
+            pub mod $name;
+            #[cfg(not(feature = "internals"))]
+            pub(crate) mod $name;
+        )*
+    };
+}
+
+internal_modules!(
+    error,
+    math,
+    environment,
+    plan,
+    cpu,
+    gpu,
+    backend,
+    stages,
+    io,
+    targets,
+    bake,
+    verify,
+);
+
+pub use backend::BackendChoice;
+pub use bake::{read_bake_dir, BakeOptions, BakeReport, Baker, LoadedInput, Manifest};
 pub use environment::{Cubemap, Environment, Equirect};
 pub use error::{Error, Result};
-pub use lut::BrdfLut;
+pub use io::atomic::remove_in_flight_temporaries;
+pub use io::atomic::write_atomic;
+pub use io::check_output_extension;
+pub use io::cubemap::{check_cube_path, write_cubemap, Container, CubeLayout, CubeWriteOptions};
+pub use io::format::CUBE_PIXEL_FORMATS;
+pub use io::input::input_stem;
+pub use io::lut::{check_lut_path, png_clip_warning, write_lut, LutWriteOptions};
+pub use io::staging::OutputRecord;
+pub use io::PixelFormat;
+pub use plan::chain::{MipRoughness, SpecularChain};
+pub use plan::lut::{BrdfLut, LutModel, DEFAULT_LUT_SIZE, MAX_LUT_SIZE};
+pub use stages::convert::check_cube_size;
+pub use stages::light::{BakedEnvironment, Stage};
+pub use stages::preview::{Preview, PreviewOptions, SphereStats, PREVIEW_ROUGHNESS};
+pub use stages::sh::ShCoefficients;
+pub use targets::{
+    FileSet, LutChannels, LutSpec, Orientation, Target, BABYLON, BEVY, FILAMENT, GENERIC, GLTF,
+    TARGETS, THREE,
+};
+pub use verify::{verify_input, Verification, VerifyRow};

@@ -1,10 +1,11 @@
 //! `splitsum verify`: every kernel on the GPU and on the CPU reference, on a reduced
 //! problem, with the tolerances the tests state (and their reasons, in `tests/`).
 
-use crate::convert::environment_to_cube;
-use crate::cpu::prefilter_specular::SpecularChain;
+use crate::stages::convert::environment_to_cube;
+use crate::plan::chain::SpecularChain;
 use crate::environment::{Cubemap, Environment, IrradianceSource};
-use crate::{Backend, CpuBackend, GpuBackend, Result};
+use crate::backend::{Backend, CpuBackend, GpuBackend};
+use crate::Result;
 
 /// LUT: |gpu − cpu| ≤ 5e-5 (tests/gpu_vs_cpu.rs).
 pub const LUT_TOLERANCE: f32 = 5e-5;
@@ -62,7 +63,7 @@ pub fn verify(gpu: &GpuBackend, env: &Environment) -> Result<Vec<VerifyRow>> {
     let mut rows = Vec::new();
     // The GPU integrates every texel; so does this CPU table (the CPU backend's own
     // interpolates most of them, which tests/lut_accuracy.rs checks separately).
-    let quad = crate::lut::LutQuadrature::default();
+    let quad = crate::plan::lut::LutQuadrature::default();
     let b = crate::cpu::brdf_lut::brdf_lut_exact(64, 64, &quad, Default::default());
     let a = gpu.brdf_lut(64, 64)?;
     let max_abs = a
@@ -118,4 +119,32 @@ pub fn verify(gpu: &GpuBackend, env: &Environment) -> Result<Vec<VerifyRow>> {
         1e-5,
     ));
     Ok(rows)
+}
+
+/// What [`verify_input`] found: the adapter and one row per kernel.
+#[derive(Clone, Debug)]
+pub struct Verification {
+    /// The GPU adapter, in words.
+    pub adapter: String,
+    /// One row per kernel.
+    pub rows: Vec<VerifyRow>,
+}
+
+impl Verification {
+    /// Whether every kernel is within its tolerance.
+    pub fn passed(&self) -> bool {
+        self.rows.iter().all(|r| r.pass)
+    }
+}
+
+/// Reads `input` and runs every kernel on the default GPU adapter and on the CPU
+/// reference, on a reduced problem (a 64² cube), with the tolerances the tests state.
+pub fn verify_input(input: &std::path::Path) -> Result<Verification> {
+    let loaded = crate::io::input::load_environment(input, &Default::default())?;
+    let gpu = GpuBackend::new()?;
+    let rows = verify(&gpu, &loaded.env)?;
+    Ok(Verification {
+        adapter: gpu.ctx.adapter_description(),
+        rows,
+    })
 }

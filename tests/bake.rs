@@ -243,7 +243,7 @@ fn a_face_pattern_bakes() {
             })
             .collect()],
     };
-    splitsum::cpu::cube_downsample::build_mips(&mut cube, 1);
+    splitsum::environment::mips::build_mips(&mut cube, 1);
     let faces = CubeWriteOptions {
         layout: CubeLayout::Faces,
         ..Default::default()

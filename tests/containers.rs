@@ -24,7 +24,7 @@ fn test_cube() -> Cubemap {
             .map(|k| [1.0 + k as f32 / 100.0, 0.5, (k % 16) as f32, 1.0])
             .collect()],
     };
-    splitsum::cpu::cube_downsample::build_mips(&mut cube, 5);
+    splitsum::environment::mips::build_mips(&mut cube, 5);
     cube
 }
 

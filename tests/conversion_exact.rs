@@ -12,15 +12,16 @@ mod common;
 use std::collections::HashMap;
 use std::f64::consts::PI;
 
-use splitsum::convert::environment_to_cube;
+use splitsum::environment::walk::texel_centres;
 use splitsum::environment::{Cubemap, Environment, Equirect};
 use splitsum::io::input::{load_environment, InputOptions};
 use splitsum::math::cubemap::{cube_face_coords, cube_texel_direction};
+use splitsum::stages::convert::environment_to_cube;
 
 /// Every cube size the bar covers.
 const SIZES: [u32; 9] = [8, 16, 32, 64, 128, 256, 512, 1024, 2048];
 
-/// The flux bar (DESIGN.md): 0.1 % of each channel.
+/// The flux bar (docs/accuracy.md): 0.1 % of each channel.
 const FLUX_BAR: f64 = 1e-3;
 
 /// Exact solid angle of texel (i, j) of an n×n face, in f64.
@@ -53,14 +54,10 @@ fn equirect_flux(e: &Equirect) -> [f64; 3] {
 fn cube_flux(cube: &Cubemap) -> [f64; 3] {
     let n = cube.size;
     let mut f = [0.0; 3];
-    for face in 0..6 {
-        for j in 0..n {
-            for i in 0..n {
-                let t = cube.texel(0, face, i, j);
-                let o = texel_solid_angle(i, j, n);
-                (0..3).for_each(|c| f[c] += t[c] as f64 * o);
-            }
-        }
+    for (face, i, j, _) in texel_centres(n) {
+        let t = cube.texel(0, face, i, j);
+        let o = texel_solid_angle(i, j, n);
+        (0..3).for_each(|c| f[c] += t[c] as f64 * o);
     }
     f
 }
@@ -74,7 +71,7 @@ fn relative(a: [f64; 3], b: [f64; 3]) -> f64 {
 /// The largest size a backend converts in these tests. The GPU kernel computes bit for bit
 /// what the CPU reference computes (tests/cubemap.rs checks it), and lavapipe takes ~20 s
 /// for one 2048 cube, so the GPU is checked up to 256 (512 on quarry_01).
-fn max_size(backend: &dyn splitsum::Backend, all: bool) -> u32 {
+fn max_size(backend: &dyn splitsum::backend::Backend, all: bool) -> u32 {
     match (backend.identity() == "cpu", all) {
         (true, _) => 2048,
         (false, true) => 512,
@@ -259,23 +256,17 @@ fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
 fn check_lamps(lamps: &[Lamp], cube: &Cubemap, what: &str) -> (f64, f64) {
     let n = cube.size;
     let mut got: Vec<HashMap<(u32, u32, u32), [f64; 3]>> = vec![HashMap::new(); lamps.len()];
-    for face in 0..6 {
-        for j in 0..n {
-            for i in 0..n {
-                let t = cube.texel(0, face, i, j);
-                if t[0] == 0.0 && t[1] == 0.0 && t[2] == 0.0 {
-                    continue;
-                }
-                let d = cube_texel_direction(face, i as i32, j as i32, n).map(|v| v as f64);
-                let nearest = (0..lamps.len())
-                    .min_by(|&a, &b| {
-                        angle(d, lamps[a].direction).total_cmp(&angle(d, lamps[b].direction))
-                    })
-                    .unwrap();
-                let o = texel_solid_angle(i, j, n);
-                got[nearest].insert((face, i, j), [0, 1, 2].map(|c| t[c] as f64 * o));
-            }
+    for (face, i, j, d) in texel_centres(n) {
+        let t = cube.texel(0, face, i, j);
+        if t[0] == 0.0 && t[1] == 0.0 && t[2] == 0.0 {
+            continue;
         }
+        let d = d.map(|v| v as f64);
+        let nearest = (0..lamps.len())
+            .min_by(|&a, &b| angle(d, lamps[a].direction).total_cmp(&angle(d, lamps[b].direction)))
+            .unwrap();
+        let o = texel_solid_angle(i, j, n);
+        got[nearest].insert((face, i, j), [0, 1, 2].map(|c| t[c] as f64 * o));
     }
     let (mut worst_flux, mut worst_dir) = (0.0f64, 0.0f64);
     for (lamp, got) in lamps.iter().zip(&got) {

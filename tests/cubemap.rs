@@ -2,7 +2,8 @@
 //! CPU.
 mod common;
 
-use splitsum::convert::environment_to_cube;
+use splitsum::backend::{Backend, CpuBackend, GpuBackend};
+use splitsum::environment::walk::texel_centres;
 use splitsum::environment::{Cubemap, Environment, Equirect};
 use splitsum::io::cubemap::encode_texture;
 use splitsum::io::input::{load_environment, InputOptions};
@@ -10,7 +11,7 @@ use splitsum::io::PixelFormat;
 use splitsum::math::cubemap::{
     cube_face_coords, cube_face_direction, cube_texel_solid_angle, equirect_direction, normalize,
 };
-use splitsum::{Backend, CpuBackend, GpuBackend};
+use splitsum::stages::convert::environment_to_cube;
 
 /// An equirect whose radiance is its own direction + 1 (all channels positive).
 fn direction_env(width: u32) -> Equirect {
@@ -30,9 +31,9 @@ fn direction_env(width: u32) -> Equirect {
     }
 }
 
-/// DESIGN.md: a shader sampling the cube with direction d gets the radiance from d. With
+/// docs/conventions.md, "Cube faces": a shader sampling the cube with direction d gets the radiance from d. With
 /// L(d) = d + 1 stored in a 1024×512 RGBE file, every texel of a 32 cube must hold its
-/// centre direction + 1. Tolerance 0.03 (the bar): RGBE keeps 8 mantissa bits of
+/// centre direction + 1. Tolerance 0.03: RGBE keeps 8 mantissa bits of
 /// the largest channel (≤ 2/256 here) and the footprint mean of d over a 32² texel differs
 /// from the centre direction by ≤ 0.01.
 #[test]
@@ -51,17 +52,13 @@ fn every_texel_looks_the_right_way() {
     for backend in common::backends() {
         let cube = environment_to_cube(backend.as_ref(), &loaded.env, 32, false, 0.0).unwrap();
         let mut worst = 0.0f32;
-        for face in 0..6u32 {
-            for j in 0..32 {
-                for i in 0..32 {
-                    let s = (i as f32 + 0.5) / 16.0 - 1.0;
-                    let t = (j as f32 + 0.5) / 16.0 - 1.0;
-                    let d = normalize(cube_face_direction(face, s, t));
-                    let got = cube.texel(0, face, i, j);
-                    for c in 0..3 {
-                        worst = worst.max((got[c] - (d[c] + 1.0)).abs());
-                    }
-                }
+        for (face, i, j, _) in texel_centres(32) {
+            let s = (i as f32 + 0.5) / 16.0 - 1.0;
+            let t = (j as f32 + 0.5) / 16.0 - 1.0;
+            let d = normalize(cube_face_direction(face, s, t));
+            let got = cube.texel(0, face, i, j);
+            for c in 0..3 {
+                worst = worst.max((got[c] - (d[c] + 1.0)).abs());
             }
         }
         println!(
@@ -120,15 +117,11 @@ fn face_integrals_from_equirect(e: &Equirect) -> [[f64; 3]; 6] {
 fn face_integrals_from_cube(cube: &Cubemap, m: usize) -> [[f64; 3]; 6] {
     let n = cube.level_size(m);
     let mut out = [[0.0f64; 3]; 6];
-    for face in 0..6u32 {
-        for j in 0..n {
-            for i in 0..n {
-                let w = cube_texel_solid_angle(i, j, n) as f64;
-                let t = cube.texel(m, face, i, j);
-                for c in 0..3 {
-                    out[face as usize][c] += t[c] as f64 * w;
-                }
-            }
+    for (face, i, j, _) in texel_centres(n) {
+        let w = cube_texel_solid_angle(i, j, n) as f64;
+        let t = cube.texel(m, face, i, j);
+        for c in 0..3 {
+            out[face as usize][c] += t[c] as f64 * w;
         }
     }
     out
@@ -141,7 +134,7 @@ fn luminance(c: [f64; 3]) -> f64 {
 /// Every face's solid-angle-weighted mean radiance equals the integral taken directly over
 /// the equirect within 2 %, for every pixel format, on every real test HDRI; the 1×1 mip
 /// keeps the mean of level 0 within 5 % (the reduction conserves it exactly up to
-/// rounding; the bar is the issue's).
+/// rounding).
 #[test]
 fn real_hdris_keep_their_energy_in_every_format() {
     let dir = std::path::Path::new("tests/data");
@@ -303,7 +296,7 @@ fn inputs_beyond_the_texture_limit_are_reduced() {
     .unwrap();
     let env = direction_env(2048);
     let params =
-        splitsum::cpu::equirect_to_cube::EquirectToCubeParams::new(512, env.width, env.height, 0.0);
+        splitsum::plan::convert::EquirectToCubeParams::new(512, env.width, env.height, 0.0);
     assert_eq!(
         params.base_level, 0,
         "a 512 cube reads level 0 of a 2048-wide input"
@@ -373,7 +366,7 @@ fn reducing_on_load_gives_the_same_cube() {
 /// kept as it is or resampled.
 #[test]
 fn owned_and_borrowed_conversions_agree() {
-    use splitsum::convert::environment_into_cube;
+    use splitsum::stages::convert::environment_into_cube;
     let path = std::path::Path::new("tests/data/venice_sunset_1k.hdr");
     for cube_size in [None, Some(16)] {
         let opts = InputOptions {

@@ -55,19 +55,19 @@ fn assert_no_allocation_over_64_mib() {
 
 #[test]
 fn ktx2_with_a_malformed_dfd() {
-    check("ktx2-dfd-panic.ktx2", splitsum::io::input::decode_ktx2_cube);
+    check("ktx2-dfd-panic.ktx2", splitsum::io::ktx2::decode_cube);
 }
 
 #[test]
 fn dds_that_timed_out() {
-    check("dds-timeout.dds", splitsum::io::input::decode_dds_cube);
+    check("dds-timeout.dds", splitsum::io::dds::decode_cube);
 }
 
 #[test]
 fn ktx2_claiming_a_huge_uncompressed_level() {
     check(
         "ktx2-zstd-huge-length.ktx2",
-        splitsum::io::input::decode_ktx2_cube,
+        splitsum::io::ktx2::decode_cube,
     );
 }
 

@@ -1,18 +1,19 @@
-//! GPU faults in the middle of a job (issue 5). A lost device must come back as
+//! GPU faults in the middle of a job. A lost device must come back as
 //! `Error::Gpu` naming the loss, never a panic or a hang; `bake --backend auto` then
 //! finishes on the CPU with a warning and `--backend gpu` fails cleanly. The loss is real:
 //! the device is destroyed (directly, or by the `SPLITSUM_LOSE_DEVICE_AT` hook in the
 //! binary) and wgpu's device-lost callback and error scopes report it.
 mod common;
 
-use splitsum::cpu::prefilter_specular::SpecularChain;
 use splitsum::environment::IrradianceSource;
+use splitsum::plan::chain::SpecularChain;
 
 use std::path::Path;
 use std::process::Command;
 
+use splitsum::backend::{Backend, GpuBackend};
 use splitsum::gpu::context::LOSE_DEVICE_ENV;
-use splitsum::{Backend, Cubemap, Error, GpuBackend};
+use splitsum::{Cubemap, Error};
 
 /// A grey 8² cube with its full mip chain.
 fn grey_cube() -> Cubemap {
@@ -20,7 +21,7 @@ fn grey_cube() -> Cubemap {
         size: 8,
         levels: vec![vec![[0.5, 0.5, 0.5, 1.0]; Cubemap::level_len(8)]],
     };
-    splitsum::cpu::cube_downsample::build_mips(&mut cube, 4);
+    splitsum::environment::mips::build_mips(&mut cube, 4);
     cube
 }
 

@@ -1,7 +1,7 @@
 //! Every GPU kernel against its CPU reference.
 mod common;
 
-use splitsum::lut::{LutModel, LutQuadrature};
+use splitsum::plan::lut::{LutModel, LutQuadrature};
 
 /// GPU vs CPU tolerance for the LUT. Both sides run the same quadrature, with the same f32
 /// node tables and the same polynomial acos (`math::trig`), in f32; they differ through

@@ -9,16 +9,16 @@
 //! the ramp's third antiderivative), exact up to the curvature of n·l across a cell. Blocks
 //! of 16×16 texels wholly above or below the horizon are summed at once.
 //!
-//! Metric (the issue's): the worst texel of |E − truth| / max(truth, 1 % of the mean truth),
+//! Metric: the worst texel of |E − truth| / max(truth, 1 % of the mean truth),
 //! on luminance.
 mod common;
 
 use std::f64::consts::PI;
 
-use splitsum::convert::environment_into_cube_with_irradiance;
-use splitsum::cpu::sh_project::sh_project;
 use splitsum::environment::{Environment, Equirect};
 use splitsum::math::cubemap::cube_texel_direction;
+use splitsum::stages::convert::environment_into_cube_with_irradiance;
+use splitsum::stages::sh::sh_project;
 
 fn luminance(c: [f64; 3]) -> f64 {
     0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
@@ -298,7 +298,7 @@ fn sh_of_a_lamp_is_exact() {
     }
     for spec in [32u32, 256] {
         let (_, source) = environment_into_cube_with_irradiance(
-            &splitsum::CpuBackend,
+            &splitsum::backend::CpuBackend,
             Environment::Equirect(e.clone()),
             spec,
             true,

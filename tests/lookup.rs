@@ -3,18 +3,18 @@
 //! mips, against a brute-force GGX convolution at that exact roughness over every texel of
 //! the source equirect at full resolution.
 //!
-//! Metric (the issue's): energy-weighted relative error, Σ |Y(lookup) − Y(truth)| / Σ Y(truth)
+//! Metric: energy-weighted relative error, Σ |Y(lookup) − Y(truth)| / Σ Y(truth)
 //! over 600 uniformly random directions, Y the luminance.
 mod common;
 
-use splitsum::cpu::cube_sample::sample_cube_lod;
-use splitsum::cpu::prefilter_specular::{
+use splitsum::backend::{Backend, CpuBackend};
+use splitsum::environment::sample::sample_cube_lod;
+use splitsum::environment::{Environment, Equirect};
+use splitsum::plan::chain::{
     chain_levels, MipRoughness, SpecularChain, DEFAULT_MIN_MIP_SIZE, DEFAULT_SAMPLES,
 };
-use splitsum::environment::{Environment, Equirect};
-use splitsum::{Backend, CpuBackend};
 
-/// Roughnesses of the table (between mips of every layout tried).
+/// Roughnesses of the lookup table (docs/accuracy.md; between mips of every layout tried).
 const ROUGHNESS: [f64; 6] = [0.35, 0.5, 0.65, 0.8, 0.9, 1.0];
 
 /// Random directions per HDRI.
@@ -67,7 +67,7 @@ fn baked_chain(
     min_mip_size: u32,
     mapping: MipRoughness,
 ) -> (splitsum::Cubemap, splitsum::environment::IrradianceSource) {
-    let (env, source) = splitsum::convert::environment_into_cube_with_irradiance(
+    let (env, source) = splitsum::stages::convert::environment_into_cube_with_irradiance(
         backend,
         Environment::Equirect(e.clone()),
         size,
@@ -98,7 +98,7 @@ fn lookup_errors(
     let levels = chain.levels.len() as u32;
     // As the bake does: the r = 1 level fitted to the (default 32²) irradiance cube.
     let irradiance = backend.irradiance(&source, 32).unwrap();
-    splitsum::cpu::roughest_level::fit_roughest_level(&mut chain, &irradiance);
+    splitsum::plan::fit::fit_roughest_level(&mut chain, &irradiance);
     let dirs = directions();
     (0..roughness.len())
         .map(|k| {
@@ -114,9 +114,9 @@ fn lookup_errors(
         .collect()
 }
 
-/// The default bake's lookup error at the roughnesses, for two low-contrast HDRIs
+/// The default bake's lookup error at those roughnesses, for two low-contrast HDRIs
 /// (bar 2 % at every r) and two with a bright sun (bar: below the better of cmgen and
-/// glTF-IBL-Sampler at their defaults on the same metric, measured by the author).
+/// glTF-IBL-Sampler at their defaults on the same metric, docs/accuracy.md).
 #[test]
 fn default_bake_lookup_error() {
     let peers: [(&str, [f64; 6]); 4] = [
@@ -276,7 +276,7 @@ fn small_chains_match_the_full_resolution_truth() {
 /// right in that layout and read at three's lod.
 #[test]
 fn three_layout_lookup_error() {
-    let target = &splitsum::target::THREE;
+    let target = &splitsum::targets::THREE;
     let r = [0.25, 0.5, 0.75, 1.0];
     for (name, bar) in [
         ("venice_sunset_1k.hdr", [0.02; 4]),

@@ -2,9 +2,9 @@
 mod common;
 
 use splitsum::cpu::brdf_lut::brdf_lut_texel;
-use splitsum::lut::{LutModel, LutQuadrature};
+use splitsum::plan::lut::{LutModel, LutQuadrature};
 
-/// Quality bar from DESIGN.md: max |error| ≤ 1e-4 over the grid, grazing column included.
+/// The LUT's accuracy bar (docs/accuracy.md): max |error| ≤ 1e-4 over the grid, grazing column included.
 const LUT_TOLERANCE: f64 = 1e-4;
 
 #[test]
@@ -69,7 +69,7 @@ fn wanted_models(m: &LutModel) -> bool {
 /// The CPU backend's interpolated table alone against the converged reference.
 fn check_interpolated(model: LutModel, w: u32, h: u32, texels: &[(u32, u32)], label: &str) {
     let quad = LutQuadrature::for_model(model);
-    let table = splitsum::cpu::lut_interpolation::brdf_lut(w, h, &quad, model);
+    let table = splitsum::backend::cpu::lut_interpolation::brdf_lut(w, h, &quad, model);
     let (err, at) = common::worst_model_errors(w, h, texels, model, &[&|i, j| table.get(i, j)])[0];
     println!(
         "{} {label} {w}x{h} interpolated: worst |error| {err:.2e} at texel {at:?}",
@@ -87,9 +87,9 @@ fn check_interpolated(model: LutModel, w: u32, h: u32, texels: &[(u32, u32)], la
 /// interpolated table (`cpu::lut_interpolation`).
 fn check_both_paths(model: LutModel, w: u32, h: u32, texels: &[(u32, u32)], label: &str) {
     let quad = LutQuadrature::for_model(model);
-    let table = splitsum::cpu::lut_interpolation::brdf_lut(w, h, &quad, model);
+    let table = splitsum::backend::cpu::lut_interpolation::brdf_lut(w, h, &quad, model);
     let integrated = |i, j| {
-        let (nv, r) = splitsum::lut::lut_texel_coords(i, j, w, h);
+        let (nv, r) = splitsum::plan::lut::lut_texel_coords(i, j, w, h);
         brdf_lut_texel(nv, r, &quad, model)
     };
     let interpolated = |i, j| table.get(i, j);
@@ -128,7 +128,7 @@ fn quadrature_scan() {
             brdf_lut_texel(nv, r, &quad, LutModel::SchlickGgx)
         });
         let t = std::time::Instant::now();
-        splitsum::cpu::lut_interpolation::brdf_lut(w, h, &quad, LutModel::SchlickGgx);
+        splitsum::backend::cpu::lut_interpolation::brdf_lut(w, h, &quad, LutModel::SchlickGgx);
         println!(
             "full {full:2} partial {partial} phi {phi} growth {growth}: worst {:.2e} at {:?}, 512² in {:.3} s",
             worst.0,
@@ -147,8 +147,8 @@ fn every_model_keeps_the_albedo_identities() {
     let (w, h) = (64u32, 512u32);
     for model in LutModel::singles() {
         let quad = LutQuadrature::for_model(model);
-        let lut = splitsum::cpu::lut_interpolation::brdf_lut(w, h, &quad, model);
-        if model.distribution() == splitsum::lut::LutDistribution::Charlie {
+        let lut = splitsum::backend::cpu::lut_interpolation::brdf_lut(w, h, &quad, model);
+        if model.distribution() == splitsum::plan::lut::LutDistribution::Charlie {
             // Sheen: E ≥ 0 and finite (not ≤ 1: the Ashikhmin visibility is not derived
             // from the Charlie distribution, and E reaches 22 at grazing n·v and small r),
             // and a mirror's Charlie D lies flat at θh = π/2, where every reflection is
@@ -168,9 +168,9 @@ fn every_model_keeps_the_albedo_identities() {
         let ab = |i: u32, j: u32| {
             let v = lut.get(i, j);
             match model.layout() {
-                splitsum::lut::LutLayout::ScaleBias => v,
-                splitsum::lut::LutLayout::Multiscatter => [v[1] - v[0], v[0]],
-                splitsum::lut::LutLayout::Albedo => unreachable!("only the Charlie models"),
+                splitsum::plan::lut::LutLayout::ScaleBias => v,
+                splitsum::plan::lut::LutLayout::Multiscatter => [v[1] - v[0], v[0]],
+                splitsum::plan::lut::LutLayout::Albedo => unreachable!("only the Charlie models"),
             }
         };
         for j in (0..h).step_by(7) {
@@ -342,7 +342,8 @@ fn interpolated_lut_matches_every_texel_integrated() {
         let quad = LutQuadrature::for_model(model);
         for (w, h) in [(512u32, 512u32), (301, 203), (16, 16)] {
             let t = std::time::Instant::now();
-            let fast = splitsum::cpu::lut_interpolation::interpolated_lut(w, h, &quad, model);
+            let fast =
+                splitsum::backend::cpu::lut_interpolation::interpolated_lut(w, h, &quad, model);
             let fast_s = t.elapsed().as_secs_f64();
             let t = std::time::Instant::now();
             let exact = splitsum::cpu::brdf_lut::brdf_lut_exact(w, h, &quad, model);

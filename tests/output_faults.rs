@@ -1,4 +1,4 @@
-//! Output-path faults that need a file system of their own (issue 5): a full disk and a
+//! Output-path faults that need a file system of their own: a full disk and a
 //! read-only folder. Each runs splitsum inside a private mount namespace (`unshare`) on
 //! a tiny tmpfs, so nothing outside the test is touched and the mount vanishes with it.
 //! (Permission bits cannot simulate these when the tests run as root.) Machines where no

@@ -7,11 +7,13 @@ mod common;
 use std::f64::consts::PI;
 
 use common::{adaptive, reference_lut};
-use splitsum::bake::{bake_environment, BakeOptions, BakedEnvironment};
+use splitsum::backend::{Backend, CpuBackend};
+use splitsum::bake::{bake_environment, BakeOptions};
 use splitsum::environment::{Environment, Equirect};
-use splitsum::preview::scene::{pixel_geometry, PixelGeometry, Scene, MATERIALS, ROUGHNESS};
-use splitsum::preview::{render_preview, Preview, PreviewOptions};
-use splitsum::{Backend, BrdfLut, CpuBackend};
+use splitsum::plan::scene::{pixel_geometry, PixelGeometry, Scene, MATERIALS, ROUGHNESS};
+use splitsum::stages::preview::{render_preview, Preview, PreviewOptions};
+use splitsum::BakedEnvironment;
+use splitsum::BrdfLut;
 
 /// A bake of `env` with `specular_size`, in memory.
 fn baked(backend: &dyn Backend, env: Environment, specular_size: u32) -> BakedEnvironment {
@@ -74,7 +76,12 @@ fn preview(
     lut: &BrdfLut,
     opts: PreviewOptions,
 ) -> Preview {
-    render_preview(backend, &bake.light(lut), &opts).unwrap()
+    render_preview(
+        backend,
+        &splitsum::stages::preview::BakedLight::of(bake, lut),
+        &opts,
+    )
+    .unwrap()
 }
 
 /// In a white furnace (L = 1 everywhere) every sphere pixel of the split-sum render is
@@ -165,7 +172,7 @@ fn white_furnace_matches_analytic_values() {
     }
 }
 
-/// The preview BRDF times n·l, in f64, written from DESIGN.md's formulas independently of
+/// The preview BRDF times n·l, in f64, written from docs/conventions.md's formulas independently of
 /// the library: kD(h) c/π + D G F / (4 n·l n·v), all times n·l.
 fn brdf_cos(
     n: [f64; 3],
@@ -321,7 +328,7 @@ fn gpu_renders_match_cpu() {
     let Some(ctx) = common::gpu() else {
         return;
     };
-    let gpu = splitsum::GpuBackend { ctx };
+    let gpu = splitsum::backend::GpuBackend { ctx };
     let env = Environment::Equirect(common::test_equirect("venice_sunset_1k.hdr"));
     let bake = baked(&CpuBackend, env, 64);
     let lut = CpuBackend.brdf_lut(128, 128).unwrap();
@@ -337,8 +344,8 @@ fn gpu_renders_match_cpu() {
             .zip(b)
             .map(|(x, y)| {
                 let (lx, ly) = (
-                    splitsum::preview::picture::luminance(*x),
-                    splitsum::preview::picture::luminance(*y),
+                    splitsum::stages::preview::picture::luminance(*x),
+                    splitsum::stages::preview::picture::luminance(*y),
                 );
                 ((lx - ly).abs() / ly.abs().max(1e-6)) as f64
             })
@@ -468,7 +475,7 @@ fn preview_command_line() {
         .unwrap();
     let err = failure_message(&out);
     assert!(
-        err.contains("--target bevy") && err.contains("--preview"),
+        err.contains("target bevy") && err.contains("bake --preview"),
         "{err}"
     );
 
@@ -486,6 +493,8 @@ fn preview_command_line() {
         .args(["preview", hdr, "--preview-cell", "4"])
         .output()
         .unwrap();
-    let err = failure_message(&out);
-    assert!(err.contains("--preview-cell"), "{err}");
+    // A usage error, refused before the input is read.
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("invalid --preview-cell"), "{err}");
 }

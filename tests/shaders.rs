@@ -42,7 +42,7 @@ fn struct_layout(module: &naga::Module, name: &str) -> (Vec<(String, u32)>, u32)
 
 #[test]
 fn lut_params_layout_matches_rust() {
-    use splitsum::lut::LutParams;
+    use splitsum::plan::lut::LutParams;
     use std::mem::{offset_of, size_of};
     let module = parse("brdf_lut", splitsum::gpu::shaders::BRDF_LUT);
     let (members, span) = struct_layout(&module, "LutParams");
@@ -94,7 +94,7 @@ fn small_cap_threshold_matches_rust() {
     let module = parse("convolve_exact", splitsum::gpu::shaders::CONVOLVE_EXACT);
     assert_eq!(
         wgsl_f32_constant(&module, "SMALL_CAP_SIN2"),
-        splitsum::cpu::irradiance::SMALL_CAP_SIN2
+        splitsum::cpu::convolve_exact::SMALL_CAP_SIN2
     );
 }
 
@@ -158,7 +158,7 @@ fn kernel_uniforms_match_rust() {
 fn preview_uniforms_match_rust() {
     use splitsum::gpu::preview::{SplitSumUniform, TruthUniform};
     use splitsum::gpu::shaders::{PREVIEW_SPLIT_SUM, PREVIEW_TRUTH};
-    use splitsum::preview::scene::SceneUniform;
+    use splitsum::plan::scene::SceneUniform;
     for source in [PREVIEW_SPLIT_SUM, PREVIEW_TRUTH] {
         assert_layout!(
             source,
@@ -205,7 +205,7 @@ fn preview_uniforms_match_rust() {
 /// The exact kernels read the source arrays as vec4s; the Rust structs are whole vec4s.
 #[test]
 fn source_texel_structs_are_whole_vec4s() {
-    use splitsum::cpu::irradiance::{MomentTexel, SourceTexel};
+    use splitsum::environment::texels::{MomentTexel, SourceTexel};
     assert_eq!(std::mem::size_of::<SourceTexel>(), 2 * 16);
     assert_eq!(std::mem::size_of::<MomentTexel>(), 5 * 16);
 }

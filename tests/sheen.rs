@@ -4,12 +4,14 @@
 //! kernel against the CPU reference.
 mod common;
 
-use splitsum::cpu::cube_sample::sample_cube_lod;
-use splitsum::cpu::prefilter_sheen::{prefilter_sheen_reference, sheen_level_roughness};
-use splitsum::cpu::prefilter_specular::{chain_levels, SpecularChain};
+use splitsum::backend::cpu::sheen::prefilter_sheen_reference;
+use splitsum::backend::Backend;
+use splitsum::environment::sample::sample_cube_lod;
 use splitsum::environment::{Environment, Equirect, IrradianceSource};
+use splitsum::plan::chain::{chain_levels, SpecularChain};
+use splitsum::plan::sheen::sheen_level_roughness;
 use splitsum::verify::{compare, CONVOLUTION_TOLERANCE};
-use splitsum::{Backend, Cubemap};
+use splitsum::Cubemap;
 
 /// The chain the glTF target bakes: 256² to 16², r = m/4 (the Sample Viewer's own).
 fn chain() -> SpecularChain {
@@ -18,7 +20,7 @@ fn chain() -> SpecularChain {
 
 /// `e` converted to a cube of `size` with every mip, and the bake's split source.
 fn cube_and_split(backend: &dyn Backend, e: Equirect, size: u32) -> (Cubemap, IrradianceSource) {
-    splitsum::convert::environment_into_cube_with_irradiance(
+    splitsum::stages::convert::environment_into_cube_with_irradiance(
         backend,
         Environment::Equirect(e),
         size,
@@ -95,8 +97,8 @@ fn sheen_matches_brute_force_at_full_resolution() {
     for name in ["quarry_01_1k.hdr", "venice_sunset_1k.hdr"] {
         let e = common::test_equirect(name);
         let terms = common::equirect_terms(&e);
-        let (env, split) = cube_and_split(&splitsum::CpuBackend, e, 256);
-        let sheen = splitsum::CpuBackend
+        let (env, split) = cube_and_split(&splitsum::backend::CpuBackend, e, 256);
+        let sheen = splitsum::backend::CpuBackend
             .prefilter_sheen(&env, Some(&split), chain)
             .unwrap();
         let dirs = common::uniform_directions(300, 0xc4a7);
@@ -147,12 +149,12 @@ fn sheen_gpu_matches_cpu() {
     let Some(ctx) = common::gpu() else {
         return;
     };
-    let gpu = splitsum::GpuBackend { ctx };
+    let gpu = splitsum::backend::GpuBackend { ctx };
     let e = common::test_equirect("quarry_01_1k.hdr");
-    let (env, split) = cube_and_split(&splitsum::CpuBackend, e, 64);
+    let (env, split) = cube_and_split(&splitsum::backend::CpuBackend, e, 64);
     let chain = SpecularChain::linear(chain_levels(64, 4));
     let reference = prefilter_sheen_reference(&env, Some(&split), chain);
-    let cpu = splitsum::CpuBackend
+    let cpu = splitsum::backend::CpuBackend
         .prefilter_sheen(&env, Some(&split), chain)
         .unwrap();
     let got = gpu.prefilter_sheen(&env, Some(&split), chain).unwrap();

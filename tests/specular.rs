@@ -2,34 +2,31 @@
 //! analytic environment, brute-force convolutions of a real HDRI.
 mod common;
 
+use splitsum::environment::walk::texel_centres;
 use splitsum::environment::IrradianceSource;
 
-use splitsum::convert::environment_to_cube;
-use splitsum::cpu::prefilter_specular::{mip_roughness, SpecularChain};
-use splitsum::cpu::sh_project::sh_project;
+use splitsum::backend::{Backend, CpuBackend, GpuBackend};
 use splitsum::environment::Cubemap;
 use splitsum::io::input::{load_environment, InputOptions};
 use splitsum::math::brdf::{alpha_from_roughness, d_ggx};
 use splitsum::math::cubemap::{cube_texel_solid_angle, normalize};
 use splitsum::math::sh::sh_eval;
-use splitsum::{Backend, CpuBackend, GpuBackend};
+use splitsum::plan::chain::{mip_roughness, SpecularChain};
+use splitsum::stages::convert::environment_to_cube;
+use splitsum::stages::sh::sh_project;
 
 /// A cube with every mip whose level-0 texels hold `f(texel centre direction)`.
 fn analytic_cube(size: u32, f: impl Fn([f32; 3]) -> [f32; 3]) -> Cubemap {
     let mut level = Vec::new();
-    for face in 0..6 {
-        for j in 0..size {
-            for i in 0..size {
-                let v = f(texel_dir(face, i, j, size));
-                level.push([v[0], v[1], v[2], 1.0]);
-            }
-        }
+    for (_, _, _, d) in texel_centres(size) {
+        let v = f(d);
+        level.push([v[0], v[1], v[2], 1.0]);
     }
     let mut cube = Cubemap {
         size,
         levels: vec![level],
     };
-    splitsum::cpu::cube_downsample::build_mips(&mut cube, 32);
+    splitsum::environment::mips::build_mips(&mut cube, 32);
     cube
 }
 
@@ -104,14 +101,10 @@ fn analytic_irradiance() {
             .irradiance(&IrradianceSource::from_cube(&env), 32)
             .unwrap();
         let mut worst = 0.0f32;
-        for face in 0..6 {
-            for j in 0..32 {
-                for i in 0..32 {
-                    let d = texel_dir(face, i, j, 32);
-                    worst = worst.max((irr.texel(0, face, i, j)[0] - exact(d)).abs());
-                    worst = worst.max((sh_eval(&sh.irradiance, d)[0] - exact(d)).abs());
-                }
-            }
+        for (face, i, j, d) in texel_centres(32) {
+            let d = d;
+            worst = worst.max((irr.texel(0, face, i, j)[0] - exact(d)).abs());
+            worst = worst.max((sh_eval(&sh.irradiance, d)[0] - exact(d)).abs());
         }
         println!("{}: worst |E/π − exact| {worst:.2e}", backend.description());
         assert!(worst <= 2e-3, "{worst}");
@@ -141,19 +134,15 @@ fn specular_matches_brute_force_on_quarry() {
             }
             let n = env.level_size(m as usize);
             let (mut err, mut tot, mut worst) = (0.0f64, 0.0f64, 0.0f64);
-            for face in 0..6 {
-                for j in 0..n {
-                    for i in 0..n {
-                        let d = texel_dir(face, i, j, n);
-                        let b = lum(brute_force_ggx(&env, d, r));
-                        let t = spec.texel(m as usize, face, i, j);
-                        let p = lum([t[0] as f64, t[1] as f64, t[2] as f64]);
-                        let w = cube_texel_solid_angle(i, j, n) as f64;
-                        err += (p - b).abs() * w;
-                        tot += b * w;
-                        worst = worst.max((p - b).abs() / b);
-                    }
-                }
+            for (face, i, j, d) in texel_centres(n) {
+                let d = d;
+                let b = lum(brute_force_ggx(&env, d, r));
+                let t = spec.texel(m as usize, face, i, j);
+                let p = lum([t[0] as f64, t[1] as f64, t[2] as f64]);
+                let w = cube_texel_solid_angle(i, j, n) as f64;
+                err += (p - b).abs() * w;
+                tot += b * w;
+                worst = worst.max((p - b).abs() / b);
             }
             println!(
                 "{} mip {m} r {r:.2}: energy-weighted {:.3} %, worst texel {:.2} %",
@@ -194,22 +183,18 @@ fn irradiance_matches_brute_force_on_real_hdris() {
             .irradiance(&IrradianceSource::from_cube(&env), 32)
             .unwrap();
         let mut worst = 0.0f32;
-        for face in 0..6 {
-            for j in 0..32 {
-                for i in 0..32 {
-                    let d = texel_dir(face, i, j, 32);
-                    let mut b = [0.0f32; 3];
-                    for (l, lw) in &all {
-                        let c = d[0] * l[0] + d[1] * l[1] + d[2] * l[2];
-                        if c > 0.0 {
-                            (0..3).for_each(|k| b[k] += c * lw[k]);
-                        }
-                    }
-                    let t = irr.texel(0, face, i, j);
-                    for k in 0..3 {
-                        worst = worst.max((t[k] - b[k]).abs() / b[k]);
-                    }
+        for (face, i, j, d) in texel_centres(32) {
+            let d = d;
+            let mut b = [0.0f32; 3];
+            for (l, lw) in &all {
+                let c = d[0] * l[0] + d[1] * l[1] + d[2] * l[2];
+                if c > 0.0 {
+                    (0..3).for_each(|k| b[k] += c * lw[k]);
                 }
+            }
+            let t = irr.texel(0, face, i, j);
+            for k in 0..3 {
+                worst = worst.max((t[k] - b[k]).abs() / b[k]);
             }
         }
         println!("{name}: worst irradiance error {:.3} %", worst * 100.0);
@@ -275,18 +260,14 @@ fn lum(c: [f64; 3]) -> f64 {
 fn brute_force_errors(env: &Cubemap, spec: &Cubemap, m: usize, roughness: f32) -> (f64, f64) {
     let n = spec.level_size(m);
     let (mut err, mut tot, mut worst) = (0.0f64, 0.0f64, 0.0f64);
-    for face in 0..6 {
-        for j in 0..n {
-            for i in 0..n {
-                let b = lum(brute_force_ggx(env, texel_dir(face, i, j, n), roughness));
-                let t = spec.texel(m, face, i, j);
-                let p = lum([t[0] as f64, t[1] as f64, t[2] as f64]);
-                let w = cube_texel_solid_angle(i, j, n) as f64;
-                err += (p - b).abs() * w;
-                tot += b * w;
-                worst = worst.max((p - b).abs() / b);
-            }
-        }
+    for (face, i, j, d) in texel_centres(n) {
+        let b = lum(brute_force_ggx(env, d, roughness));
+        let t = spec.texel(m, face, i, j);
+        let p = lum([t[0] as f64, t[1] as f64, t[2] as f64]);
+        let w = cube_texel_solid_angle(i, j, n) as f64;
+        err += (p - b).abs() * w;
+        tot += b * w;
+        worst = worst.max((p - b).abs() / b);
     }
     (err / tot, worst)
 }
@@ -297,25 +278,20 @@ fn brute_force_ggx(env: &Cubemap, n: [f32; 3], roughness: f32) -> [f64; 3] {
     let alpha = alpha_from_roughness(roughness);
     let size = env.size;
     let (mut sum, mut wsum) = ([0.0f64; 3], 0.0f64);
-    for face in 0..6 {
-        for j in 0..size {
-            for i in 0..size {
-                let l = texel_dir(face, i, j, size);
-                let n_dot_l = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
-                if n_dot_l <= 0.0 {
-                    continue;
-                }
-                let h = normalize([n[0] + l[0], n[1] + l[1], n[2] + l[2]]);
-                let n_dot_h = n[0] * h[0] + n[1] * h[1] + n[2] * h[2];
-                let w =
-                    (d_ggx(n_dot_h, alpha) * n_dot_l * cube_texel_solid_angle(i, j, size)) as f64;
-                let t = env.texel(0, face, i, j);
-                for c in 0..3 {
-                    sum[c] += w * t[c] as f64;
-                }
-                wsum += w;
-            }
+    for (face, i, j, d) in texel_centres(size) {
+        let l = d;
+        let n_dot_l = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
+        if n_dot_l <= 0.0 {
+            continue;
         }
+        let h = normalize([n[0] + l[0], n[1] + l[1], n[2] + l[2]]);
+        let n_dot_h = n[0] * h[0] + n[1] * h[1] + n[2] * h[2];
+        let w = (d_ggx(n_dot_h, alpha) * n_dot_l * cube_texel_solid_angle(i, j, size)) as f64;
+        let t = env.texel(0, face, i, j);
+        for c in 0..3 {
+            sum[c] += w * t[c] as f64;
+        }
+        wsum += w;
     }
     sum.map(|v| v / wsum)
 }
@@ -338,8 +314,8 @@ fn prefilter_accuracy_scan() {
         let samples: u32 = std::env::var("SPLITSUM_SCAN_SAMPLES")
             .ok()
             .and_then(|s| s.parse().ok())
-            .unwrap_or(splitsum::cpu::prefilter_specular::DEFAULT_SAMPLES);
-        let spec = splitsum::cpu::prefilter_specular::prefilter_specular(
+            .unwrap_or(splitsum::plan::chain::DEFAULT_SAMPLES);
+        let spec = splitsum::backend::cpu::specular::prefilter_specular(
             &env,
             None,
             SpecularChain::linear(levels),
@@ -349,7 +325,7 @@ fn prefilter_accuracy_scan() {
         for m in 1..levels {
             let r = mip_roughness(m, levels);
             let (err, worst) = brute_force_errors(&env, &spec, m as usize, r);
-            let method = splitsum::cpu::prefilter_specular::level_method(128, m, r, samples);
+            let method = splitsum::plan::chain::level_method(128, m, r, samples);
             println!(
                 "mip {m} r {r:.2} {method:?}: energy-weighted {:.2} %, worst texel {:.1} %",
                 100.0 * err,
@@ -359,7 +335,7 @@ fn prefilter_accuracy_scan() {
     }
 }
 
-/// No fireflies on quarry_01_1k.hdr (DESIGN.md): in every prefiltered level, no texel
+/// No fireflies on quarry_01_1k.hdr (docs/accuracy.md): in every prefiltered level, no texel
 /// outshines all eight of its neighbours by more than the GGX lobe itself allows. The
 /// bound: the sharpest level (r = 1/7 at 128²) spreads even a point sun over ≳ 2 texels,
 /// so an honest peak is at most ~4× its brightest neighbour; an isolated sample hit on the
@@ -418,9 +394,9 @@ fn no_fireflies_on_quarry() {
 /// 1e-5 relative of the texel plus 1e-7 of the largest texel.
 #[test]
 fn run_by_run_irradiance_equals_the_texel_sum() {
-    use splitsum::cpu::irradiance::{
-        irradiance_source_level, irradiance_texel, irradiance_texel_runs, moment_texels, MomentRuns,
-    };
+    use splitsum::backend::cpu::irradiance::{irradiance_texel_runs, MomentRuns};
+    use splitsum::cpu::convolve_exact::irradiance_texel;
+    use splitsum::environment::texels::{irradiance_source_level, moment_texels};
     let cube = quarry_cube(128);
     let m = irradiance_source_level(&cube);
     let source = moment_texels(&cube, m);

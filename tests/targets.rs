@@ -2,6 +2,7 @@
 //! bevy and three targets are the generic bake seen through each engine's cube lookup.
 mod common;
 
+use splitsum::environment::walk::texel_centres;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -111,7 +112,7 @@ fn output_files(m: &serde_json::Value) -> Vec<&str> {
 }
 
 fn cube(path: &Path) -> splitsum::Cubemap {
-    splitsum::io::input::read_ktx2_cube(path).unwrap()
+    splitsum::io::ktx2::read_cube(path).unwrap()
 }
 
 /// A CPU bake of quarry_01 with a `specular`² chain, an 8² irradiance cube and `extra`
@@ -210,10 +211,10 @@ fn three_target_is_a_pmrem_chain_mirrored_in_x() {
         specular_size: 32,
         irradiance_size: 8,
         zstd: None,
-        ..BakeOptions::for_target(&splitsum::target::THREE)
+        ..BakeOptions::for_target(&splitsum::targets::THREE)
     };
     let report = bake(
-        &splitsum::CpuBackend,
+        &splitsum::backend::CpuBackend,
         Path::new("tests/data/quarry_01_1k.hdr"),
         &dir,
         &opts,
@@ -267,7 +268,8 @@ fn cubemap_targets_mirror_and_refuse_an_equirect() {
         .arg(out("sky.hdr"))
         .output()
         .unwrap();
-    assert_eq!(o.status.code(), Some(1));
+    // A usage error: the options contradict each other.
+    assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("an equirect is not a cube"), "{err}");
     assert!(!out("sky.hdr").exists());
@@ -293,7 +295,7 @@ fn bevy_warns_about_rgba32f() {
     assert!(o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
-        err.contains("warning: --target bevy: rgba32f is not filterable"),
+        err.contains("warning: target bevy: rgba32f is not filterable"),
         "{err}"
     );
     assert!(dir.join("venice_sunset_1k/specular.ktx2").exists());
@@ -384,7 +386,7 @@ fn filament_target_is_cmgens_file_set_in_filaments_frame() {
     };
     assert_eq!(turned.levels[0], g.remapped(frame).levels[0]);
     assert_eq!(
-        splitsum::target::FILAMENT.orientation.texel_map(),
+        splitsum::targets::FILAMENT.orientation.texel_map(),
         frame,
         "the target's frame"
     );
@@ -423,7 +425,7 @@ fn filament_target_is_cmgens_file_set_in_filaments_frame() {
 }
 
 /// Each of `cases` (extra options, and what the error must say) makes a 32² CPU bake of
-/// `tests/data/<stem>.hdr` for `target` into `dir` exit 1 with that error, before any file
+/// `tests/data/<stem>.hdr` for `target` into `dir` exit 2 (a usage error) with that error, before any file
 /// is written.
 fn assert_refused(dir: &Path, stem: &str, target: &str, cases: &[(&[&str], &str)]) {
     let _ = std::fs::remove_dir_all(dir);
@@ -438,7 +440,8 @@ fn assert_refused(dir: &Path, stem: &str, target: &str, cases: &[(&[&str], &str)
             .output()
             .unwrap();
         let err = String::from_utf8_lossy(&o.stderr);
-        assert_eq!(o.status.code(), Some(1), "{extra:?}: {err}");
+        // Usage errors: refused before the input is read.
+        assert_eq!(o.status.code(), Some(2), "{extra:?}: {err}");
         assert!(err.contains(says), "{extra:?}: {err}");
         assert!(!dir.join(stem).exists(), "{extra:?} wrote files");
     }
@@ -458,7 +461,7 @@ fn filament_target_refuses_what_it_cannot_write() {
                 &["--pixel-format", "rgb9e5"],
                 "rgb9e5 cannot be written as KTX 1",
             ),
-            (&["--container", "dds"], "--container applies to"),
+            (&["--container", "dds"], "container applies to"),
             (&["--no-sh"], "writes the irradiance SH into its file"),
         ],
     );
@@ -513,18 +516,12 @@ fn filament_frame_is_cmgens() {
         let lum = |t: [f32; 4]| 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2];
         let max = c.levels[0].iter().map(|&t| lum(t)).fold(0.0, f32::max);
         let mut sun = [0.0f64; 3];
-        for f in 0..6 {
-            for j in 0..n0 {
-                for i in 0..n0 {
-                    let l = lum(c.texel(0, f, i, j));
-                    if l >= 0.5 * max {
-                        let d = splitsum::math::cubemap::cube_texel_direction(
-                            f, i as i32, j as i32, n0,
-                        );
-                        for k in 0..3 {
-                            sun[k] += (l * d[k]) as f64;
-                        }
-                    }
+        for (f, i, j, _) in texel_centres(n0) {
+            let l = lum(c.texel(0, f, i, j));
+            if l >= 0.5 * max {
+                let d = splitsum::math::cubemap::cube_texel_direction(f, i as i32, j as i32, n0);
+                for k in 0..3 {
+                    sun[k] += (l * d[k]) as f64;
                 }
             }
         }
@@ -590,7 +587,7 @@ fn babylon_target_is_an_env_in_babylons_frame() {
         axis: [2, 1, 0],
         sign: [1, 1, 1],
     };
-    assert_eq!(splitsum::target::BABYLON.orientation.texel_map(), frame);
+    assert_eq!(splitsum::targets::BABYLON.orientation.texel_map(), frame);
     let g = cube(&generic.join("specular.ktx2")).remapped(frame);
     for (a, b) in env.cube.levels[0].iter().zip(&g.levels[0]) {
         let top = b[0].max(b[1]).max(b[2]);
@@ -634,7 +631,7 @@ fn babylon_target_refuses_what_a_env_cannot_hold_and_warns_of_clipping() {
         &[
             (&["--min-mip-size", "4"], "the whole chain down to 1x1"),
             (&["--pixel-format", "rgba16f"], "RGBD PNGs"),
-            (&["--container", "exr"], "--container applies to"),
+            (&["--container", "exr"], "container applies to"),
         ],
     );
     let o = splitsum()
@@ -689,7 +686,7 @@ fn gltf_target_is_the_sample_viewers_file_set() {
         std::fs::read(generic64.join("specular.ktx2")).unwrap(),
         "the GGX chain is the generic one"
     );
-    let chain = |p: &Path| splitsum::io::input::read_ktx2_cube_chain(p).unwrap();
+    let chain = |p: &Path| splitsum::io::ktx2::read_cube_chain(p).unwrap();
     let (ggx, sheen) = (
         chain(&gltf64.join("ggx/specular.ktx2")),
         chain(&gltf64.join("charlie/sheen.ktx2")),

@@ -3,11 +3,11 @@
 mod common;
 
 use splitsum::io::lut::{encode_lut, write_lut, LutWriteOptions};
-use splitsum::lut::{BrdfLut, LutQuadrature};
+use splitsum::plan::lut::{BrdfLut, LutQuadrature};
 
 /// A small non-square LUT, so a transposed writer would show.
 fn small_lut() -> BrdfLut {
-    splitsum::cpu::lut_interpolation::brdf_lut(
+    splitsum::backend::cpu::lut_interpolation::brdf_lut(
         24,
         10,
         &LutQuadrature::default(),
@@ -162,11 +162,11 @@ fn unknown_extension_is_refused_without_output() {
 #[test]
 fn every_model_keeps_1e4_in_every_float_file() {
     use exr::prelude::*;
-    use splitsum::lut::LutModel;
+    use splitsum::plan::lut::LutModel;
     let n = 64u32;
     let texels = common::check_texels(n, n);
     for model in LutModel::singles() {
-        let lut = splitsum::cpu::lut_interpolation::brdf_lut(
+        let lut = splitsum::backend::cpu::lut_interpolation::brdf_lut(
             n,
             n,
             &LutQuadrature::for_model(model),
@@ -201,7 +201,7 @@ fn every_model_keeps_1e4_in_every_float_file() {
             .map(|c| f32::from_le_bytes(c.try_into().unwrap()))
             .collect();
         for &(i, j) in &texels {
-            let (nv, r) = splitsum::lut::lut_texel_coords(i, j, n, n);
+            let (nv, r) = splitsum::plan::lut::lut_texel_coords(i, j, n, n);
             let (ra, rb) = common::reference_lut_model(nv as f64, r as f64, model);
             let k = (j * n + i) as usize;
             let files: [(&str, [f32; 2]); 3] = [
@@ -241,10 +241,10 @@ fn every_model_keeps_1e4_in_every_float_file() {
 #[test]
 fn filament_dfg_holds_both_parts_in_every_file() {
     use exr::prelude::*;
-    use splitsum::lut::LutModel;
-    use splitsum::Backend;
+    use splitsum::backend::Backend;
+    use splitsum::plan::lut::LutModel;
     let n = 32u32;
-    let cpu = splitsum::CpuBackend;
+    let cpu = splitsum::backend::CpuBackend;
     let lut = cpu.brdf_lut_model(n, n, LutModel::FilamentDfg).unwrap();
     let rg = cpu
         .brdf_lut_model(n, n, LutModel::MultiscatterSmithCorrelated)

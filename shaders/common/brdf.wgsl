@@ -1,5 +1,5 @@
 // Cook-Torrance microfacet terms used by the split-sum integrals.
-// Mirror of src/math/brdf.rs (same function names); conventions in DESIGN.md:
+// Mirror of src/math/brdf.rs (same function names); conventions in docs/conventions.md:
 // perceptual roughness r, alpha = r^2, Schlick-GGX k = r^2 / 2 for IBL (Karis 2013).
 
 // GGX alpha from perceptual roughness: alpha = r^2 (Burley 2012, Karis 2013).

@@ -6,7 +6,7 @@ use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
 use rayon::prelude::*;
 
-use crate::lut::{lut_texel_coords, BrdfLut, LutDistribution, LutModel, LutQuadrature, Visibility};
+use crate::plan::lut::{lut_texel_coords, BrdfLut, LutDistribution, LutModel, LutQuadrature, Visibility};
 use crate::math::brdf::{
     alpha_from_roughness, ashikhmin_4v_n_dot_l, fresnel_schlick_weight, g1_over_n_dot_v,
     g1_schlick_ggx, k_ibl, lambda_sheen, sheen_4v_n_dot_l, smith_correlated_4v_n_dot_l,

@@ -21,8 +21,9 @@
 
 use rayon::prelude::*;
 
-use crate::environment::{pyramid_level_count, Cubemap, EquirectIntegral};
-use crate::math::cubemap::{cube_face_direction, cube_texel_solid_angle, rotate_y};
+use crate::environment::{Cubemap, EquirectIntegral};
+use crate::plan::convert::EquirectToCubeParams;
+use crate::math::cubemap::{cube_face_direction, rotate_y};
 use crate::math::trig::atan2_precise;
 
 /// Gauss–Legendre nodes on [−1, 1] used along each piece of an edge (the WGSL twin
@@ -30,61 +31,6 @@ use crate::math::trig::atan2_precise;
 pub const GAUSS_NODE: f32 = 0.774_596_7;
 /// Weights of the outer and centre Gauss–Legendre nodes (5/9 and 8/9).
 pub const GAUSS_WEIGHTS: [f32; 2] = [0.555_555_6, 0.888_888_9];
-
-/// The converted level's rows are at most this fraction of the smallest target texel
-/// (a face corner's), so a lamp's energy is placed to 1/64 of a texel. The cost of the
-/// integral grows with the cube's perimeter times the source's resolution, so a small cube
-/// reads a fine level cheaply: a 1k input is read at full resolution for cubes of 4² and up.
-pub const SOURCE_ROWS_PER_TEXEL: f32 = 32.0;
-
-/// Largest source level the conversion reads (texels): a 4096×2048 level. Inputs larger
-/// than that are reduced on load (exact area filter) whatever the cube size, which bounds
-/// memory; at the default 256² the corner texels still span about two such rows.
-pub const MAX_SOURCE_TEXELS: u64 = 1 << 23;
-
-/// Parameters shared by both backends.
-#[derive(Clone, Copy, Debug)]
-pub struct EquirectToCubeParams {
-    /// Edge of the output cube face.
-    pub face_size: u32,
-    /// The equirect pyramid level the conversion reads (see [`source_level`]).
-    pub base_level: u32,
-    /// cos and sin of the environment's rotation about +Y.
-    pub rotation: [f32; 2],
-}
-
-impl EquirectToCubeParams {
-    /// Parameters for a `face_size` cube from a `source_width`×`source_height` equirect,
-    /// rotated by `rotate_degrees`.
-    pub fn new(face_size: u32, source_width: u32, source_height: u32, rotate_degrees: f32) -> Self {
-        let r = rotate_degrees.to_radians();
-        EquirectToCubeParams {
-            face_size,
-            base_level: source_level(face_size, source_width, source_height),
-            rotation: [r.cos(), r.sin()],
-        }
-    }
-}
-
-/// The pyramid level a `face_size` cube is integrated from: the coarsest whose rows are
-/// at most 1/[`SOURCE_ROWS_PER_TEXEL`] of the smallest target texel's angular size, and
-/// no finer than [`MAX_SOURCE_TEXELS`] allows. Levels halve with floor, as the pyramid's.
-pub fn source_level(face_size: u32, width: u32, height: u32) -> u32 {
-    let texel = cube_texel_solid_angle(0, 0, face_size.max(1)).sqrt();
-    let levels = pyramid_level_count(height);
-    let rows = |l: u32| (height >> l).max(1);
-    let texels = |l: u32| (width >> l).max(1) as u64 * rows(l) as u64;
-    let mut l = 0;
-    while l + 1 < levels
-        && std::f32::consts::PI / rows(l + 1) as f32 <= texel / SOURCE_ROWS_PER_TEXEL
-    {
-        l += 1;
-    }
-    while l + 1 < levels && texels(l) > MAX_SOURCE_TEXELS {
-        l += 1;
-    }
-    l
-}
 
 /// ca − cb for two angles given by their cosines and sines, without the cancellation of
 /// the plain difference near a pole: (sb² − sa²)/(ca + cb) when ca + cb is not small.
@@ -247,6 +193,7 @@ fn texel_from_edges(edges: [[f32; 4]; 4]) -> [f32; 4] {
     [sum[0] / sum[3], sum[1] / sum[3], sum[2] / sum[3], 1.0]
 }
 
+#[cfg(any(test, feature = "internals"))]
 /// One output texel: the exact footprint mean of the source.
 pub fn equirect_to_cube_texel(
     src: &EquirectIntegral,
@@ -265,21 +212,6 @@ pub fn equirect_to_cube_texel(
     texel_from_edges([0, 1, 2, 3].map(|k| oriented_edge_integral(src, v[k], v[(k + 1) % 4], north)))
 }
 
-/// Fills level 0 of an n×n cube with `texel(face, i, j)`, in parallel over rows.
-pub fn fill_cube_level(n: u32, texel: impl Fn(u32, u32, u32) -> [f32; 4] + Sync) -> Vec<[f32; 4]> {
-    let mut level = vec![[0.0f32; 4]; Cubemap::level_len(n)];
-    level
-        .par_chunks_mut(n as usize)
-        .enumerate()
-        .for_each(|(row, out)| {
-            let face = (row / n as usize) as u32;
-            let j = (row % n as usize) as u32;
-            for (i, t) in out.iter_mut().enumerate() {
-                *t = texel(face, i as u32, j);
-            }
-        });
-    level
-}
 
 /// Level 0 of the cube (one level; see `cube_downsample` for the chain). Equal, bit for
 /// bit, to [`equirect_to_cube_texel`] at every texel (what the GPU kernel computes), but

@@ -1,16 +1,24 @@
-//! CPU reference kernels. Each file mirrors one WGSL kernel in `shaders/` function for
-//! function; they are the ground the GPU results are checked against, and the `cpu` backend.
+//! CPU twins of the WGSL kernels: each file mirrors one kernel in `shaders/` function for
+//! function (same names, same order of operations), so the GPU results can be checked
+//! against them and the CPU backend ([`crate::backend`]) computes the same values.
+//!
+//! | file | kernel |
+//! |---|---|
+//! | `brdf_lut.rs` | `shaders/brdf_lut.wgsl` |
+//! | `equirect_to_cube.rs` | `shaders/equirect_to_cube.wgsl` |
+//! | `prefilter_sampled.rs` | `shaders/prefilter_sampled.wgsl` |
+//! | `convolve_exact.rs` | `shaders/convolve_exact.wgsl` (specular, irradiance, sheen) |
+//! | `preview_split_sum.rs` | `shaders/preview_split_sum.wgsl` |
+//! | `preview_truth.rs` | `shaders/preview_truth.wgsl` |
+//!
+//! The shared WGSL in `shaders/common/` has its twins in [`crate::math`] and, for cube
+//! sampling, [`crate::environment::sample`]; the mip reduction's
+//! (`shaders/cube_downsample.wgsl`) is [`crate::environment::mips`], since every cube of
+//! an environment carries that chain.
 
 pub mod brdf_lut;
-pub mod cube_downsample;
-pub mod cube_resample;
-pub mod cube_sample;
+pub mod convolve_exact;
 pub mod equirect_to_cube;
-pub mod irradiance;
-pub mod lut_interpolation;
-pub mod prefilter_sheen;
-pub mod prefilter_specular;
+pub mod prefilter_sampled;
 pub mod preview_split_sum;
 pub mod preview_truth;
-pub mod roughest_level;
-pub mod sh_project;

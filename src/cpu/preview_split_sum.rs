@@ -16,26 +16,11 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
-use crate::cpu::cube_sample::sample_cube_lod;
-use crate::environment::Cubemap;
-use crate::lut::BrdfLut;
+use crate::environment::sample::sample_cube_lod;
+use crate::plan::scene::SplitSumInputs;
+use crate::plan::lut::BrdfLut;
 use crate::math::brdf::fresnel_schlick_roughness;
-use crate::preview::scene::{pixel_geometry, PixelGeometry, SceneUniform, MIN_N_DOT_V};
-
-/// What the split-sum render reads.
-#[derive(Clone, Copy, Debug)]
-pub struct SplitSumInputs<'a> {
-    /// The prefiltered specular chain (level 0: the environment), generic orientation.
-    pub specular: &'a Cubemap,
-    /// The irradiance cube (E/π).
-    pub irradiance: &'a Cubemap,
-    /// The split-sum LUT (scale A, bias B).
-    pub lut: &'a BrdfLut,
-    /// Per roughness column: (roughness, the chain's lod for it, 0, 0).
-    pub columns: &'a [[f32; 4]],
-    /// Per material: (F0, metallic), (albedo, 0) (`scene::material_table`).
-    pub materials: &'a [[f32; 4]],
-}
+use crate::plan::scene::{pixel_geometry, PixelGeometry, SceneUniform, MIN_N_DOT_V};
 
 /// Bilinear lookup of the LUT at uv = (n·v, r) with clamp-to-edge addressing and texel
 /// centres at ((i + ½)/W, (j + ½)/H), as a GPU sampler reads it.

@@ -5,7 +5,7 @@
 //!
 //! The BRDF: f = kD(h) c/π + D(h) G(l, v) F(v·h) / (4 (n·l)(n·v)), GGX D with α = r²,
 //! G = G1(n·l) G1(n·v) Schlick-GGX with k = r²/2, F Fresnel-Schlick, and
-//! kD(h) = (1 − F(v·h))(1 − metallic) (DESIGN.md "Roughness, BRDF").
+//! kD(h) = (1 − F(v·h))(1 − metallic) (docs/conventions.md, "Roughness, BRDF").
 //!
 //! The environment is the bake's own cube (level 0), split as the specular bake splits it
 //! (`prefilter_specular::split_hot_texels`): its hot texels (a sun, lamps: at most 512,
@@ -27,50 +27,17 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
-use crate::cpu::cube_sample::sample_cube_lod;
-use crate::cpu::irradiance::SourceTexel;
-use crate::environment::Cubemap;
+use crate::environment::sample::sample_cube_lod;
+use crate::environment::texels::SourceTexel;
+use crate::plan::scene::TruthInputs;
 use crate::math::brdf::{
     alpha_from_roughness, d_ggx, fresnel_schlick_weight, g1_over_n_dot_v, g1_schlick_ggx,
     g1_smith_ggx, k_ibl,
 };
 use crate::math::sampling::{
-    cosine_hemisphere_from_disk, hammersley, pcg_hash, sample_ggx_vndf, tangent_frame, unit_float,
+    cosine_hemisphere_from_disk, pcg_hash, sample_ggx_vndf, tangent_frame, unit_float,
 };
-use crate::preview::scene::{pixel_geometry, PixelGeometry, SceneUniform, MIN_N_DOT_V};
-
-/// Default number of quasi-Monte Carlo points per lobe and pixel.
-pub const DEFAULT_TRUTH_SAMPLES: u32 = 2048;
-
-/// What the truth render reads.
-#[derive(Clone, Copy, Debug)]
-pub struct TruthInputs<'a> {
-    /// The environment (level 0 read; the split-sum chain's level 0).
-    pub env: &'a Cubemap,
-    /// The environment without its hot texels (level 0 read).
-    pub cold: &'a Cubemap,
-    /// The hot texels, summed exactly.
-    pub hot: &'a [SourceTexel],
-    /// Per roughness column: (roughness, lod, 0, 0); the lod is unused here.
-    pub columns: &'a [[f32; 4]],
-    /// Per material: (F0, metallic), (albedo, 0).
-    pub materials: &'a [[f32; 4]],
-    /// The quasi-Monte Carlo points ([`disk_points`]).
-    pub points: &'a [[f32; 4]],
-}
-
-/// The N points of the truth's quadrature: Hammersley (i/N, φ-radical-inverse) as
-/// (u₁, cos 2πu₂, sin 2πu₂, 0); a pixel maps one to the unit disk as
-/// √frac(u₁ + s) (cos, sin) rotated by its own angle.
-pub fn disk_points(samples: u32) -> Vec<[f32; 4]> {
-    (0..samples)
-        .map(|i| {
-            let [u1, u2] = hammersley(i, samples);
-            let phi = 2.0 * std::f32::consts::PI * u2;
-            [u1, phi.cos(), phi.sin(), 0.0]
-        })
-        .collect()
-}
+use crate::plan::scene::{pixel_geometry, PixelGeometry, SceneUniform, MIN_N_DOT_V};
 
 /// The pixel's quadrature shift: (radial shift s ∈ [0, 1), cos ψ, sin ψ) of its azimuthal
 /// rotation ψ, from hashes of the pixel index (the angle need not be uniform: any rotation

@@ -12,11 +12,29 @@
 //! equivalent cap for the horizon-clipped case (see `cpu::irradiance`); the rest is
 //! converted exactly to an [`IRRADIANCE_SOURCE_SIZE`]² cube.
 
-use crate::cpu::irradiance::{MomentTexel, IRRADIANCE_SOURCE_SIZE};
+use crate::environment::texels::{MomentTexel, IRRADIANCE_SOURCE_SIZE};
 use crate::environment::{Cubemap, Equirect};
 use crate::math::cubemap::{cube_texel_direction, cube_texel_solid_angle, rotate_y};
 
-pub use crate::cpu::prefilter_specular::{hottest_texels, HOT_FACTOR, MAX_HOT_TEXELS};
+/// A texel is "hot" when its radiance exceeds this multiple of the environment's mean.
+pub const HOT_FACTOR: f32 = 16.0;
+/// At most this many hot texels (the most energetic) are split off.
+pub const MAX_HOT_TEXELS: usize = 512;
+
+/// Indices of the texels whose luminance exceeds [`HOT_FACTOR`] × `mean`, at most
+/// [`MAX_HOT_TEXELS`], most energetic first; `texels` yields (index, luminance, energy =
+/// luminance × Ω). Equal energies keep index order, so the choice is deterministic. Shared
+/// by the sampled levels' split ([`split_hot_texels`]) and the irradiance source's
+/// ([`crate::environment::hot`]).
+pub fn hottest_texels(texels: impl Iterator<Item = (usize, f64, f64)>, mean: f64) -> Vec<usize> {
+    let mut hot: Vec<(usize, f64)> = texels
+        .filter(|&(_, y, _)| y > HOT_FACTOR as f64 * mean)
+        .map(|(k, _, e)| (k, e))
+        .collect();
+    hot.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
+    hot.truncate(MAX_HOT_TEXELS);
+    hot.into_iter().map(|h| h.0).collect()
+}
 
 /// Cells per axis a hot equirect texel is split into (equal solid angle: uniform in φ and
 /// in cos θ), so a cell straddling a normal's horizon is 1/4 of a source texel wide.
@@ -81,7 +99,7 @@ impl IrradianceSource {
 /// The cold cube from its largest mip no bigger than [`IRRADIANCE_SOURCE_SIZE`]² down.
 fn reduced_cold(mut cube: Cubemap) -> Cubemap {
     let full = Cubemap::full_mip_count(cube.size);
-    crate::cpu::cube_downsample::build_mips(&mut cube, full);
+    crate::environment::mips::build_mips(&mut cube, full);
     let m = (0..cube.levels.len())
         .find(|&m| cube.level_size(m) <= IRRADIANCE_SOURCE_SIZE)
         .unwrap_or(cube.levels.len() - 1);

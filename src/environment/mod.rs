@@ -4,11 +4,15 @@
 
 pub mod hot;
 mod integral;
+pub mod mips;
 mod pyramid;
+pub mod sample;
+pub mod texels;
+pub mod walk;
 
 pub use hot::IrradianceSource;
 pub use integral::EquirectIntegral;
-pub use pyramid::{pyramid_level_count, EquirectReducer, RowDownsampler};
+pub use pyramid::{pyramid_level_count, EquirectReducer};
 
 use crate::math::cubemap::{AxisMap, FACES};
 
@@ -40,7 +44,7 @@ impl Equirect {
     /// Half-size copy (floor, at least 1×1) by an exact area filter: every target texel is
     /// the solid-angle-weighted mean of the source area it covers (fractional overlaps
     /// included), so ∫ L dω is the same at every level. Streams the rows through a
-    /// [`RowDownsampler`], so the only extra memory is the result and a few rows.
+    /// row downsampler (`pyramid::RowDownsampler`), so the only extra memory is the result and a few rows.
     pub fn downsample(&self) -> Equirect {
         let mut reducer = EquirectReducer::new(self.width, self.height, 1);
         reducer.push_all(&self.data);
@@ -91,28 +95,21 @@ impl Cubemap {
     /// what sampling this cube at d gives. A signed permutation of axes maps texel centres
     /// onto texel centres, so this is an exact permutation of texels (no resampling).
     pub fn remapped(&self, map: AxisMap) -> Cubemap {
-        use crate::math::cubemap::{cube_face_coords, cube_texel_direction};
+        use crate::math::cubemap::cube_face_coords;
         let source_of = map.inverse();
         let levels = (0..self.levels.len())
             .map(|m| {
                 let n = self.level_size(m);
+                // (s, t) is a texel centre: s = (2i + 1)/n − 1.
+                let index = |c: f32| {
+                    (((c + 1.0) * n as f32 - 1.0) * 0.5)
+                        .round()
+                        .clamp(0.0, (n - 1) as f32) as u32
+                };
                 let mut out = Vec::with_capacity(Cubemap::level_len(n));
-                for face in 0..FACES as u32 {
-                    for j in 0..n {
-                        for i in 0..n {
-                            let d =
-                                source_of.apply(cube_texel_direction(face, i as i32, j as i32, n));
-                            let (f, s, t) = cube_face_coords(d);
-                            // (s, t) is a texel centre: s = (2i + 1)/n − 1.
-                            let index = |c: f32| {
-                                (((c + 1.0) * n as f32 - 1.0) * 0.5)
-                                    .round()
-                                    .clamp(0.0, (n - 1) as f32)
-                                    as u32
-                            };
-                            out.push(self.texel(m, f, index(s), index(t)));
-                        }
-                    }
+                for (_, _, _, d) in walk::texel_centres(n) {
+                    let (f, s, t) = cube_face_coords(source_of.apply(d));
+                    out.push(self.texel(m, f, index(s), index(t)));
                 }
                 out
             })
@@ -125,7 +122,7 @@ impl Cubemap {
 
     /// This cube mirrored along world axis `axis` (0 = x, 1 = y, 2 = z), every level:
     /// the returned cube's texel at direction d holds this cube's texel at d with that
-    /// coordinate negated ([`Cubemap::remapped`] with [`AxisMap::mirror`]).
+    /// coordinate negated ([`Cubemap::remapped`] with a mirror of one axis).
     pub fn mirrored(&self, axis: usize) -> Cubemap {
         self.remapped(AxisMap::mirror(axis))
     }

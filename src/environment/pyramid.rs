@@ -61,6 +61,7 @@ impl RowDownsampler {
     }
 
     /// Whether every target row has been emitted.
+    #[cfg(test)]
     pub fn is_complete(&self) -> bool {
         self.emitted == self.height
     }
@@ -154,16 +155,19 @@ impl EquirectReducer {
         }
     }
 
+    #[cfg(any(test, feature = "internals"))]
     /// Halvings applied.
     pub fn levels(&self) -> u32 {
         self.stages.len() as u32
     }
 
+    #[cfg(any(test, feature = "internals"))]
     /// Width of the result.
     pub fn width(&self) -> u32 {
         self.width
     }
 
+    #[cfg(any(test, feature = "internals"))]
     /// Height of the result.
     pub fn height(&self) -> u32 {
         self.height
@@ -193,6 +197,7 @@ impl EquirectReducer {
         }
     }
 
+    #[cfg(any(test, feature = "internals"))]
     /// Whether every row of the result has been produced.
     pub fn is_complete(&self) -> bool {
         self.data.len() == self.width as usize * self.height as usize

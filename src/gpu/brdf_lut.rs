@@ -5,7 +5,7 @@ use crate::gpu::compute::{
 };
 use crate::gpu::shaders;
 use crate::gpu::texture::create_storage_texture_2d;
-use crate::lut::{BrdfLut, LutModel, LutQuadrature};
+use crate::plan::lut::{BrdfLut, LutModel, LutQuadrature};
 use crate::Result;
 
 /// Workgroup of the LUT kernel (x = n·v, y = roughness).

@@ -1,7 +1,7 @@
 //! GPU equirect → cube with mips: binds `shaders/equirect_to_cube.wgsl` for level 0 and
 //! `shaders/cube_downsample.wgsl` for each further level (CPU mirrors in `cpu/`).
 
-use crate::cpu::equirect_to_cube::EquirectToCubeParams;
+use crate::plan::convert::EquirectToCubeParams;
 use crate::environment::{Cubemap, Equirect, EquirectIntegral};
 use crate::gpu::compute::{buffer_with_data, with_error_scope, ComputeKernel};
 use crate::gpu::shaders;

@@ -2,12 +2,10 @@
 //! `shaders/convolve_exact.wgsl` (CPU mirrors in `cpu/prefilter_specular.rs` and
 //! `cpu/irradiance.rs`); the method per level is chosen by the same Rust function.
 
-use crate::cpu::irradiance::{irradiance_source_level, moment_texels, MomentTexel, SourceTexel};
-use crate::cpu::prefilter_sheen::sheen_chain;
-use crate::cpu::prefilter_specular::{
-    exact_source_texels, ggx_lobe_samples, level_method, split_hot_texels, LevelMethod,
-    SpecularChain,
-};
+use crate::environment::texels::{irradiance_source_level, moment_texels, MomentTexel, SourceTexel};
+use crate::plan::sheen::sheen_chain;
+use crate::plan::sources::{exact_source_texels, ggx_lobe_samples, split_hot_texels};
+use crate::plan::chain::{level_method, LevelMethod, SpecularChain};
 use crate::environment::{Cubemap, IrradianceSource};
 use crate::gpu::compute::{storage_buffer, uniform_buffer, with_error_scope, ComputeKernel};
 use crate::gpu::shaders;

@@ -3,15 +3,15 @@
 //! `cpu/preview_truth.rs`). Each writes one panel into an `Rgba32Float` 2D texture that is
 //! read back as row-major RGB.
 
-use crate::cpu::preview_split_sum::SplitSumInputs;
-use crate::cpu::preview_truth::TruthInputs;
+use crate::plan::scene::SplitSumInputs;
+use crate::plan::scene::TruthInputs;
 use crate::gpu::compute::{
     read_texture_level, storage_buffer, uniform_buffer, with_error_scope, ComputeKernel,
 };
 use crate::gpu::prefilter::upload_cube;
 use crate::gpu::shaders;
 use crate::gpu::texture::{create_storage_texture_2d, cube_array_view, upload_rgb_texture};
-use crate::preview::scene::SceneUniform;
+use crate::plan::scene::SceneUniform;
 use crate::Result;
 
 /// Workgroup of both kernels (x, y over the panel).

@@ -60,6 +60,7 @@ pub const PREVIEW_TRUTH: &str = kernel_source!(
     ]
 );
 
+#[cfg(any(test, feature = "internals"))]
 /// Every assembled kernel by name, for validation.
 pub const ALL: &[(&str, &str)] = &[
     ("prefilter_sampled", PREFILTER_SAMPLED),

@@ -1,4 +1,4 @@
-//! Writes a cubemap in the container its path's extension names: `.ktx2`, `.dds` and
+//! The one cube container dispatcher: a cubemap written in the container its path's extension names: `.ktx2`, `.dds` and
 //! `.ktx` (KTX 1, as Filament loads it) hold every mip level in a GPU pixel format; `.exr`
 //! and `.hdr` hold level 0 for inspection, as six face files `<stem>_px.<ext>` …
 //! `<stem>_nz.<ext>`, a horizontal cross, or an equirect. All files of one output are
@@ -10,7 +10,7 @@ use super::atomic::write_all_atomic;
 use super::format::{EncodedTexture, PixelFormat};
 use super::input::HORIZONTAL_CROSS;
 use super::{dds, exr, extension_of, hdr, ktx1, ktx2};
-use crate::cpu::cube_resample::sample_cube;
+use crate::stages::resample::sample_cube;
 use crate::environment::Cubemap;
 use crate::math::cubemap::{equirect_direction, FACES};
 use crate::{Error, Result};
@@ -33,7 +33,56 @@ pub enum CubeLayout {
     Equirect,
 }
 
-/// Options of a cubemap output.
+/// A cube container: KTX2, DDS and KTX 1 hold every level in a GPU pixel format; OpenEXR
+/// and Radiance HDR hold linear RGB images in a [`CubeLayout`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Container {
+    /// KTX 2.0 (`.ktx2`).
+    Ktx2,
+    /// DDS with the DX10 header (`.dds`).
+    Dds,
+    /// KTX 1.1 (`.ktx`), as Filament loads it.
+    Ktx1,
+    /// OpenEXR, 32-bit float RGB (`.exr`).
+    Exr,
+    /// Radiance RGBE (`.hdr`).
+    Hdr,
+}
+
+impl Container {
+    /// Every container.
+    pub const ALL: [Container; 5] = [
+        Container::Ktx2,
+        Container::Dds,
+        Container::Ktx1,
+        Container::Exr,
+        Container::Hdr,
+    ];
+
+    /// File extension.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Container::Ktx2 => "ktx2",
+            Container::Dds => "dds",
+            Container::Ktx1 => "ktx",
+            Container::Exr => "exr",
+            Container::Hdr => "hdr",
+        }
+    }
+
+    /// The container `path`'s extension names.
+    pub fn of_path(path: &Path) -> Option<Container> {
+        let ext = extension_of(path);
+        Container::ALL.into_iter().find(|c| c.extension() == ext)
+    }
+
+    /// Whether it holds GPU textures (every level, in a pixel format) rather than images.
+    pub fn is_texture(self) -> bool {
+        matches!(self, Container::Ktx2 | Container::Dds | Container::Ktx1)
+    }
+}
+
+/// Options of a cubemap file (its container comes from its extension).
 #[derive(Clone, Copy, Debug)]
 pub struct CubeWriteOptions {
     /// Pixel format of KTX2/DDS/KTX 1 outputs.
@@ -52,6 +101,32 @@ impl Default for CubeWriteOptions {
             layout: CubeLayout::Faces,
         }
     }
+}
+
+/// How a cube is encoded.
+#[derive(Clone, Copy, Debug)]
+pub struct CubeEncoding {
+    /// The container.
+    pub container: Container,
+    /// Pixel format of texture containers.
+    pub format: PixelFormat,
+    /// KTX2: Zstandard level for per-level supercompression.
+    pub zstd: Option<i32>,
+    /// Layout of image containers.
+    pub layout: CubeLayout,
+    /// Image containers: one file per level, `<stem>_m<m>.<ext>`, instead of level 0 alone.
+    pub every_level: bool,
+}
+
+/// Reads the cube of a texture container (`.ktx2`, `.dds`, `.ktx`: level 0, or the whole
+/// chain where the reader has one), or `None` when `path` names no texture container.
+pub fn read_texture_cube(path: &Path) -> Result<Option<Cubemap>> {
+    Ok(Some(match Container::of_path(path) {
+        Some(Container::Ktx2) => ktx2::read_cube(path)?,
+        Some(Container::Dds) => dds::read_cube(path)?,
+        Some(Container::Ktx1) => ktx1::read_cube(path)?,
+        _ => return Ok(None),
+    }))
 }
 
 /// Checks `path`'s extension before any work is done.
@@ -120,55 +195,100 @@ pub fn to_equirect(cube: &Cubemap) -> (u32, u32, Vec<[f32; 3]>) {
     (w, h, data)
 }
 
-/// Encodes `cube` for `path` and writes it (and its sibling face files) atomically.
-/// Returns the paths written.
+/// Encodes `cube` as `path` in `enc`: one file holding every level for a texture
+/// container; for an image container, level 0 (or, with `every_level`, each level as
+/// `<stem>_m<m>.<ext>`) in the layout. Returns each file's path and bytes.
+pub fn encode_cube(
+    path: &Path,
+    cube: &Cubemap,
+    enc: &CubeEncoding,
+) -> Result<Vec<(PathBuf, Vec<u8>)>> {
+    let enc_err = |path: &Path, format: &'static str, message: String| Error::Encode {
+        path: path.to_path_buf(),
+        format,
+        message,
+    };
+    let texture = || encode_texture(cube, enc.format);
+    Ok(match enc.container {
+        Container::Ktx2 => vec![(
+            path.to_path_buf(),
+            ktx2::encode(&texture(), enc.zstd).map_err(|e| enc_err(path, "KTX2", e.to_string()))?,
+        )],
+        Container::Dds => vec![(path.to_path_buf(), dds::encode(&texture()))],
+        Container::Ktx1 => vec![(
+            path.to_path_buf(),
+            ktx1::encode(&texture(), &[]).map_err(|e| enc_err(path, "KTX 1", e))?,
+        )],
+        Container::Exr | Container::Hdr if enc.every_level => {
+            let stem = path
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            let mut files = Vec::new();
+            for m in 0..cube.levels.len() {
+                let level = Cubemap {
+                    size: cube.level_size(m),
+                    levels: vec![cube.levels[m].clone()],
+                };
+                let level_path =
+                    path.with_file_name(format!("{stem}_m{m}.{}", enc.container.extension()));
+                files.extend(encode_images(&level_path, &level, enc)?);
+            }
+            files
+        }
+        Container::Exr | Container::Hdr => encode_images(path, cube, enc)?,
+    })
+}
+
+/// Level 0 of `cube` as the image files of `enc.layout` for `path`.
+fn encode_images(
+    path: &Path,
+    cube: &Cubemap,
+    enc: &CubeEncoding,
+) -> Result<Vec<(PathBuf, Vec<u8>)>> {
+    let image = |path: &Path, w: u32, h: u32, data: &[[f32; 3]]| -> Result<Vec<u8>> {
+        match enc.container {
+            Container::Exr => exr::encode_rgb32(w, h, data).map_err(|message| Error::Encode {
+                path: path.to_path_buf(),
+                format: "OpenEXR",
+                message,
+            }),
+            _ => Ok(hdr::encode(w, h, data)),
+        }
+    };
+    Ok(match enc.layout {
+        CubeLayout::Faces => output_paths(path, enc.layout)
+            .into_iter()
+            .enumerate()
+            .map(|(face, p)| {
+                let bytes = image(&p, cube.size, cube.size, &rgb(cube.face(0, face)))?;
+                Ok((p, bytes))
+            })
+            .collect::<Result<_>>()?,
+        CubeLayout::Cross => {
+            let (w, h, data) = to_cross(cube);
+            vec![(path.to_path_buf(), image(path, w, h, &data)?)]
+        }
+        CubeLayout::Equirect => {
+            let (w, h, data) = to_equirect(cube);
+            vec![(path.to_path_buf(), image(path, w, h, &data)?)]
+        }
+    })
+}
+
+/// Encodes `cube` as `path` (its extension names the container; an image container holds
+/// level 0) and writes the files atomically, together. Returns the
+/// paths written.
 pub fn write_cubemap(path: &Path, cube: &Cubemap, opts: &CubeWriteOptions) -> Result<Vec<PathBuf>> {
     check_cube_path(path)?;
-    let ext = extension_of(path);
-    let enc_err = |format: &'static str| {
-        move |message: String| Error::Encode {
-            path: path.to_path_buf(),
-            format,
-            message,
-        }
+    let enc = CubeEncoding {
+        container: Container::of_path(path).unwrap_or(Container::Ktx2),
+        format: opts.format,
+        zstd: opts.zstd,
+        layout: opts.layout,
+        every_level: false,
     };
-    let image = |w: u32, h: u32, data: &[[f32; 3]]| -> Result<Vec<u8>> {
-        if ext == "exr" {
-            exr::encode_rgb32(w, h, data).map_err(enc_err("OpenEXR"))
-        } else {
-            Ok(hdr::encode(w, h, data))
-        }
-    };
-    let files: Vec<(PathBuf, Vec<u8>)> = match ext.as_str() {
-        "ktx2" => vec![(
-            path.to_path_buf(),
-            ktx2::encode(&encode_texture(cube, opts.format), opts.zstd)
-                .map_err(|e| enc_err("KTX2")(e.to_string()))?,
-        )],
-        "dds" => vec![(
-            path.to_path_buf(),
-            dds::encode(&encode_texture(cube, opts.format)),
-        )],
-        "ktx" => vec![(
-            path.to_path_buf(),
-            ktx1::encode(&encode_texture(cube, opts.format), &[]).map_err(enc_err("KTX 1"))?,
-        )],
-        _ => match opts.layout {
-            CubeLayout::Faces => output_paths(path, opts.layout)
-                .into_iter()
-                .enumerate()
-                .map(|(face, p)| Ok((p, image(cube.size, cube.size, &rgb(cube.face(0, face)))?)))
-                .collect::<Result<_>>()?,
-            CubeLayout::Cross => {
-                let (w, h, data) = to_cross(cube);
-                vec![(path.to_path_buf(), image(w, h, &data)?)]
-            }
-            CubeLayout::Equirect => {
-                let (w, h, data) = to_equirect(cube);
-                vec![(path.to_path_buf(), image(w, h, &data)?)]
-            }
-        },
-    };
+    let files = encode_cube(path, cube, &enc)?;
     write_all_atomic(&files)?;
     Ok(files.into_iter().map(|(p, _)| p).collect())
 }

@@ -1,8 +1,16 @@
-//! DDS writer with the DX10 extension header (Microsoft, "DDS programming guide"):
-//! uncompressed DXGI formats, optional cubemap flag and full mip chain. DDS stores data
-//! face by face, each face with all its mips.
+//! DDS cubemaps with the DX10 extension header (Microsoft, "DDS programming guide"). The
+//! writer: DXGI formats, optional cubemap flag and full mip chain; DDS stores data face by
+//! face, each face with all its mips. The reader (through the `ddsfile` crate): level 0 of
+//! a cube in one of splitsum's formats.
 
-use super::format::EncodedTexture;
+use std::path::Path;
+
+use super::format::{EncodedTexture, PixelFormat};
+use super::limits::check_dimensions;
+use super::read_file;
+use crate::environment::Cubemap;
+use crate::math::cubemap::FACES;
+use crate::{Error, Result};
 
 const DDSD_CAPS: u32 = 0x1;
 const DDSD_HEIGHT: u32 = 0x2;
@@ -71,4 +79,75 @@ pub fn encode(tex: &EncodedTexture) -> Vec<u8> {
         }
     }
     out
+}
+
+/// Reads level 0 of a DX10 DDS cubemap in one of splitsum's formats.
+pub fn read_cube(path: &Path) -> Result<Cubemap> {
+    decode_cube(path, &read_file(path)?)
+}
+
+/// Decodes level 0 of a DX10 DDS cubemap from `bytes` (`path` names it in errors).
+pub fn decode_cube(path: &Path, bytes: &[u8]) -> Result<Cubemap> {
+    const F: &str = "DDS";
+    let bad = |message: String| Error::Decode {
+        path: path.to_path_buf(),
+        format: F,
+        message,
+    };
+    let dds = ddsfile::Dds::read(bytes).map_err(|e| bad(e.to_string()))?;
+    let unsupported = |message: String| Error::UnsupportedInput {
+        path: path.to_path_buf(),
+        message,
+    };
+    let is_cube = dds
+        .header10
+        .as_ref()
+        .is_some_and(|h| h.misc_flag.contains(ddsfile::MiscFlag::TEXTURECUBE));
+    let n = dds.get_width();
+    if !is_cube || dds.get_height() != n {
+        return Err(unsupported(
+            "DDS file is not a cubemap with a DX10 header".into(),
+        ));
+    }
+    let pf = dds
+        .header10
+        .as_ref()
+        .and_then(|h| PixelFormat::from_dxgi_format(h.dxgi_format as u32))
+        .filter(|f| !matches!(f, PixelFormat::Rg16f | PixelFormat::Rg32f))
+        .ok_or_else(|| {
+            unsupported(
+                "DDS format is not one splitsum reads (rgba16f, rgba32f, rgb9e5, rg11b10f)".into(),
+            )
+        })?;
+    check_dimensions(path, n, n)?;
+    // Faces are stored one after the other, each with all its mips. The mip count comes
+    // from the header, so it is bounded before the face stride is computed from it.
+    let mips = dds.get_num_mipmap_levels().max(1);
+    let full = Cubemap::full_mip_count(n);
+    if mips > full {
+        return Err(bad(format!(
+            "header claims {mips} mip levels; a {n}×{n} face has at most {full}"
+        )));
+    }
+    let texel = pf.texel_bytes() as usize;
+    let face_bytes = (n as usize) * (n as usize) * texel;
+    let stride: usize = (0..mips)
+        .map(|m| ((n >> m).max(1) as usize).pow(2) * texel)
+        .sum();
+    let data = &dds.data;
+    if data.len() < stride * (FACES - 1) + face_bytes {
+        return Err(bad(format!(
+            "holds {} bytes of texels, {} expected (truncated?)",
+            data.len(),
+            stride * FACES
+        )));
+    }
+    let mut level = Vec::with_capacity(Cubemap::level_len(n));
+    for face in 0..FACES {
+        level.extend(pf.decode(&data[face * stride..face * stride + face_bytes]));
+    }
+    Ok(Cubemap {
+        size: n,
+        levels: vec![level],
+    })
 }

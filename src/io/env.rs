@@ -15,13 +15,15 @@
 //! decodes as (rgb)^2.2 / a, so the format holds radiance up to 255 (D = 1/255); brighter
 //! texels are clipped there.
 
+#[cfg(any(test, feature = "internals"))]
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::cpu::prefilter_specular::BABYLON_LOD_SCALE;
+use crate::plan::chain::BABYLON_LOD_SCALE;
 use crate::environment::Cubemap;
 use crate::math::cubemap::FACES;
+#[cfg(any(test, feature = "internals"))]
 use crate::{Error, Result};
 
 /// The 8 bytes every `.env` file starts with.
@@ -77,6 +79,7 @@ impl SphericalPolynomial {
 
     /// What Babylon shades at unit direction `n`: E/π, the band factors undone (band 0 is
     /// the mean of the diagonal, band 2 being traceless).
+    #[cfg(any(test, feature = "internals"))]
     pub fn shade(&self, n: [f32; 3]) -> [f32; 3] {
         let [x, y, z] = n;
         std::array::from_fn(|c| {
@@ -129,6 +132,7 @@ pub fn encode_rgbd(rgb: [f32; 3]) -> [u8; 4] {
     [r, g, b, k as u8]
 }
 
+#[cfg(any(test, feature = "internals"))]
 /// Linear RGB of an RGBD texel (Babylon's `fromRGBD`).
 pub fn decode_rgbd(p: [u8; 4]) -> [f32; 3] {
     let d = p[3].max(1) as f32 / 255.0;
@@ -157,7 +161,7 @@ fn face_png(texels: &[[f32; 4]], n: u32) -> std::result::Result<Vec<u8>, String>
 /// Serialises `cube` (every level down to 1×1, faces +X … −Z, rows top to bottom) with the
 /// irradiance polynomial as a `.env` file, whose header names [`BABYLON_LOD_SCALE`] as the
 /// chain's `lodGenerationScale` (its roughness per mip,
-/// [`crate::cpu::prefilter_specular::MipRoughness::Babylon`]).
+/// [`crate::plan::chain::MipRoughness::Babylon`]).
 pub fn encode(
     cube: &Cubemap,
     irradiance: &SphericalPolynomial,
@@ -210,6 +214,7 @@ pub fn encode(
     Ok(out)
 }
 
+#[cfg(any(test, feature = "internals"))]
 /// A `.env` file as read: the cube (decoded from RGBD), the irradiance polynomial and the
 /// lod scale.
 #[derive(Clone, Debug)]
@@ -222,6 +227,7 @@ pub struct EnvFile {
     pub lod_generation_scale: f32,
 }
 
+#[cfg(any(test, feature = "internals"))]
 /// Parses a `.env` file (version 2, PNG images); errors name `path`.
 pub fn decode(path: &Path, bytes: &[u8]) -> Result<EnvFile> {
     let bad = |message: String| Error::Decode {

@@ -29,6 +29,18 @@ pub const CUBE_PIXEL_FORMATS: &[(&str, PixelFormat)] = &[
 ];
 
 impl PixelFormat {
+    /// What it stores, in a line (with its Vulkan name).
+    pub fn description(self) -> &'static str {
+        match self {
+            PixelFormat::Rg16f => "2 × 16-bit float (R16G16_SFLOAT)",
+            PixelFormat::Rg32f => "2 × 32-bit float (R32G32_SFLOAT)",
+            PixelFormat::Rgba16f => "4 × 16-bit float (R16G16B16A16_SFLOAT)",
+            PixelFormat::Rgba32f => "4 × 32-bit float (R32G32B32A32_SFLOAT)",
+            PixelFormat::Rgb9e5 => "shared exponent (E5B9G9R9_UFLOAT_PACK32)",
+            PixelFormat::Rg11b10f => "packed unsigned floats (B10G11R11_UFLOAT_PACK32)",
+        }
+    }
+
     /// Bytes per texel.
     pub fn texel_bytes(self) -> u32 {
         match self {

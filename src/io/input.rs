@@ -5,10 +5,8 @@
 
 use std::path::{Path, PathBuf};
 
-use super::format::PixelFormat;
-use super::limits::check_dimensions;
-use super::{exr, extension_of, hdr, ldr};
-use crate::cpu::equirect_to_cube::EquirectToCubeParams;
+use super::{exr, extension_of, hdr, ldr, read_file};
+use crate::plan::convert::EquirectToCubeParams;
 use crate::environment::{Cubemap, Environment, Equirect, EquirectReducer};
 use crate::math::cubemap::FACES;
 use crate::{Error, Result};
@@ -53,7 +51,7 @@ pub struct InputOptions {
 
 /// How many times an equirect `height` rows high is halved before a `face_size` cube is
 /// integrated from it: the level the conversion reads (see
-/// [`crate::cpu::equirect_to_cube::source_level`]).
+/// [`crate::plan::convert::source_level`]).
 pub fn reduction_levels(height: u32, face_size: u32) -> u32 {
     EquirectToCubeParams::new(face_size, 2 * height, height, 0.0).base_level
 }
@@ -198,17 +196,6 @@ pub struct LoadedEnvironment {
     pub warnings: Vec<String>,
 }
 
-fn read_file(path: &Path) -> Result<Vec<u8>> {
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-    if bytes.is_empty() {
-        return Err(Error::Decode {
-            path: path.to_path_buf(),
-            format: "input",
-            message: "the file is empty".into(),
-        });
-    }
-    Ok(bytes)
-}
 
 /// Reads any supported 2D image as linear RGB, by extension.
 pub fn read_image(path: &Path) -> Result<Equirect> {
@@ -277,9 +264,9 @@ fn sanitize_warning(path: &Path, (nan, neg, inf): (usize, usize, usize)) -> Opti
 /// The radiance factor 2^EV of the exposure, None for 0 EV; refuses EV outside ±64.
 fn exposure_scale(opts: &InputOptions) -> Result<Option<f32>> {
     if !opts.exposure_ev.is_finite() || opts.exposure_ev.abs() > 64.0 {
-        return Err(Error::InvalidParameter {
-            name: "--exposure",
-            message: format!("{} EV is outside -64..=64", opts.exposure_ev),
+        return Err(Error::InvalidOption {
+            option: "exposure_ev",
+            message: format!("{} EV is not from -64 to 64", opts.exposure_ev),
         });
     }
     Ok((opts.exposure_ev != 0.0).then(|| opts.exposure_ev.exp2()))
@@ -328,16 +315,42 @@ fn cross_to_cube(img: &Equirect, layout: &[(u32, u32); FACES], vertical: bool) -
     }
 }
 
+/// Refuses what is not a file to read, naming it: standard input (`-`, not supported), a
+/// folder, or a special file. A missing file is left to the reader's own error.
+pub fn check_input_file(path: &Path) -> Result<()> {
+    let not_a_file = |message: &str| {
+        Err(Error::UnsupportedInput {
+            path: path.to_path_buf(),
+            message: message.into(),
+        })
+    };
+    if path.as_os_str() == "-" {
+        return not_a_file("reading an environment from standard input is not supported: give a file");
+    }
+    match std::fs::metadata(path) {
+        Ok(m) if m.is_dir() => not_a_file("is a folder, not an environment file"),
+        Ok(m) if !m.is_file() => not_a_file("is not a regular file"),
+        _ => Ok(()),
+    }
+}
+
+/// The warning for an 8-bit or 16-bit image: it holds no light brighter than white.
+fn ldr_warning(path: &Path) -> String {
+    format!(
+        "{}: a PNG or JPEG holds no radiance above 1, so the sun and lamps light as dim patches and the bake's highlights are flat; bake an HDR image (.hdr, .exr) for real lighting",
+        path.display()
+    )
+}
+
 /// Loads one environment file: an equirect, a cross, or a KTX2/DDS/KTX 1 cubemap.
 pub fn load_environment(path: &Path, opts: &InputOptions) -> Result<LoadedEnvironment> {
+    check_input_file(path)?;
     let mut warnings = Vec::new();
     let ext = extension_of(path);
-    if matches!(ext.as_str(), "ktx2" | "dds" | "ktx") {
-        let mut cube = match ext.as_str() {
-            "ktx2" => read_ktx2_cube(path)?,
-            "dds" => read_dds_cube(path)?,
-            _ => crate::io::ktx1::read_cube(path)?,
-        };
+    if matches!(ext.as_str(), "png" | "jpg" | "jpeg") {
+        warnings.push(ldr_warning(path));
+    }
+    if let Some(mut cube) = super::cubemap::read_texture_cube(path)? {
         cube.levels.truncate(1);
         let mut rgb: Vec<[f32; 3]> = cube.levels[0].iter().map(|t| [t[0], t[1], t[2]]).collect();
         sanitize_with_warning(path, &mut rgb, &mut warnings);
@@ -426,8 +439,8 @@ pub fn load_input(path: &Path, opts: &InputOptions) -> Result<LoadedEnvironment>
 /// Loads six square face images in the order +X, −X, +Y, −Y, +Z, −Z.
 pub fn load_faces(paths: &[PathBuf], opts: &InputOptions) -> Result<LoadedEnvironment> {
     if paths.len() != FACES {
-        return Err(Error::InvalidParameter {
-            name: "--faces",
+        return Err(Error::InvalidOption {
+            option: "faces",
             message: format!(
                 "expected 6 face files (+X −X +Y −Y +Z −Z), got {}",
                 paths.len()
@@ -438,6 +451,12 @@ pub fn load_faces(paths: &[PathBuf], opts: &InputOptions) -> Result<LoadedEnviro
     let mut level = Vec::new();
     let mut size = 0;
     for (face, path) in paths.iter().enumerate() {
+        check_input_file(path)?;
+        let ldr = matches!(extension_of(path).as_str(), "png" | "jpg" | "jpeg");
+        if ldr && warnings.is_empty() {
+            // Once for the six faces.
+            warnings.push(ldr_warning(path));
+        }
         let mut img = read_image(path)?;
         if img.width != img.height {
             return Err(Error::UnsupportedInput {
@@ -469,220 +488,6 @@ pub fn load_faces(paths: &[PathBuf], opts: &InputOptions) -> Result<LoadedEnviro
             levels: vec![level],
         }),
         warnings,
-    })
-}
-
-fn check_cube_level0(
-    path: &Path,
-    format: &'static str,
-    n: u32,
-    bytes: usize,
-    pf: PixelFormat,
-) -> Result<()> {
-    check_dimensions(path, n, n)?;
-    let expected = FACES * (n as usize) * (n as usize) * pf.texel_bytes() as usize;
-    if bytes < expected {
-        return Err(Error::Decode {
-            path: path.to_path_buf(),
-            format,
-            message: format!("level 0 holds {bytes} bytes, {expected} expected (truncated?)"),
-        });
-    }
-    Ok(())
-}
-
-/// Refuses DFDs the `ktx2` crate (0.5) would panic on instead of erroring: a basic block
-/// whose texelBlockDimension byte is 255 (found by fuzzing, tests/fuzz_regressions.rs).
-fn precheck_ktx2_dfd(bytes: &[u8]) -> std::result::Result<(), String> {
-    let word = |at: usize| -> Option<u32> {
-        Some(u32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?))
-    };
-    let (Some(offset), Some(length)) = (word(48), word(52)) else {
-        return Err("too short for a KTX2 header".into());
-    };
-    let (start, end) = (offset as usize, offset as usize + length as usize);
-    if end > bytes.len() || length < 4 {
-        return Err("the data format descriptor lies outside the file".into());
-    }
-    let mut block = start + 4;
-    while block + 16 <= end {
-        let (Some(kind), Some(version)) = (word(block), word(block + 4)) else {
-            break;
-        };
-        let size = (version >> 16) as usize;
-        if kind == 0 && bytes[block + 12..block + 16].contains(&255) {
-            return Err(
-                "the data format descriptor's texel block dimensions are out of range".into(),
-            );
-        }
-        if size == 0 {
-            break;
-        }
-        block += size;
-    }
-    Ok(())
-}
-
-/// Reads level 0 of a KTX2 cubemap in one of splitsum's formats.
-pub fn read_ktx2_cube(path: &Path) -> Result<Cubemap> {
-    decode_ktx2_cube(path, &read_file(path)?)
-}
-
-/// Decodes level 0 of a KTX2 cubemap from `bytes` (`path` names it in errors).
-pub fn decode_ktx2_cube(path: &Path, bytes: &[u8]) -> Result<Cubemap> {
-    decode_ktx2_levels(path, bytes, 1)
-}
-
-/// Reads every level of a KTX2 cubemap (a prefiltered chain, as `bake` writes it).
-pub fn read_ktx2_cube_chain(path: &Path) -> Result<Cubemap> {
-    decode_ktx2_levels(path, &read_file(path)?, u32::MAX)
-}
-
-/// Decodes the first `max_levels` levels of a KTX2 cubemap from `bytes`; each level must
-/// be the full mip size of level 0 (a chain may stop before 1×1).
-fn decode_ktx2_levels(path: &Path, bytes: &[u8], max_levels: u32) -> Result<Cubemap> {
-    const F: &str = "KTX2";
-    let bad = |message: String| Error::Decode {
-        path: path.to_path_buf(),
-        format: F,
-        message,
-    };
-    precheck_ktx2_dfd(bytes).map_err(bad)?;
-    let reader = ::ktx2::Reader::new(bytes).map_err(|e| bad(e.to_string()))?;
-    let h = reader.header();
-    let unsupported = |message: String| Error::UnsupportedInput {
-        path: path.to_path_buf(),
-        message,
-    };
-    if h.face_count != 6
-        || h.pixel_width != h.pixel_height
-        || h.pixel_depth > 1
-        || h.layer_count > 1
-    {
-        return Err(unsupported(format!(
-            "KTX2 texture is {}×{} with {} faces; a cubemap (6 square faces) is expected",
-            h.pixel_width, h.pixel_height, h.face_count
-        )));
-    }
-    let vk = h.format.map(|f| f.value()).unwrap_or(0);
-    let pf = PixelFormat::from_vk_format(vk)
-        .filter(|f| f.texel_bytes() >= 4 && !matches!(f, PixelFormat::Rg16f | PixelFormat::Rg32f))
-        .ok_or_else(|| {
-            unsupported(format!(
-                "KTX2 format {:?} is not one splitsum reads (rgba16f, rgba32f, rgb9e5, rg11b10f)",
-                h.format
-            ))
-        })?;
-    let n0 = h.pixel_width;
-    check_dimensions(path, n0, n0)?;
-    let mut levels = Vec::new();
-    for (m, level) in reader.levels().enumerate().take(max_levels as usize) {
-        let n = (n0 >> m).max(1);
-        let exact = Cubemap::level_len(n) * pf.texel_bytes() as usize;
-        let data = match h.supercompression_scheme {
-            None => level.data.to_vec(),
-            Some(::ktx2::SupercompressionScheme::Zstandard) => {
-                // The header's uncompressed length must be exactly the level's size: it
-                // sizes the decompression buffer, so an absurd value must never reach the
-                // allocator.
-                if level.uncompressed_byte_length != exact as u64 {
-                    let (claimed, format) = (level.uncompressed_byte_length, pf.name());
-                    return Err(bad(format!(
-                        "level {m} claims {claimed} uncompressed bytes; a {n}×{n} {format} cube has {exact}"
-                    )));
-                }
-                zstd::bulk::decompress(level.data, exact).map_err(|e| bad(format!("zstd: {e}")))?
-            }
-            Some(other) => {
-                return Err(unsupported(format!(
-                    "KTX2 supercompression {other:?} is not supported"
-                )))
-            }
-        };
-        if m == 0 {
-            check_cube_level0(path, F, n, data.len(), pf)?;
-        } else if data.len() < exact {
-            return Err(bad(format!(
-                "level {m} holds {} bytes, {exact} expected (truncated?)",
-                data.len()
-            )));
-        }
-        levels.push(pf.decode(&data[..exact]));
-    }
-    if levels.is_empty() {
-        return Err(bad("no mip levels".into()));
-    }
-    Ok(Cubemap { size: n0, levels })
-}
-
-/// Reads level 0 of a DX10 DDS cubemap in one of splitsum's formats.
-pub fn read_dds_cube(path: &Path) -> Result<Cubemap> {
-    decode_dds_cube(path, &read_file(path)?)
-}
-
-/// Decodes level 0 of a DX10 DDS cubemap from `bytes` (`path` names it in errors).
-pub fn decode_dds_cube(path: &Path, bytes: &[u8]) -> Result<Cubemap> {
-    const F: &str = "DDS";
-    let bad = |message: String| Error::Decode {
-        path: path.to_path_buf(),
-        format: F,
-        message,
-    };
-    let dds = ddsfile::Dds::read(bytes).map_err(|e| bad(e.to_string()))?;
-    let unsupported = |message: String| Error::UnsupportedInput {
-        path: path.to_path_buf(),
-        message,
-    };
-    let is_cube = dds
-        .header10
-        .as_ref()
-        .is_some_and(|h| h.misc_flag.contains(ddsfile::MiscFlag::TEXTURECUBE));
-    let n = dds.get_width();
-    if !is_cube || dds.get_height() != n {
-        return Err(unsupported(
-            "DDS file is not a cubemap with a DX10 header".into(),
-        ));
-    }
-    let pf = dds
-        .header10
-        .as_ref()
-        .and_then(|h| PixelFormat::from_dxgi_format(h.dxgi_format as u32))
-        .filter(|f| !matches!(f, PixelFormat::Rg16f | PixelFormat::Rg32f))
-        .ok_or_else(|| {
-            unsupported(
-                "DDS format is not one splitsum reads (rgba16f, rgba32f, rgb9e5, rg11b10f)".into(),
-            )
-        })?;
-    check_dimensions(path, n, n)?;
-    // Faces are stored one after the other, each with all its mips. The mip count comes
-    // from the header, so it is bounded before the face stride is computed from it.
-    let mips = dds.get_num_mipmap_levels().max(1);
-    let full = Cubemap::full_mip_count(n);
-    if mips > full {
-        return Err(bad(format!(
-            "header claims {mips} mip levels; a {n}×{n} face has at most {full}"
-        )));
-    }
-    let texel = pf.texel_bytes() as usize;
-    let face_bytes = (n as usize) * (n as usize) * texel;
-    let stride: usize = (0..mips)
-        .map(|m| ((n >> m).max(1) as usize).pow(2) * texel)
-        .sum();
-    let data = &dds.data;
-    if data.len() < stride * (FACES - 1) + face_bytes {
-        return Err(bad(format!(
-            "holds {} bytes of texels, {} expected (truncated?)",
-            data.len(),
-            stride * FACES
-        )));
-    }
-    let mut level = Vec::with_capacity(Cubemap::level_len(n));
-    for face in 0..FACES {
-        level.extend(pf.decode(&data[face * stride..face * stride + face_bytes]));
-    }
-    Ok(Cubemap {
-        size: n,
-        levels: vec![level],
     })
 }
 

@@ -55,6 +55,11 @@ pub struct GlFormat {
 /// The KTX 1 description of `format`; `None` for formats Filament cannot load from KTX 1
 /// (RGB9_E5: its reader has no pixel type for `GL_UNSIGNED_INT_5_9_9_9_REV`) and for the
 /// two-channel LUT formats.
+/// Whether `format` can be stored in KTX 1 for Filament ([`gl_format`]).
+pub fn holds(format: PixelFormat) -> bool {
+    gl_format(format).is_some()
+}
+
 pub fn gl_format(format: PixelFormat) -> Option<GlFormat> {
     match format {
         PixelFormat::Rg11b10f => Some(GlFormat {
@@ -165,7 +170,9 @@ pub struct Ktx1 {
     pub height: u32,
     /// 1 or 6.
     pub faces: u32,
-    /// Key/value pairs in file order (values as stored, padding removed).
+    /// Key/value pairs in file order (values as stored, padding removed; the tests read
+    /// Filament's SH from them).
+    #[cfg_attr(not(feature = "internals"), allow(dead_code))]
     pub key_values: Vec<(String, Vec<u8>)>,
     /// Levels, largest first.
     pub levels: Vec<Vec<u8>>,
@@ -173,6 +180,7 @@ pub struct Ktx1 {
 
 impl Ktx1 {
     /// The value of `key`, if present.
+    #[cfg(any(test, feature = "internals"))]
     pub fn value(&self, key: &str) -> Option<&[u8]> {
         self.key_values
             .iter()

@@ -1,9 +1,16 @@
-//! KTX 2.0 writer (Khronos KTX File Format Specification 2.0): header, level index, a
-//! Khronos Basic Data Format Descriptor, a `KTXwriter` key/value entry, and the mip levels
-//! stored smallest first, each aligned to lcm(texel size, 4), optionally Zstandard
-//! supercompressed level by level.
+//! KTX 2.0 cubemaps (Khronos KTX File Format Specification 2.0). The writer: header, level
+//! index, a Khronos Basic Data Format Descriptor, a `KTXwriter` key/value entry, and the
+//! mip levels stored smallest first, each aligned to lcm(texel size, 4), optionally
+//! Zstandard supercompressed level by level. The reader (through the `ktx2` crate): a
+//! cube in one of splitsum's formats, level 0 or the whole chain.
+
+use std::path::Path;
 
 use super::format::{EncodedTexture, PixelFormat};
+use super::limits::{check_cube_level0, check_dimensions};
+use super::read_file;
+use crate::environment::Cubemap;
+use crate::{Error, Result};
 
 /// The 12-byte KTX 2.0 file identifier.
 pub const IDENTIFIER: [u8; 12] = [
@@ -213,4 +220,128 @@ pub fn encode(tex: &EncodedTexture, zstd_level: Option<i32>) -> std::io::Result<
         out.extend_from_slice(stored[m]);
     }
     Ok(out)
+}
+
+/// Refuses DFDs the `ktx2` crate (0.5) would panic on instead of erroring: a basic block
+/// whose texelBlockDimension byte is 255 (found by fuzzing, tests/fuzz_regressions.rs).
+fn precheck_ktx2_dfd(bytes: &[u8]) -> std::result::Result<(), String> {
+    let word = |at: usize| -> Option<u32> {
+        Some(u32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?))
+    };
+    let (Some(offset), Some(length)) = (word(48), word(52)) else {
+        return Err("too short for a KTX2 header".into());
+    };
+    let (start, end) = (offset as usize, offset as usize + length as usize);
+    if end > bytes.len() || length < 4 {
+        return Err("the data format descriptor lies outside the file".into());
+    }
+    let mut block = start + 4;
+    while block + 16 <= end {
+        let (Some(kind), Some(version)) = (word(block), word(block + 4)) else {
+            break;
+        };
+        let size = (version >> 16) as usize;
+        if kind == 0 && bytes[block + 12..block + 16].contains(&255) {
+            return Err(
+                "the data format descriptor's texel block dimensions are out of range".into(),
+            );
+        }
+        if size == 0 {
+            break;
+        }
+        block += size;
+    }
+    Ok(())
+}
+
+/// Reads level 0 of a KTX2 cubemap in one of splitsum's formats.
+pub fn read_cube(path: &Path) -> Result<Cubemap> {
+    decode_cube(path, &read_file(path)?)
+}
+
+/// Decodes level 0 of a KTX2 cubemap from `bytes` (`path` names it in errors).
+pub fn decode_cube(path: &Path, bytes: &[u8]) -> Result<Cubemap> {
+    decode_ktx2_levels(path, bytes, 1)
+}
+
+/// Reads every level of a KTX2 cubemap (a prefiltered chain, as `bake` writes it).
+pub fn read_cube_chain(path: &Path) -> Result<Cubemap> {
+    decode_ktx2_levels(path, &read_file(path)?, u32::MAX)
+}
+
+/// Decodes the first `max_levels` levels of a KTX2 cubemap from `bytes`; each level must
+/// be the full mip size of level 0 (a chain may stop before 1×1).
+fn decode_ktx2_levels(path: &Path, bytes: &[u8], max_levels: u32) -> Result<Cubemap> {
+    const F: &str = "KTX2";
+    let bad = |message: String| Error::Decode {
+        path: path.to_path_buf(),
+        format: F,
+        message,
+    };
+    precheck_ktx2_dfd(bytes).map_err(bad)?;
+    let reader = ::ktx2::Reader::new(bytes).map_err(|e| bad(e.to_string()))?;
+    let h = reader.header();
+    let unsupported = |message: String| Error::UnsupportedInput {
+        path: path.to_path_buf(),
+        message,
+    };
+    if h.face_count != 6
+        || h.pixel_width != h.pixel_height
+        || h.pixel_depth > 1
+        || h.layer_count > 1
+    {
+        return Err(unsupported(format!(
+            "KTX2 texture is {}×{} with {} faces; a cubemap (6 square faces) is expected",
+            h.pixel_width, h.pixel_height, h.face_count
+        )));
+    }
+    let vk = h.format.map(|f| f.value()).unwrap_or(0);
+    let pf = PixelFormat::from_vk_format(vk)
+        .filter(|f| f.texel_bytes() >= 4 && !matches!(f, PixelFormat::Rg16f | PixelFormat::Rg32f))
+        .ok_or_else(|| {
+            unsupported(format!(
+                "KTX2 format {:?} is not one splitsum reads (rgba16f, rgba32f, rgb9e5, rg11b10f)",
+                h.format
+            ))
+        })?;
+    let n0 = h.pixel_width;
+    check_dimensions(path, n0, n0)?;
+    let mut levels = Vec::new();
+    for (m, level) in reader.levels().enumerate().take(max_levels as usize) {
+        let n = (n0 >> m).max(1);
+        let exact = Cubemap::level_len(n) * pf.texel_bytes() as usize;
+        let data = match h.supercompression_scheme {
+            None => level.data.to_vec(),
+            Some(::ktx2::SupercompressionScheme::Zstandard) => {
+                // The header's uncompressed length must be exactly the level's size: it
+                // sizes the decompression buffer, so an absurd value must never reach the
+                // allocator.
+                if level.uncompressed_byte_length != exact as u64 {
+                    let (claimed, format) = (level.uncompressed_byte_length, pf.name());
+                    return Err(bad(format!(
+                        "level {m} claims {claimed} uncompressed bytes; a {n}×{n} {format} cube has {exact}"
+                    )));
+                }
+                zstd::bulk::decompress(level.data, exact).map_err(|e| bad(format!("zstd: {e}")))?
+            }
+            Some(other) => {
+                return Err(unsupported(format!(
+                    "KTX2 supercompression {other:?} is not supported"
+                )))
+            }
+        };
+        if m == 0 {
+            check_cube_level0(path, F, n, data.len(), pf)?;
+        } else if data.len() < exact {
+            return Err(bad(format!(
+                "level {m} holds {} bytes, {exact} expected (truncated?)",
+                data.len()
+            )));
+        }
+        levels.push(pf.decode(&data[..exact]));
+    }
+    if levels.is_empty() {
+        return Err(bad("no mip levels".into()));
+    }
+    Ok(Cubemap { size: n0, levels })
 }

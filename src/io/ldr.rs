@@ -5,28 +5,8 @@ use std::io::Cursor;
 use std::path::Path;
 
 use crate::environment::Equirect;
+use crate::math::color::srgb_to_linear;
 use crate::{Error, Result};
-
-/// sRGB-encoded value in [0, 1] to linear.
-pub fn srgb_to_linear(c: f32) -> f32 {
-    if c <= 0.04045 {
-        c / 12.92
-    } else {
-        ((c + 0.055) / 1.055).powf(2.4)
-    }
-}
-
-/// The sRGB transfer function (IEC 61966-2-1) of a linear value in [0, 1] (clamped), as
-/// 8 bits.
-pub fn srgb8(v: f32) -> u8 {
-    let v = v.clamp(0.0, 1.0);
-    let e = if v <= 0.003_130_8 {
-        12.92 * v
-    } else {
-        1.055 * v.powf(1.0 / 2.4) - 0.055
-    };
-    (e * 255.0).round() as u8
-}
 
 /// Decodes a PNG or JPEG; the size is checked from the header before decoding.
 pub fn decode(path: &Path, bytes: &[u8], format: &'static str) -> Result<Equirect> {

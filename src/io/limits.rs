@@ -2,6 +2,8 @@
 
 use std::path::Path;
 
+use super::format::PixelFormat;
+use crate::math::cubemap::FACES;
 use crate::{Error, Result};
 
 /// Smallest accepted width and height.
@@ -30,6 +32,26 @@ pub fn check_dimensions(path: &Path, width: u32, height: u32) -> Result<()> {
         return refuse(format!(
             "image is {width}×{height}; splitsum accepts at most {MAX_DIMENSION} texels per side and {MAX_TEXELS} texels"
         ));
+    }
+    Ok(())
+}
+
+/// Checks that level 0 of an n² cube in `pf` (`bytes` long) is complete and within the limits.
+pub fn check_cube_level0(
+    path: &Path,
+    format: &'static str,
+    n: u32,
+    bytes: usize,
+    pf: PixelFormat,
+) -> Result<()> {
+    check_dimensions(path, n, n)?;
+    let expected = FACES * (n as usize) * (n as usize) * pf.texel_bytes() as usize;
+    if bytes < expected {
+        return Err(Error::Decode {
+            path: path.to_path_buf(),
+            format,
+            message: format!("level 0 holds {bytes} bytes, {expected} expected (truncated?)"),
+        });
     }
     Ok(())
 }

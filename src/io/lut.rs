@@ -5,7 +5,7 @@ use std::path::Path;
 
 use super::format::{EncodedTexture, PixelFormat};
 use super::{atomic::write_atomic, dds, exr, extension_of, ktx2, png};
-use crate::lut::BrdfLut;
+use crate::plan::lut::BrdfLut;
 use crate::{Error, Result};
 
 /// Extensions a LUT can be written as.
@@ -76,6 +76,27 @@ pub fn encode_lut(path: &Path, lut: &BrdfLut, opts: LutWriteOptions) -> Result<V
     }
 }
 
+/// The warning for writing `lut` as the 16-bit PNG `path`, when the PNG cannot hold some
+/// of its values: those above 1 by more than half a step of the format (1/131070) are
+/// stored as 1. (A default-model table reaches 1 only by rounding, and is not clipped.)
+pub fn png_clip_warning(path: &Path, lut: &BrdfLut) -> Option<String> {
+    if extension_of(path) != "png" {
+        return None;
+    }
+    let limit = 1.0 + 0.5 / 65535.0;
+    let (clipped, largest) = lut
+        .values()
+        .filter(|&v| v > limit)
+        .fold((0usize, 0.0f32), |(n, m), v| (n + 1, m.max(v)));
+    (clipped > 0).then(|| {
+        format!(
+            "{}: {clipped} values of the {} model are above 1 (the largest {largest:.3}) and are stored as 1 in a 16-bit PNG",
+            path.display(),
+            lut.model.name()
+        )
+    })
+}
+
 /// Encodes and writes `lut` to `path` atomically.
 pub fn write_lut(path: &Path, lut: &BrdfLut, opts: LutWriteOptions) -> Result<()> {
     let bytes = encode_lut(path, lut, opts)?;
@@ -90,7 +111,7 @@ pub fn read_lut_png(path: &Path) -> Result<BrdfLut> {
         format: "PNG",
         message,
     })?;
-    crate::lut::validate_lut_size(width, height)?;
+    crate::plan::lut::validate_lut_size(width, height)?;
     Ok(BrdfLut::new(
         width,
         height,

@@ -16,8 +16,9 @@ pub mod limits;
 pub mod lut;
 pub mod png;
 pub mod sh_text;
+pub mod staging;
 
-pub use format::{EncodedTexture, PixelFormat};
+pub use format::PixelFormat;
 
 use std::path::Path;
 
@@ -47,4 +48,25 @@ pub fn extension_of(path: &Path) -> String {
         .and_then(|e| e.to_str())
         .unwrap_or("")
         .to_ascii_lowercase()
+}
+
+/// Reads a whole input file; an empty file is an error naming it.
+pub fn read_file(path: &Path) -> crate::Result<Vec<u8>> {
+    let bytes = std::fs::read(path).map_err(|e| crate::Error::io(path, e))?;
+    if bytes.is_empty() {
+        return Err(crate::Error::Decode {
+            path: path.to_path_buf(),
+            format: "input",
+            message: "the file is empty".into(),
+        });
+    }
+    Ok(bytes)
+}
+
+/// Pretty JSON with a final newline. Serialising splitsum's plain structs cannot fail, and
+/// non-finite floats (which sanitised inputs never give) become `null`.
+pub fn to_json(value: &impl serde::Serialize) -> String {
+    let mut s = serde_json::to_string_pretty(value).unwrap_or_default();
+    s.push('\n');
+    s
 }

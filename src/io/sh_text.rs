@@ -39,6 +39,7 @@ pub fn sh_txt(prescaled: &[[f32; 3]; 9]) -> String {
     s
 }
 
+#[cfg(any(test, feature = "internals"))]
 /// Parses nine "r g b" triples (either form: separators are whitespace, commas,
 /// parentheses and semicolons; `//` comments are skipped), as Filament's readers do.
 pub fn parse(text: &str) -> Option<[[f32; 3]; 9]> {

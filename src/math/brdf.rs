@@ -1,7 +1,7 @@
 //! Cook-Torrance microfacet terms used by the split-sum integrals. Mirror of
 //! `shaders/common/brdf.wgsl` (same function names).
 //!
-//! Conventions (DESIGN.md "Roughness, BRDF"): perceptual roughness r in [0, 1], α = r²,
+//! Conventions (docs/conventions.md, "Roughness, BRDF"): perceptual roughness r in [0, 1], α = r²,
 //! Smith/Schlick-GGX geometry with the IBL remapping k = r²/2 (Karis 2013), Fresnel-Schlick.
 
 use std::f32::consts::PI;
@@ -24,12 +24,14 @@ pub fn d_ggx(n_dot_h: f32, alpha: f32) -> f32 {
     a2 / (PI * d * d)
 }
 
+#[cfg(any(test, feature = "internals"))]
 /// GGX D(h) times n·l in a prefiltered sum with n = v, for n·l > 0: |n + l|² = 2 + 2 n·l, so
 /// n·h = (1 + n·l) / |n + l| = √((1 + n·l) / 2).
 pub fn ggx_prefilter_weight(n_dot_l: f32, alpha: f32) -> f32 {
     d_ggx((0.5 * (1.0 + n_dot_l)).sqrt(), alpha) * n_dot_l
 }
 
+#[cfg(any(test, feature = "internals"))]
 /// The Charlie sheen distribution (Estevez & Kulla 2017), D(h) = (2 + 1/α) sin^(1/α)θh /
 /// (2π), times n·l, in a prefiltered sum with n = v, up to a constant factor: there
 /// sin²θh = (1 − n·l)/2, so D ∝ (1 − n·l)^(1/(2α)). The dropped factor
@@ -113,6 +115,7 @@ pub fn fresnel_schlick_weight(v_dot_h: f32) -> f32 {
     m2 * m2 * m
 }
 
+#[cfg(any(test, feature = "internals"))]
 /// Full Fresnel-Schlick for a given F0: F0 + (1 − F0)(1 − v·h)⁵.
 pub fn fresnel_schlick(f0: f32, v_dot_h: f32) -> f32 {
     let w = fresnel_schlick_weight(v_dot_h);

@@ -1,7 +1,7 @@
 //! Directions, equirectangular and cube-face mappings, texel solid angles. Mirror of
 //! `shaders/common/cubemap.wgsl` (same function names).
 //!
-//! Conventions (DESIGN.md "Directions, equirectangular maps, cubemaps"): right-handed,
+//! Conventions (docs/conventions.md, "Directions and equirectangular maps" and "Cube faces"): right-handed,
 //! +Y up. Equirect: u = 0.5 + atan2(d.z, d.x)/(2π), v = acos(d.y)/π, v = 0 the top row.
 //! Cube faces +X, −X, +Y, −Y, +Z, −Z oriented as in the Vulkan/OpenGL/D3D cube-map face
 //! selection table (Vulkan spec, "Cube Map Face Selection"), rows top to bottom.
@@ -63,7 +63,7 @@ pub fn cube_face_coords(d: [f32; 3]) -> (u32, f32, f32) {
 /// a quarter turn, or a product of them). It maps the cube's texel centres onto texel
 /// centres, so a cube re-expressed through one is an exact permutation of its texels
 /// ([`crate::environment::Cubemap::remapped`]); engines that read cubes in another frame
-/// than DESIGN.md's differ from it by one of these (`crate::target`).
+/// than the generic one differ from it by one of these (`crate::targets`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct AxisMap {
     /// Which input axis each output component takes (a permutation of 0, 1, 2).
@@ -128,6 +128,7 @@ pub fn normalize(v: [f32; 3]) -> [f32; 3] {
     [v[0] / l, v[1] / l, v[2] / l]
 }
 
+#[cfg(any(test, feature = "internals"))]
 /// Equirect (u, v) ∈ [0, 1]² of unit direction `d`: u from atan2(z, x), v from
 /// acos(y) = atan2(√(x² + z²), y) (both with [`atan2_precise`]).
 pub fn equirect_uv(d: [f32; 3]) -> (f32, f32) {

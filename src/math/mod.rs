@@ -1,8 +1,10 @@
-//! CPU side of the maths shared with `shaders/common/*.wgsl`. Each Rust function here has a
-//! WGSL twin with the same name, so the CPU reference and the GPU kernels compute the same
-//! thing step by step.
+//! CPU side of the maths shared with `shaders/common/*.wgsl`. Each Rust function of the
+//! shared modules has a WGSL twin with the same name, so the CPU reference and the GPU
+//! kernels compute the same thing step by step; `color` (the sRGB transfer functions) and
+//! `quadrature` are used on the CPU only.
 
 pub mod brdf;
+pub mod color;
 pub mod cubemap;
 pub mod quadrature;
 pub mod sampling;

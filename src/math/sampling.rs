@@ -112,6 +112,7 @@ pub fn cross(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
     ]
 }
 
+#[cfg(any(test, feature = "internals"))]
 /// A point of the unit disk from a point of [0, 1)²: (√u₁ cos 2πu₂, √u₁ sin 2πu₂), the
 /// concentric-free polar map both sphere samplers below start from. The kernels read these
 /// points from a table built here (GPU sin/cos are only accurate to ~1e-3 absolute).

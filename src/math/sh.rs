@@ -1,6 +1,6 @@
 //! Real spherical harmonics, bands 0–2 (9 coefficients), in the order (l, m) = (0,0),
 //! (1,−1), (1,0), (1,1), (2,−2), (2,−1), (2,0), (2,1), (2,2), evaluated on world-space
-//! direction components (DESIGN.md): Y00 = ½√(1/π), Y1m = √(3/(4π)) {y, z, x},
+//! direction components (docs/conventions.md, "Spherical harmonics"): Y00 = ½√(1/π), Y1m = √(3/(4π)) {y, z, x},
 //! Y2,−2 = ½√(15/π) xy, Y2,−1 = ½√(15/π) yz, Y20 = ¼√(5/π)(3z² − 1), Y21 = ½√(15/π) xz,
 //! Y22 = ¼√(15/π)(x² − y²) (Sloan, "Stupid Spherical Harmonics Tricks", 2008).
 //! The clamped cosine's band factors Â = (π, 2π/3, π/4) (Ramamoorthi & Hanrahan 2001).
@@ -61,6 +61,7 @@ pub fn irradiance_band_factor(band: usize) -> f32 {
     [PI, 2.0 * PI / 3.0, PI / 4.0][band] / PI
 }
 
+#[cfg(any(test, feature = "internals"))]
 /// Evaluates 9 RGB coefficients at `d`.
 pub fn sh_eval(coeffs: &[[f32; 3]; 9], d: [f32; 3]) -> [f32; 3] {
     let y = sh_basis(d);

@@ -4,9 +4,9 @@
 //! reading the source cube's
 //! solid-angle-correct mip chain trilinearly (seamlessly) at the level matching each sample.
 
-use crate::cpu::cube_downsample::build_mips;
-use crate::cpu::cube_sample::{cube_texel_solid_angle_at, sample_cube_lod};
-use crate::cpu::equirect_to_cube::fill_cube_level;
+use crate::environment::mips::build_mips;
+use crate::environment::sample::{cube_texel_solid_angle_at, sample_cube_lod};
+use crate::environment::walk::fill_cube_level;
 use crate::environment::Cubemap;
 use crate::math::cubemap::{
     cube_face_direction, cube_face_jacobian, cube_texel_solid_angle, normalize, rotate_y,

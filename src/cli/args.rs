@@ -1,8 +1,130 @@
-//! Command-line definitions (clap derive). Parsing only; `main.rs` calls the library.
+//! Command-line definitions (clap derive). Parsing only; the commands call the library.
+//! The target, pixel format and LUT model values and each target's defaults in `--help`
+//! come from the library's tables.
 
 use std::path::PathBuf;
 
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand, ValueEnum};
+use splitsum::{LutModel, PixelFormat, Target, CUBE_PIXEL_FORMATS, TARGETS};
+
+/// `--target`'s values: the names of [`TARGETS`], each with its summary.
+fn target_parser() -> impl TypedValueParser<Value = &'static Target> {
+    PossibleValuesParser::new(
+        TARGETS
+            .iter()
+            .map(|t| PossibleValue::new(t.name).help(t.summary)),
+    )
+    .map(|name| Target::by_name(&name).unwrap_or(&splitsum::GENERIC))
+}
+
+/// `--pixel-format`'s values.
+fn pixel_format_parser() -> impl TypedValueParser<Value = PixelFormat> {
+    PossibleValuesParser::new(
+        CUBE_PIXEL_FORMATS
+            .iter()
+            .map(|(name, f)| PossibleValue::new(*name).help(f.description())),
+    )
+    .map(|name| {
+        CUBE_PIXEL_FORMATS
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map_or(PixelFormat::Rgba16f, |(_, f)| *f)
+    })
+}
+
+/// `--model`'s values.
+fn lut_model_parser() -> impl TypedValueParser<Value = LutModel> {
+    PossibleValuesParser::new(
+        LutModel::ALL
+            .iter()
+            .map(|m| PossibleValue::new(m.name()).help(m.description())),
+    )
+    .map(|name| LutModel::by_name(&name).unwrap_or_default())
+}
+
+/// `target: value` for every target, joined.
+fn per_target(value: impl Fn(&Target) -> String) -> String {
+    TARGETS
+        .iter()
+        .map(|t| format!("{} {}", t.name, value(t)))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// `--target`'s help.
+fn target_help() -> String {
+    "The engine the files are for: its orientation, chain layout, default formats and file set (README, \"Engine targets\")".into()
+}
+
+/// `--min-mip-size`'s help, with each target's default.
+fn min_mip_size_help() -> String {
+    format!(
+        "Edge of the smallest specular mip (power of two; 1 for the full chain to 1×1): the chain has log2(specular-size / min-mip-size) + 1 levels [default: the target's: {}]",
+        per_target(|t| t.min_mip_size.to_string())
+    )
+}
+
+/// `--pixel-format`'s help, with each target's default.
+fn pixel_format_help() -> String {
+    format!(
+        "Pixel format of KTX2/DDS/KTX outputs [default: the target's: {}; refused where the target's file has none: {}]",
+        per_target_where(|t| t.files.has_pixel_format, |t| t.pixel_format.name().into()),
+        names_where(|t| !t.files.has_pixel_format)
+    )
+}
+
+/// `--lut`'s help, with each target's default.
+fn lut_help() -> String {
+    format!(
+        "Write the target's BRDF LUT files [default: yes for {}; no for {}]. Files: {}",
+        names_where(|t| t.lut),
+        names_where(|t| !t.lut),
+        per_target(|t| t
+            .luts
+            .iter()
+            .map(|l| l.file)
+            .collect::<Vec<_>>()
+            .join(" + "))
+    )
+}
+
+/// `--sh`'s help, with each target's default.
+fn sh_help() -> String {
+    format!(
+        "Write the SH (sh.json; Filament and Babylon carry them in their own file) [default: yes for {}; no for {}]",
+        names_where(|t| t.sh),
+        names_where(|t| !t.sh)
+    )
+}
+
+/// `--zstd`'s help, with each target's default.
+fn zstd_help() -> String {
+    format!(
+        "KTX2: Zstandard-supercompress each level (LEVEL 1–22, default 10) [default: the target's: {}]",
+        per_target(|t| t.zstd.map_or("none".into(), |l| format!("zstd {l}")))
+    )
+}
+
+/// The names of the targets where `pick` holds.
+fn names_where(pick: impl Fn(&Target) -> bool) -> String {
+    let names: Vec<&str> = TARGETS.iter().filter(|t| pick(t)).map(|t| t.name).collect();
+    if names.is_empty() {
+        "none".into()
+    } else {
+        names.join(", ")
+    }
+}
+
+/// [`per_target`] for the targets where `pick` holds.
+fn per_target_where(pick: impl Fn(&Target) -> bool, value: impl Fn(&Target) -> String) -> String {
+    TARGETS
+        .iter()
+        .filter(|t| pick(t))
+        .map(|t| format!("{} {}", t.name, value(t)))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
 
 /// Bakes image-based lighting for physically based renderers.
 ///
@@ -92,29 +214,23 @@ pub struct BakeArgs {
     pub inputs: Vec<PathBuf>,
 
     /// Output folder; each input gets a folder named after its stem.
-    #[arg(short, long, default_value = "out")]
+    #[arg(
+        short,
+        long,
+        default_value = "out",
+        alias = "outdir",
+        alias = "out-dir"
+    )]
     pub output: PathBuf,
 
     /// Specular cube edge (power of two).
     #[arg(long, default_value_t = 256)]
     pub specular_size: u32,
 
-    /// The engine the files are for: generic (DESIGN.md's conventions), bevy (Bevy 0.19:
-    /// z mirrored, rgb9e5 + zstd, no LUT or SH), three (three.js r187: x mirrored, a PMREM
-    /// chain to 8×8 at r = 1 − √(1 − m/(levels − 1)), no irradiance cube or LUT), filament
-    /// (cmgen's files: <stem>_ibl.ktx with the SH, <stem>_skybox.ktx and sh.txt, KTX 1
-    /// rg11b10f, a quarter turn about +Y, the chain to 16×16 at three's roughness), babylon
-    /// (<stem>.env: the whole chain as RGBD PNGs at Babylon's roughness per mip and the SH as
-    /// its spherical polynomial, x and z swapped), gltf (the glTF Sample Viewer's
-    /// glTF-IBL-Sampler folders: lambertian, ggx and a Charlie sheen chain to 16×16, and its
-    /// three LUTs).
-    #[arg(long, value_enum, default_value_t = TargetArg::Generic)]
-    pub target: TargetArg,
+    #[arg(long, default_value = "generic", value_parser = target_parser(), help = target_help())]
+    pub target: &'static Target,
 
-    /// Edge of the smallest specular mip (power of two; 1 for the full chain to 1×1): the
-    /// chain has log2(specular-size / min-mip-size) + 1 levels [default: 4; three: 8;
-    /// filament and gltf: 16; babylon: 1, the only one it takes].
-    #[arg(long)]
+    #[arg(long, help = min_mip_size_help())]
     pub min_mip_size: Option<u32>,
 
     /// Irradiance cube edge (power of two).
@@ -126,26 +242,20 @@ pub struct BakeArgs {
     #[arg(long, value_enum, default_value_t = ContainerArg::Ktx2)]
     pub container: ContainerArg,
 
-    /// Pixel format of KTX2/DDS/KTX outputs [default: the target's: rgba16f; bevy: rgb9e5;
-    /// filament: rg11b10f; refused for babylon, whose .env is RGBD].
-    #[arg(long, value_enum)]
-    pub pixel_format: Option<PixelFormatArg>,
+    #[arg(long, value_parser = pixel_format_parser(), help = pixel_format_help())]
+    pub pixel_format: Option<PixelFormat>,
 
     #[command(flatten)]
     pub zstd: ZstdArgs,
 
-    /// Write the BRDF LUT (the target's default: generic yes as brdf_lut.png; gltf yes as
-    /// lut_ggx.png, lut_charlie.png and lut_sheen_E.png; bevy, three, filament and babylon
-    /// no, and three's is brdf_lut.ktx2, RG16F).
-    #[arg(long, conflicts_with = "no_lut")]
+    #[arg(long, conflicts_with = "no_lut", help = lut_help())]
     pub lut: bool,
 
     /// Do not write the BRDF LUT.
     #[arg(long)]
     pub no_lut: bool,
 
-    /// Write sh.json (the target's default: generic and three yes, bevy no).
-    #[arg(long, conflicts_with = "no_sh")]
+    #[arg(long, conflicts_with = "no_sh", help = sh_help())]
     pub sh: bool,
 
     /// Do not write sh.json.
@@ -153,7 +263,7 @@ pub struct BakeArgs {
     pub no_sh: bool,
 
     /// GGX samples per texel for the importance-sampled (low-roughness) specular levels.
-    #[arg(long, default_value_t = splitsum::cpu::prefilter_specular::DEFAULT_SAMPLES)]
+    #[arg(long, default_value_t = splitsum::BakeOptions::default().samples)]
     pub samples: u32,
 
     /// Also render preview.png into each output folder (see `splitsum preview`).
@@ -172,7 +282,8 @@ pub struct BakeArgs {
     #[command(flatten)]
     pub preview_render: PreviewRenderArgs,
 
-    /// No progress bars.
+    /// Print nothing on success (no progress bar, no summary line); warnings and errors
+    /// are still printed.
     #[arg(short, long)]
     pub quiet: bool,
 
@@ -188,11 +299,11 @@ pub struct BakeArgs {
 pub struct PreviewRenderArgs {
     /// Quasi-Monte Carlo points per lobe and pixel of the ground truth (its cost grows
     /// with them; 0 renders the split-sum alone, without the truth or the comparison).
-    #[arg(long, default_value_t = splitsum::cpu::preview_truth::DEFAULT_TRUTH_SAMPLES)]
+    #[arg(long, default_value_t = splitsum::PreviewOptions::default().truth_samples)]
     pub truth_samples: u32,
 
     /// Edge of one sphere's cell in pixels.
-    #[arg(long, default_value_t = splitsum::preview::scene::DEFAULT_CELL)]
+    #[arg(long, default_value_t = splitsum::PreviewOptions::default().cell)]
     pub preview_cell: u32,
 }
 
@@ -240,12 +351,12 @@ pub enum ContainerArg {
     Exr,
 }
 
-impl From<ContainerArg> for splitsum::bake::Container {
+impl From<ContainerArg> for splitsum::Container {
     fn from(c: ContainerArg) -> Self {
         match c {
-            ContainerArg::Ktx2 => splitsum::bake::Container::Ktx2,
-            ContainerArg::Dds => splitsum::bake::Container::Dds,
-            ContainerArg::Exr => splitsum::bake::Container::Exr,
+            ContainerArg::Ktx2 => splitsum::Container::Ktx2,
+            ContainerArg::Dds => splitsum::Container::Dds,
+            ContainerArg::Exr => splitsum::Container::Exr,
         }
     }
 }
@@ -271,57 +382,19 @@ pub struct LutArgs {
     pub output: PathBuf,
 
     /// Width and height of the table in texels.
-    #[arg(long, default_value_t = 512,
-          value_parser = clap::value_parser!(u32).range(1..=splitsum::lut::MAX_LUT_SIZE as i64))]
+    #[arg(long, default_value_t = 512)]
     pub size: u32,
 
     /// KTX2/DDS: store 32-bit floats instead of 16-bit.
     #[arg(long = "f32")]
     pub f32: bool,
 
-    /// What the two channels hold (README, "LUT models").
-    #[arg(long, value_enum, default_value_t = LutModelArg::SchlickGgx)]
-    pub model: LutModelArg,
+    /// What the channels hold (docs/conventions.md, "BRDF LUT").
+    #[arg(long, default_value = "schlick-ggx", value_parser = lut_model_parser())]
+    pub model: LutModel,
 
     #[command(flatten)]
     pub common: CommonArgs,
-}
-
-/// `--model` values of `splitsum lut`.
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum LutModelArg {
-    /// (A, B) scale and bias, Smith/Schlick-GGX with k = r²/2 (Karis 2013).
-    SchlickGgx,
-    /// (A, B) with the height-correlated Smith visibility (Heitz 2014).
-    SmithCorrelated,
-    /// (∫Fc·V, ∫V), Schlick-GGX: specular = mix(x, y, f0), energy compensation 1 + f0 (1/y − 1).
-    MultiscatterSchlickGgx,
-    /// (∫Fc·V, ∫V), height-correlated Smith: Filament's DFG (R, G).
-    MultiscatterSmithCorrelated,
-    /// (E, 0): the Charlie sheen albedo with the Ashikhmin visibility (Filament's cloth
-    /// DFG channel, glTF-IBL-Sampler's lut_charlie); exceeds 1 near grazing: use .exr or .ktx2.
-    Charlie,
-    /// (E, 0): the KHR_materials_sheen albedo (Charlie D, V_Sheen), the glTF Sample
-    /// Viewer's lut_sheen_E quantity.
-    SheenAlbedo,
-    /// Filament's three-channel DFG: R, G as multiscatter-smith-correlated, B the cloth
-    /// albedo as charlie (cmgen --ibl-dfg-multiscatter --ibl-dfg-cloth).
-    FilamentDfg,
-}
-
-impl From<LutModelArg> for splitsum::lut::LutModel {
-    fn from(m: LutModelArg) -> Self {
-        use splitsum::lut::LutModel as M;
-        match m {
-            LutModelArg::SchlickGgx => M::SchlickGgx,
-            LutModelArg::SmithCorrelated => M::SmithCorrelated,
-            LutModelArg::MultiscatterSchlickGgx => M::MultiscatterSchlickGgx,
-            LutModelArg::MultiscatterSmithCorrelated => M::MultiscatterSmithCorrelated,
-            LutModelArg::Charlie => M::Charlie,
-            LutModelArg::SheenAlbedo => M::SheenAlbedo,
-            LutModelArg::FilamentDfg => M::FilamentDfg,
-        }
-    }
 }
 
 /// Options that read an environment.
@@ -373,13 +446,11 @@ pub struct CubemapArgs {
     pub mips: bool,
 
     /// The engine the cube is for: its orientation and default pixel format (see bake).
-    #[arg(long, value_enum, default_value_t = TargetArg::Generic)]
-    pub target: TargetArg,
+    #[arg(long, default_value = "generic", value_parser = target_parser())]
+    pub target: &'static Target,
 
-    /// Pixel format of KTX2/DDS/KTX outputs [default: the target's: rgba16f; bevy: rgb9e5;
-    /// filament: rg11b10f].
-    #[arg(long, value_enum)]
-    pub pixel_format: Option<PixelFormatArg>,
+    #[arg(long, value_parser = pixel_format_parser(), help = pixel_format_help())]
+    pub pixel_format: Option<PixelFormat>,
 
     #[command(flatten)]
     pub zstd: ZstdArgs,
@@ -395,12 +466,12 @@ pub struct CubemapArgs {
     pub common: CommonArgs,
 }
 
-/// KTX2 supercompression, defaulting to the target's (bevy and three: zstd 10).
+/// KTX2 supercompression, defaulting to the target's.
 #[derive(Debug, Args)]
 pub struct ZstdArgs {
-    /// KTX2: Zstandard-supercompress each level (LEVEL 1–22, default 10).
     #[arg(long, value_name = "LEVEL", num_args = 0..=1, default_missing_value = "10",
-          value_parser = clap::value_parser!(i32).range(1..=22), conflicts_with = "no_zstd")]
+          value_parser = clap::value_parser!(i32).range(1..=22), conflicts_with = "no_zstd",
+          help = zstd_help())]
     pub zstd: Option<i32>,
 
     /// KTX2: no supercompression, whatever the target's default.
@@ -410,67 +481,11 @@ pub struct ZstdArgs {
 
 impl ZstdArgs {
     /// The Zstandard level for `target`.
-    pub fn level(&self, target: &splitsum::target::Target) -> Option<i32> {
+    pub fn level(&self, target: &Target) -> Option<i32> {
         if self.no_zstd {
             None
         } else {
             self.zstd.or(target.zstd)
-        }
-    }
-}
-
-/// `--target` values.
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum TargetArg {
-    /// DESIGN.md's conventions.
-    Generic,
-    /// Bevy 0.19.
-    Bevy,
-    /// three.js r187.
-    Three,
-    /// Filament (cmgen's KTX 1 files).
-    Filament,
-    /// Babylon.js (a .env file).
-    Babylon,
-    /// The glTF Sample Viewer (glTF-IBL-Sampler's files).
-    Gltf,
-}
-
-impl From<TargetArg> for &'static splitsum::target::Target {
-    fn from(t: TargetArg) -> Self {
-        use splitsum::target as t_;
-        match t {
-            TargetArg::Generic => &t_::GENERIC,
-            TargetArg::Bevy => &t_::BEVY,
-            TargetArg::Three => &t_::THREE,
-            TargetArg::Filament => &t_::FILAMENT,
-            TargetArg::Babylon => &t_::BABYLON,
-            TargetArg::Gltf => &t_::GLTF,
-        }
-    }
-}
-
-/// `--pixel-format` values.
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum PixelFormatArg {
-    /// 4 × 16-bit float (R16G16B16A16_SFLOAT).
-    Rgba16f,
-    /// 4 × 32-bit float (R32G32B32A32_SFLOAT).
-    Rgba32f,
-    /// Shared exponent (E5B9G9R9_UFLOAT_PACK32).
-    Rgb9e5,
-    /// Packed unsigned floats (B10G11R11_UFLOAT_PACK32).
-    Rg11b10f,
-}
-
-impl From<PixelFormatArg> for splitsum::io::PixelFormat {
-    fn from(p: PixelFormatArg) -> Self {
-        use splitsum::io::PixelFormat as P;
-        match p {
-            PixelFormatArg::Rgba16f => P::Rgba16f,
-            PixelFormatArg::Rgba32f => P::Rgba32f,
-            PixelFormatArg::Rgb9e5 => P::Rgb9e5,
-            PixelFormatArg::Rg11b10f => P::Rg11b10f,
         }
     }
 }
@@ -486,9 +501,9 @@ pub enum LayoutArg {
     Equirect,
 }
 
-impl From<LayoutArg> for splitsum::io::cubemap::CubeLayout {
+impl From<LayoutArg> for splitsum::CubeLayout {
     fn from(l: LayoutArg) -> Self {
-        use splitsum::io::cubemap::CubeLayout as L;
+        use splitsum::CubeLayout as L;
         match l {
             LayoutArg::Faces => L::Faces,
             LayoutArg::Cross => L::Cross,

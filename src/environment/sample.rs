@@ -209,7 +209,7 @@ pub(crate) fn patterned_chain(size: u32, mips: u32) -> Cubemap {
             })
             .collect()],
     };
-    crate::cpu::cube_downsample::build_mips(&mut cube, mips);
+    crate::environment::mips::build_mips(&mut cube, mips);
     cube
 }
 

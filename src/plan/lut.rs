@@ -7,7 +7,7 @@
 //! A = ∫ f/F · (1 − Fc) (n·l) dl,   B = ∫ f/F · Fc (n·l) dl,
 //!
 //! so that ∫ f (n·l) dl = F0·A + B. Texel (i, j) of a W×H table holds n·v = (i + ½)/W and
-//! r = (j + ½)/H; row 0 (roughness ≈ 0) is stored first (DESIGN.md "BRDF LUT").
+//! r = (j + ½)/H; row 0 (roughness ≈ 0) is stored first (docs/conventions.md, "BRDF LUT").
 //!
 //! # How it is integrated (deterministic quadrature, not Monte Carlo)
 //! Substituting the GGX half-vector density pdf(h) = D (n·h) turns each integral into
@@ -180,6 +180,24 @@ impl LutModel {
         }
     }
 
+    /// The model called `name` ([`LutModel::name`]).
+    pub fn by_name(name: &str) -> Option<LutModel> {
+        Self::ALL.into_iter().find(|m| m.name() == name)
+    }
+
+    /// What the channels hold, in a line.
+    pub fn description(self) -> &'static str {
+        match self {
+            LutModel::SchlickGgx => "(A, B) scale and bias, Smith/Schlick-GGX with k = r²/2 (Karis 2013)",
+            LutModel::SmithCorrelated => "(A, B) with the height-correlated Smith visibility (Heitz 2014)",
+            LutModel::MultiscatterSchlickGgx => "(∫Fc·V, ∫V), Schlick-GGX: specular = mix(x, y, f0), energy compensation 1 + f0 (1/y − 1)",
+            LutModel::MultiscatterSmithCorrelated => "(∫Fc·V, ∫V), height-correlated Smith: Filament's DFG (R, G)",
+            LutModel::Charlie => "(E, 0): the Charlie sheen albedo with the Ashikhmin visibility (Filament's cloth DFG channel, glTF-IBL-Sampler's lut_charlie); exceeds 1 near grazing: use .exr or .ktx2",
+            LutModel::SheenAlbedo => "(E, 0): the KHR_materials_sheen albedo (Charlie D, V_Sheen), the glTF Sample Viewer's lut_sheen_E quantity",
+            LutModel::FilamentDfg => "Filament's three-channel DFG: R, G as multiscatter-smith-correlated, B the cloth albedo as charlie (cmgen --ibl-dfg-multiscatter --ibl-dfg-cloth)",
+        }
+    }
+
     /// The distribution (of the R, G channels).
     pub fn distribution(self) -> LutDistribution {
         match self.parts().0 {
@@ -232,16 +250,19 @@ pub struct BrdfLut {
     /// A third channel (B), row-major like `data`, for models that have one (Filament's
     /// cloth albedo in [`LutModel::FilamentDfg`]); `None` for two-channel models.
     pub third: Option<Vec<f32>>,
+    /// The model the table integrates.
+    pub model: LutModel,
 }
 
 impl BrdfLut {
-    /// A two-channel table.
+    /// A two-channel table of the default model (see [`BrdfLut::assemble`] for others).
     pub fn new(width: u32, height: u32, data: Vec<[f32; 2]>) -> Self {
         BrdfLut {
             width,
             height,
             data,
             third: None,
+            model: LutModel::default(),
         }
     }
 
@@ -256,6 +277,7 @@ impl BrdfLut {
         if let Some(b) = b {
             lut.third = Some(single(b)?.data.iter().map(|t| t[0]).collect());
         }
+        lut.model = model;
         Ok(lut)
     }
 
@@ -286,9 +308,9 @@ pub fn lut_texel_coords(i: u32, j: u32, width: u32, height: u32) -> (f32, f32) {
 pub fn validate_lut_size(width: u32, height: u32) -> crate::Result<()> {
     for (name, v) in [("width", width), ("height", height)] {
         if v == 0 || v > MAX_LUT_SIZE {
-            return Err(crate::Error::InvalidParameter {
-                name: "--size",
-                message: format!("LUT {name} {v} is outside 1..={MAX_LUT_SIZE}"),
+            return Err(crate::Error::InvalidOption {
+                option: "size",
+                message: format!("a LUT {name} of {v} is not from 1 to {MAX_LUT_SIZE}"),
             });
         }
     }

@@ -11,7 +11,7 @@
 //! texel centres. Normal equations WᵀW v = Wᵀ y in f64 (Cholesky), one right-hand side per
 //! channel; negative solutions are clamped to 0.
 
-use crate::cpu::cube_sample::sample_cube_lod;
+use crate::environment::sample::sample_cube_lod;
 use crate::environment::Cubemap;
 use crate::math::cubemap::cube_texel_direction;
 
@@ -134,7 +134,7 @@ mod tests {
             size: 8,
             levels: vec![vec![[0.0; 4]; Cubemap::level_len(8)]],
         };
-        crate::cpu::cube_downsample::build_mips(&mut chain, 2);
+        crate::environment::mips::build_mips(&mut chain, 2);
         let irradiance = Cubemap {
             size: 16,
             levels: vec![vec![[2.0, 3.0, 4.0, 1.0]; Cubemap::level_len(16)]],

@@ -25,10 +25,7 @@
 use rayon::prelude::*;
 
 use crate::cpu::brdf_lut::{brdf_lut_exact, brdf_lut_texel};
-use crate::lut::{
-    lut_texel_coords, BrdfLut, LutModel, LutQuadrature, LUT_COARSE_STEP,
-    LUT_INTERPOLATION_TOLERANCE,
-};
+use crate::plan::lut::{lut_texel_coords, BrdfLut, LutModel, LutQuadrature, LUT_COARSE_STEP, LUT_INTERPOLATION_TOLERANCE};
 
 /// The coarse nodes of one axis of `n` texels and, for every texel, its cell and
 /// interpolation stencil.
@@ -98,7 +95,8 @@ pub struct InterpolatedLut {
     /// The table.
     pub lut: BrdfLut,
     /// Texels integrated exactly (nodes, checks and failed cells); the rest were
-    /// interpolated.
+    /// interpolated. (Reported by the tests and benchmarks.)
+    #[cfg_attr(not(feature = "internals"), allow(dead_code))]
     pub integrated: usize,
 }
 

@@ -13,6 +13,11 @@
 
 use glam::Vec3;
 
+use crate::environment::texels::SourceTexel;
+use crate::environment::Cubemap;
+use crate::math::sampling::hammersley;
+use crate::plan::lut::BrdfLut;
+
 /// A material of the preview: Cook-Torrance with GGX D, Smith/Schlick-GGX G and
 /// Fresnel-Schlick, plus Lambert diffuse weighted by kD = (1 − F)(1 − metallic).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -30,7 +35,7 @@ pub struct Material {
 /// The seed materials, one row each, top to bottom. F0 of gold, copper, aluminium and
 /// silver: Hoffman, "Physics and Math of Shading" (SIGGRAPH 2015 course), table of
 /// metal F0 in linear RGB; titanium: Real-Time Rendering 4th ed., table 9.2; the
-/// dielectric: F0 = 0.04 (n ≈ 1.5) with a light grey albedo of 0.8 (DESIGN.md
+/// dielectric: F0 = 0.04 (n ≈ 1.5) with a light grey albedo of 0.8 (docs/conventions.md,
 /// "Roughness, BRDF").
 pub const MATERIALS: [Material; 6] = [
     metal("gold", [1.0, 0.71, 0.29]),
@@ -211,6 +216,54 @@ pub fn material_table() -> Vec<[f32; 4]> {
             ]
         })
         .collect()
+}
+
+/// Default number of quasi-Monte Carlo points per lobe and pixel.
+pub const DEFAULT_TRUTH_SAMPLES: u32 = 2048;
+
+/// What the truth render reads.
+#[derive(Clone, Copy, Debug)]
+pub struct TruthInputs<'a> {
+    /// The environment (level 0 read; the split-sum chain's level 0).
+    pub env: &'a Cubemap,
+    /// The environment without its hot texels (level 0 read).
+    pub cold: &'a Cubemap,
+    /// The hot texels, summed exactly.
+    pub hot: &'a [SourceTexel],
+    /// Per roughness column: (roughness, lod, 0, 0); the lod is unused here.
+    pub columns: &'a [[f32; 4]],
+    /// Per material: (F0, metallic), (albedo, 0).
+    pub materials: &'a [[f32; 4]],
+    /// The quasi-Monte Carlo points ([`disk_points`]).
+    pub points: &'a [[f32; 4]],
+}
+
+/// The N points of the truth's quadrature: Hammersley (i/N, φ-radical-inverse) as
+/// (u₁, cos 2πu₂, sin 2πu₂, 0); a pixel maps one to the unit disk as
+/// √frac(u₁ + s) (cos, sin) rotated by its own angle.
+pub fn disk_points(samples: u32) -> Vec<[f32; 4]> {
+    (0..samples)
+        .map(|i| {
+            let [u1, u2] = hammersley(i, samples);
+            let phi = 2.0 * std::f32::consts::PI * u2;
+            [u1, phi.cos(), phi.sin(), 0.0]
+        })
+        .collect()
+}
+
+/// What the split-sum render reads.
+#[derive(Clone, Copy, Debug)]
+pub struct SplitSumInputs<'a> {
+    /// The prefiltered specular chain (level 0: the environment), generic orientation.
+    pub specular: &'a Cubemap,
+    /// The irradiance cube (E/π).
+    pub irradiance: &'a Cubemap,
+    /// The split-sum LUT (scale A, bias B).
+    pub lut: &'a BrdfLut,
+    /// Per roughness column: (roughness, the chain's lod for it, 0, 0).
+    pub columns: &'a [[f32; 4]],
+    /// Per material: (F0, metallic), (albedo, 0) (`scene::material_table`).
+    pub materials: &'a [[f32; 4]],
 }
 
 #[cfg(test)]

@@ -18,12 +18,12 @@ use ab_glyph::{Font, FontRef, PxScale, ScaleFont};
 use image::{Rgb, RgbImage};
 
 use crate::environment::Cubemap;
-use crate::io::ldr::srgb8;
+use crate::math::color::srgb8;
 use crate::math::cubemap::cube_texel_solid_angle;
-use crate::preview::scene::{Scene, MATERIALS, ROUGHNESS};
+use crate::plan::scene::{Scene, MATERIALS, ROUGHNESS};
 
 /// The label font (DejaVu Sans; licence in `assets/fonts/DejaVuSans-LICENSE.txt`).
-const FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+const FONT: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf");
 
 /// The luminance the default exposure maps the log-average to (Reinhard's key value).
 pub const KEY_VALUE: f32 = 0.18;

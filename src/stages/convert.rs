@@ -2,14 +2,15 @@
 
 use std::borrow::Cow;
 
-use crate::cpu::cube_downsample::build_mips;
-use crate::cpu::cube_resample::cube_resample;
-use crate::cpu::equirect_to_cube::EquirectToCubeParams;
-use crate::cpu::irradiance::IRRADIANCE_SOURCE_SIZE;
+use crate::environment::mips::build_mips;
+use crate::stages::resample::cube_resample;
+use crate::plan::convert::EquirectToCubeParams;
+use crate::environment::texels::IRRADIANCE_SOURCE_SIZE;
 use crate::environment::{
     Cubemap, Environment, Equirect, EquirectIntegral, EquirectReducer, IrradianceSource,
 };
-use crate::{Backend, Error, Result};
+use crate::backend::Backend;
+use crate::{Error, Result};
 
 /// Largest cube face edge accepted.
 pub const MAX_CUBE_SIZE: u32 = 8192;
@@ -25,13 +26,18 @@ pub fn default_cube_size(env: &Environment) -> u32 {
     (1u32 << (31 - target.leading_zeros())).min(MAX_CUBE_SIZE)
 }
 
-/// Checks a requested face size: a power of two in 1..=[`MAX_CUBE_SIZE`], so that every
-/// mip halves exactly.
-pub fn validate_cube_size(size: u32) -> Result<()> {
+/// Checks a cube edge asked for (`size`): a power of two from 1 to 8192.
+pub fn check_cube_size(size: u32) -> Result<()> {
+    validate_cube_size("size", size)
+}
+
+/// Checks a requested face size, the value of `option`: a power of two from 1 to
+/// [`MAX_CUBE_SIZE`], so that every mip halves exactly.
+pub fn validate_cube_size(option: &'static str, size: u32) -> Result<()> {
     if size == 0 || size > MAX_CUBE_SIZE || !size.is_power_of_two() {
-        return Err(Error::InvalidParameter {
-            name: "--size",
-            message: format!("cube size {size} must be a power of two in 1..={MAX_CUBE_SIZE}"),
+        return Err(Error::InvalidOption {
+            option,
+            message: format!("{size} is not a power of two from 1 to {MAX_CUBE_SIZE}"),
         });
     }
     Ok(())
@@ -113,8 +119,8 @@ pub const COLD_MAX_WIDTH: u32 = 2048;
 
 fn check_rotation(rotate_degrees: f32) -> Result<()> {
     if !rotate_degrees.is_finite() {
-        return Err(Error::InvalidParameter {
-            name: "--rotate",
+        return Err(Error::InvalidOption {
+            option: "rotate_degrees",
             message: format!("{rotate_degrees} is not a finite angle"),
         });
     }
@@ -138,7 +144,7 @@ fn equirect_cube(
     mips: bool,
     rotate_degrees: f32,
 ) -> Result<(Cubemap, EquirectIntegral, EquirectToCubeParams)> {
-    validate_cube_size(size)?;
+    validate_cube_size("size", size)?;
     check_rotation(rotate_degrees)?;
     let params = EquirectToCubeParams::new(size, e.width, e.height, rotate_degrees);
     let level = match (params.base_level, e) {
@@ -157,7 +163,7 @@ fn convert(
     mips: bool,
     rotate_degrees: f32,
 ) -> Result<Cubemap> {
-    validate_cube_size(size)?;
+    validate_cube_size("size", size)?;
     check_rotation(rotate_degrees)?;
     let levels = level_count(size, mips);
     let keep = |c: &Cubemap| c.size == size && rotate_degrees.rem_euclid(360.0) == 0.0;

@@ -5,7 +5,8 @@
 //! coefficients Â_l/π · cₖ that evaluate to E/π directly.
 
 use crate::environment::IrradianceSource;
-use crate::math::cubemap::{cube_texel_direction, cube_texel_solid_angle, FACES};
+use crate::environment::walk::texel_centres;
+use crate::math::cubemap::cube_texel_solid_angle;
 use crate::math::sh::{irradiance_band_factor, sh_band, sh_basis};
 
 /// Largest mip edge projected.
@@ -29,17 +30,13 @@ pub fn sh_project(src: &IrradianceSource) -> ShCoefficients {
         .unwrap_or(env.levels.len() - 1);
     let n = env.level_size(m);
     let mut acc = [[0.0f64; 3]; 9];
-    for face in 0..FACES as u32 {
-        for j in 0..n {
-            for i in 0..n {
-                let y = sh_basis(cube_texel_direction(face, i as i32, j as i32, n));
-                let w = cube_texel_solid_angle(i, j, n) as f64;
-                let l = env.texel(m, face, i, j);
-                for k in 0..9 {
-                    for c in 0..3 {
-                        acc[k][c] += l[c] as f64 * y[k] as f64 * w;
-                    }
-                }
+    for (face, i, j, d) in texel_centres(n) {
+        let y = sh_basis(d);
+        let w = cube_texel_solid_angle(i, j, n) as f64;
+        let l = env.texel(m, face, i, j);
+        for k in 0..9 {
+            for c in 0..3 {
+                acc[k][c] += l[c] as f64 * y[k] as f64 * w;
             }
         }
     }

@@ -14,22 +14,26 @@
 //! roughness the mean and worst relative difference of the luminance.
 
 pub mod picture;
-pub mod scene;
 
 use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::cpu::prefilter_specular::{split_hot_texels, SpecularChain};
-use crate::cpu::preview_split_sum::SplitSumInputs;
-use crate::cpu::preview_truth::{disk_points, TruthInputs, DEFAULT_TRUTH_SAMPLES};
+use crate::backend::Backend;
 use crate::environment::Cubemap;
-use crate::lut::BrdfLut;
-use crate::preview::picture::{auto_exposure, compose, luminance, Comparison};
-use crate::preview::scene::{
-    material_table, pixel_geometry, PixelGeometry, Scene, SceneUniform, MATERIALS, ROUGHNESS,
+use crate::plan::chain::SpecularChain;
+use crate::plan::lut::{BrdfLut, DEFAULT_LUT_SIZE};
+use crate::plan::scene::{
+    disk_points, material_table, pixel_geometry, PixelGeometry, Scene, SceneUniform,
+    SplitSumInputs, TruthInputs, DEFAULT_CELL, DEFAULT_TRUTH_SAMPLES, MATERIALS, ROUGHNESS,
 };
-use crate::{Backend, Error, Result};
+use crate::plan::sources::split_hot_texels;
+use crate::stages::light::BakedEnvironment;
+use crate::stages::preview::picture::{auto_exposure, compose, luminance, Comparison};
+use crate::{Error, Result};
+
+/// The roughness of each column of the preview's spheres.
+pub const PREVIEW_ROUGHNESS: [f32; 5] = ROUGHNESS;
 
 /// The baked light a preview renders with, in the generic orientation.
 #[derive(Clone, Copy, Debug)]
@@ -50,7 +54,7 @@ pub struct PreviewOptions {
     /// Cell edge in pixels (8 ..= 512).
     pub cell: u32,
     /// Exposure in stops (a scale 2^EV); `None` picks it from the environment
-    /// ([`picture::auto_exposure`]).
+    /// (the exposure that maps its solid-angle log-average luminance to 0.18).
     pub exposure_ev: Option<f32>,
     /// Quasi-Monte Carlo points per lobe and pixel of the ground truth (0 ..= 65536; 0
     /// renders the split-sum alone, without the truth, the heat map or the stats).
@@ -60,7 +64,7 @@ pub struct PreviewOptions {
 impl Default for PreviewOptions {
     fn default() -> Self {
         PreviewOptions {
-            cell: scene::DEFAULT_CELL,
+            cell: DEFAULT_CELL,
             exposure_ev: None,
             truth_samples: DEFAULT_TRUTH_SAMPLES,
         }
@@ -107,25 +111,33 @@ pub struct Preview {
     pub truth_seconds: f64,
 }
 
+impl PreviewOptions {
+    /// Checks the options' ranges (an [`Error::InvalidOption`] names the field as
+    /// `preview.<field>`).
+    pub fn validate(&self) -> Result<()> {
+        validate_options(self)
+    }
+}
+
 /// Checks the options' ranges.
 pub fn validate_options(opts: &PreviewOptions) -> Result<()> {
     if !(8..=512).contains(&opts.cell) {
-        return Err(Error::InvalidParameter {
-            name: "--preview-cell",
-            message: format!("{} is outside 8..=512 pixels", opts.cell),
+        return Err(Error::InvalidOption {
+            option: "preview.cell",
+            message: format!("{} pixels is not from 8 to 512", opts.cell),
         });
     }
     if opts.truth_samples > 65536 {
-        return Err(Error::InvalidParameter {
-            name: "--truth-samples",
-            message: format!("{} is outside 0..=65536", opts.truth_samples),
+        return Err(Error::InvalidOption {
+            option: "preview.truth_samples",
+            message: format!("{} is not from 0 to 65536", opts.truth_samples),
         });
     }
     if let Some(ev) = opts.exposure_ev {
         if !ev.is_finite() || ev.abs() > 64.0 {
-            return Err(Error::InvalidParameter {
-                name: "--exposure",
-                message: format!("{ev} is not a number of stops in -64..=64"),
+            return Err(Error::InvalidOption {
+                option: "preview.exposure_ev",
+                message: format!("{ev} is not a number of stops from -64 to 64"),
             });
         }
     }
@@ -214,7 +226,7 @@ pub fn render_preview(
             levels: vec![light.specular.levels[0].clone()],
         };
         let mips = Cubemap::full_mip_count(env.size);
-        crate::cpu::cube_downsample::build_mips(&mut env, mips);
+        crate::environment::mips::build_mips(&mut env, mips);
         let split = split_hot_texels(&env);
         let points = disk_points(opts.truth_samples);
         backend.preview_truth(
@@ -264,4 +276,35 @@ pub fn render_preview(
         split_sum_seconds,
         truth_seconds,
     })
+}
+
+impl<'a> BakedLight<'a> {
+    /// What the preview reads of `baked`, with `lut`.
+    pub fn of(baked: &'a BakedEnvironment, lut: &'a BrdfLut) -> Self {
+        BakedLight {
+            specular: &baked.specular,
+            chain: baked.chain,
+            irradiance: &baked.irradiance,
+            lut,
+        }
+    }
+}
+
+/// The preview of `baked` with `lut`, or without one with the default model's
+/// [`DEFAULT_LUT_SIZE`]² LUT computed on `backend`.
+pub fn preview_baked(
+    backend: &dyn Backend,
+    baked: &BakedEnvironment,
+    lut: Option<&BrdfLut>,
+    opts: &PreviewOptions,
+) -> Result<Preview> {
+    let own;
+    let lut = match lut {
+        Some(l) => l,
+        None => {
+            own = backend.brdf_lut(DEFAULT_LUT_SIZE, DEFAULT_LUT_SIZE)?;
+            &own
+        }
+    };
+    render_preview(backend, &BakedLight::of(baked, lut), opts)
 }

@@ -1,0 +1,245 @@
+//! [`Baker`]: the library's front door. It validates the options, opens the backend they
+//! name, computes each target's LUTs once, and bakes inputs with the fallback policy of
+//! the command line: with [`BackendChoice::Auto`], no adapter means the CPU backend (with
+//! a note), and a GPU failure during an input (device lost, out of memory, a driver error)
+//! redoes that input on the CPU backend, the LUTs included, with a warning, so the files
+//! are exactly a CPU bake's, as the manifest says.
+
+use std::path::Path;
+
+use crate::backend::{create_backend, Backend, BackendChoice, CpuBackend};
+use crate::bake::{bake, bake_environment, BakeOptions, BakeReport};
+use crate::environment::{Cubemap, Environment};
+use crate::io::input::{load_faces, load_input, InputOptions, LoadedEnvironment};
+use crate::plan::lut::{BrdfLut, LutModel, DEFAULT_LUT_SIZE};
+use crate::stages::convert::{default_cube_size, environment_into_cube};
+use crate::stages::light::{BakedEnvironment, Stage};
+use crate::stages::preview::{preview_baked, Preview, PreviewOptions};
+use crate::{Error, Result};
+
+/// An environment read from a file, with the warnings its reading raised (replaced
+/// non-finite or negative values, an LDR image, …).
+pub type LoadedInput = LoadedEnvironment;
+
+/// Bakes environments as its [`BakeOptions`] say, on the backend they name.
+///
+/// ```no_run
+/// use splitsum::{BakeOptions, Baker, GLTF};
+/// let mut baker = Baker::new(BakeOptions::for_target(&GLTF))?;
+/// let report = baker.bake("sky.hdr".as_ref(), "out".as_ref())?;
+/// println!("{} files in {}", report.outputs.len(), report.out_dir.display());
+/// # Ok::<(), splitsum::Error>(())
+/// ```
+pub struct Baker {
+    opts: BakeOptions,
+    backend: Box<dyn Backend>,
+    note: Option<String>,
+    luts: Option<Vec<BrdfLut>>,
+    warnings: Vec<String>,
+}
+
+impl std::fmt::Debug for Baker {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Baker")
+            .field("opts", &self.opts)
+            .field("backend", &self.backend.description())
+            .finish()
+    }
+}
+
+impl Baker {
+    /// Checks every option (an [`Error::InvalidOption`] names the field) and opens the
+    /// backend `opts.backend` names.
+    pub fn new(opts: BakeOptions) -> Result<Baker> {
+        opts.validate()?;
+        let (backend, note) = create_backend(opts.backend)?;
+        Ok(Baker {
+            opts,
+            backend,
+            note,
+            luts: None,
+            warnings: Vec::new(),
+        })
+    }
+
+    /// The options.
+    pub fn options(&self) -> &BakeOptions {
+        &self.opts
+    }
+
+    /// What the backend is, in words ("cpu (rayon, 2 threads)", "gpu: … (Vulkan)"): what
+    /// runs where for this baker's jobs (the preview's kernels only when it renders one).
+    pub fn backend_description(&self) -> String {
+        self.backend.description_for(self.opts.preview.is_some())
+    }
+
+    /// Why [`BackendChoice::Auto`] chose the CPU backend, when it did for want of an adapter.
+    pub fn backend_note(&self) -> Option<&str> {
+        self.note.as_deref()
+    }
+
+    /// Warnings raised since the last call outside a bake (a GPU failure redone on the
+    /// CPU); a bake's own are in its [`BakeReport::warnings`].
+    pub fn take_warnings(&mut self) -> Vec<String> {
+        std::mem::take(&mut self.warnings)
+    }
+
+    /// Whether a GPU failure of `result` is redone on the CPU: with
+    /// [`BackendChoice::Auto`] it switches this and every later job to the CPU backend
+    /// and records a warning.
+    fn falls_back<T>(&mut self, result: &Result<T>) -> bool {
+        match result {
+            Err(e @ Error::Gpu { .. }) if self.opts.backend == BackendChoice::Auto => {
+                self.warnings
+                    .push(format!("{e}; continuing on the CPU backend"));
+                self.backend = Box::new(CpuBackend);
+                // Tables computed on the GPU are recomputed, so every output is the CPU's.
+                self.luts = None;
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// Runs `f`, again on the CPU backend when the GPU fails (see [`Baker::falls_back`]).
+    fn with_fallback<T>(&mut self, mut f: impl FnMut(&mut Self) -> Result<T>) -> Result<T> {
+        let result = f(self);
+        if self.falls_back(&result) {
+            return f(self);
+        }
+        result
+    }
+
+    /// [`Baker::with_fallback`] for a job that consumes `env`: a copy is kept for the retry
+    /// while the GPU may fail.
+    fn with_env_fallback<T>(
+        &mut self,
+        env: Environment,
+        f: impl Fn(&dyn Backend, Environment) -> Result<T>,
+    ) -> Result<T> {
+        let keep = (self.opts.backend == BackendChoice::Auto).then(|| env.clone());
+        let result = f(self.backend.as_ref(), env);
+        match keep {
+            Some(env) if self.falls_back(&result) => f(self.backend.as_ref(), env),
+            _ => result,
+        }
+    }
+
+    /// The tables of the target's LUT files (computed once), or none when LUTs are off.
+    fn target_luts(&mut self) -> Result<Vec<BrdfLut>> {
+        if !self.opts.luts {
+            return Ok(Vec::new());
+        }
+        if self.luts.is_none() {
+            let luts = self
+                .opts
+                .target
+                .luts
+                .iter()
+                .map(|spec| {
+                    self.backend
+                        .brdf_lut_model(DEFAULT_LUT_SIZE, DEFAULT_LUT_SIZE, spec.model)
+                })
+                .collect::<Result<Vec<_>>>()?;
+            self.luts = Some(luts);
+        }
+        Ok(self.luts.clone().unwrap_or_default())
+    }
+
+    /// Bakes `input` (an equirect, a cross, a KTX2/DDS/KTX cubemap or a face pattern such as
+    /// `sky_{face}.hdr`) into `out_root/<stem>/`: the target's file set, its LUTs when
+    /// asked for, the preview when asked for, and `manifest.json`.
+    pub fn bake(&mut self, input: &Path, out_root: &Path) -> Result<BakeReport> {
+        self.bake_with_progress(input, out_root, &mut |_| {})
+    }
+
+    /// [`Baker::bake`], calling `progress` as each [`Stage`] starts.
+    pub fn bake_with_progress(
+        &mut self,
+        input: &Path,
+        out_root: &Path,
+        progress: &mut dyn FnMut(Stage),
+    ) -> Result<BakeReport> {
+        let mut report = self.with_fallback(|baker| {
+            let luts = baker.target_luts()?;
+            bake(
+                baker.backend.as_ref(),
+                input,
+                out_root,
+                &baker.opts,
+                &luts,
+                progress,
+            )
+        })?;
+        let mut warnings = self.take_warnings();
+        warnings.append(&mut report.warnings);
+        report.warnings = warnings;
+        Ok(report)
+    }
+
+    /// Reads an environment (an equirect, a cross, a KTX2/DDS/KTX cubemap, or a face
+    /// pattern such as `sky_{face}.hdr`) with the options' exposure applied. With
+    /// `cube_size`, an equirect is reduced as it is read to what a cube of that edge needs
+    /// (a bake reads its input for the specular size); without, it is kept whole.
+    pub fn load(&self, input: &Path, cube_size: Option<u32>) -> Result<LoadedInput> {
+        load_input(input, &self.input_options(cube_size))
+    }
+
+    /// Reads six square face images in the order +X, −X, +Y, −Y, +Z, −Z (see
+    /// [`Baker::load`]).
+    pub fn load_faces(
+        &self,
+        faces: &[std::path::PathBuf],
+        cube_size: Option<u32>,
+    ) -> Result<LoadedInput> {
+        load_faces(faces, &self.input_options(cube_size))
+    }
+
+    fn input_options(&self, cube_size: Option<u32>) -> InputOptions {
+        InputOptions {
+            cube_size,
+            ..self.opts.input_options()
+        }
+    }
+
+    /// Bakes `env` in memory, in the generic orientation (for callers that write their own
+    /// files): the specular chain, the irradiance cube, the SH when asked for, and the
+    /// sheen chain when the target has one.
+    pub fn bake_environment(&mut self, env: Environment) -> Result<BakedEnvironment> {
+        let opts = self.opts.clone();
+        self.with_env_fallback(env, |backend, env| {
+            bake_environment(backend, env, &opts, &mut |_| {}, &mut Vec::new())
+        })
+    }
+
+    /// The BRDF LUT of `model`, `size`² texels.
+    pub fn lut(&mut self, model: LutModel, size: u32) -> Result<BrdfLut> {
+        self.with_fallback(|baker| baker.backend.brdf_lut_model(size, size, model))
+    }
+
+    /// `env` as a cube of edge `size` (default: the largest power of two ≤ an equirect's
+    /// width / 4, or a cube's own edge) with the full mip chain when `mips` is set,
+    /// rotated by the options' rotation and stored in the target's orientation.
+    pub fn cubemap(&mut self, env: Environment, size: Option<u32>, mips: bool) -> Result<Cubemap> {
+        let size = size.unwrap_or_else(|| default_cube_size(&env));
+        crate::stages::convert::validate_cube_size("size", size)?;
+        let rotate = self.opts.rotate_degrees;
+        let target = self.opts.target;
+        // By value: the input's finest level becomes the pyramid's without a copy.
+        let cube = self.with_env_fallback(env, |backend, env| {
+            environment_into_cube(backend, env, size, mips, rotate)
+        })?;
+        Ok(target.orientation.apply(cube))
+    }
+
+    /// The preview of `baked` (generic orientation) with `lut` (the default model's
+    /// table; computed when `None`).
+    pub fn preview(
+        &mut self,
+        baked: &BakedEnvironment,
+        lut: Option<&BrdfLut>,
+        opts: &PreviewOptions,
+    ) -> Result<Preview> {
+        self.with_fallback(|baker| preview_baked(baker.backend.as_ref(), baked, lut, opts))
+    }
+}

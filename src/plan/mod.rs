@@ -1,0 +1,14 @@
+//! The plan both backends follow: what each kernel computes and from what, decided once in
+//! Rust so the CPU and GPU paths cannot disagree. The specular chain's layout and the
+//! method per level ([`chain`]), the prepared sources of the prefilter ([`sources`]), the
+//! sheen chain's plan and driver ([`sheen`]), the least-squares fit of a level for
+//! bilinear lookups ([`fit`]), the conversion's parameters ([`convert`]), the LUT models
+//! and their quadrature ([`lut`]) and the preview's scene ([`scene`]).
+
+pub mod chain;
+pub mod convert;
+pub mod fit;
+pub mod lut;
+pub mod scene;
+pub mod sheen;
+pub mod sources;

@@ -1,0 +1,162 @@
+//! The light of one environment, baked in memory: cube conversion, the prefiltered
+//! specular chain (its roughest level fitted for bilinear lookups), the irradiance cube,
+//! the Charlie sheen chain where a target reads one, and the SH. Each step is a
+//! [`Stage`], reported to a progress callback and timed.
+
+use std::time::Instant;
+
+use crate::backend::Backend;
+use crate::environment::{Cubemap, Environment};
+use crate::plan::chain::SpecularChain;
+use crate::plan::fit::fit_roughest_level;
+use crate::stages::convert::environment_into_cube_with_irradiance;
+use crate::stages::sh::{sh_project, ShCoefficients};
+use crate::Result;
+
+/// A stage of a bake, reported to the progress callback before it starts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    /// Reading and validating the input.
+    Load,
+    /// Converting to the environment cubemap with mips.
+    Cubemap,
+    /// Prefiltering the specular chain.
+    Specular,
+    /// Convolving the irradiance cube.
+    Irradiance,
+    /// Prefiltering the Charlie sheen chain (targets that read one).
+    Sheen,
+    /// Projecting onto spherical harmonics.
+    Sh,
+    /// Rendering the preview.
+    Preview,
+    /// Encoding and writing the outputs.
+    Write,
+}
+
+impl Stage {
+    /// Lower-case name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Stage::Load => "load",
+            Stage::Cubemap => "cubemap",
+            Stage::Specular => "specular",
+            Stage::Irradiance => "irradiance",
+            Stage::Sheen => "sheen",
+            Stage::Sh => "sh",
+            Stage::Preview => "preview",
+            Stage::Write => "write",
+        }
+    }
+
+    /// All stages in order.
+    pub const ALL: [Stage; 8] = [
+        Stage::Load,
+        Stage::Cubemap,
+        Stage::Specular,
+        Stage::Irradiance,
+        Stage::Sheen,
+        Stage::Sh,
+        Stage::Preview,
+        Stage::Write,
+    ];
+}
+
+/// Wall seconds per stage, in the order they ran.
+pub type Timings = Vec<(Stage, f64)>;
+
+/// Runs `f` as `stage`: reports it to `progress` and records its wall time.
+pub fn timed_stage<T>(
+    stage: Stage,
+    progress: &mut dyn FnMut(Stage),
+    timings: &mut Timings,
+    f: impl FnOnce() -> Result<T>,
+) -> Result<T> {
+    progress(stage);
+    let t = Instant::now();
+    let out = f()?;
+    timings.push((stage, t.elapsed().as_secs_f64()));
+    Ok(out)
+}
+
+/// What the in-memory bake computes (already validated by the caller).
+#[derive(Clone, Copy, Debug)]
+pub struct LightOptions {
+    /// Specular cube edge.
+    pub specular_size: u32,
+    /// The specular chain's layout.
+    pub chain: SpecularChain,
+    /// Irradiance cube edge.
+    pub irradiance_size: u32,
+    /// GGX samples per texel of the importance-sampled levels.
+    pub samples: u32,
+    /// Rotation about +Y in degrees.
+    pub rotate_degrees: f32,
+    /// Prefilter the Charlie sheen chain.
+    pub sheen: bool,
+    /// Project onto SH.
+    pub sh: bool,
+}
+
+/// The light of one environment baked in memory, in the generic orientation (before a
+/// target's): what a bake writes and a preview renders.
+#[derive(Clone, Debug)]
+pub struct BakedEnvironment {
+    /// The prefiltered specular chain (level 0 is the environment cube).
+    pub specular: Cubemap,
+    /// Its layout.
+    pub chain: SpecularChain,
+    /// The irradiance cube (E/π).
+    pub irradiance: Cubemap,
+    /// The SH projection, when asked for.
+    pub sh: Option<ShCoefficients>,
+    /// The prefiltered Charlie sheen chain, in the specular chain's layout, when asked for.
+    pub sheen: Option<Cubemap>,
+}
+
+/// Bakes `source` in memory as `opts` say on `backend`. `progress` is called as each stage
+/// starts, and each stage's wall time is pushed onto `timings`.
+pub fn bake_light(
+    backend: &dyn Backend,
+    source: Environment,
+    opts: &LightOptions,
+    progress: &mut dyn FnMut(Stage),
+    timings: &mut Timings,
+) -> Result<BakedEnvironment> {
+    let (env, irradiance_source) = timed_stage(Stage::Cubemap, progress, timings, || {
+        environment_into_cube_with_irradiance(
+            backend,
+            source,
+            opts.specular_size,
+            true,
+            opts.rotate_degrees,
+        )
+    })?;
+    let chain = opts.chain;
+    let mut specular = timed_stage(Stage::Specular, progress, timings, || {
+        backend.prefilter_specular(&env, Some(&irradiance_source), chain, opts.samples)
+    })?;
+    let irradiance = timed_stage(Stage::Irradiance, progress, timings, || {
+        let irradiance = backend.irradiance(&irradiance_source, opts.irradiance_size)?;
+        // The r = 1 level is E/π; its texels are fitted to the finer irradiance cube for
+        // the bilinear lookup a shader makes (see `plan::fit`).
+        fit_roughest_level(&mut specular, &irradiance);
+        Ok(irradiance)
+    })?;
+    let sheen = match opts.sheen {
+        false => None,
+        true => Some(timed_stage(Stage::Sheen, progress, timings, || {
+            backend.prefilter_sheen(&env, Some(&irradiance_source), chain)
+        })?),
+    };
+    let sh = timed_stage(Stage::Sh, progress, timings, || {
+        Ok(opts.sh.then(|| sh_project(&irradiance_source)))
+    })?;
+    Ok(BakedEnvironment {
+        specular,
+        chain,
+        irradiance,
+        sh,
+        sheen,
+    })
+}

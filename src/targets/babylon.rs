@@ -1,0 +1,98 @@
+//! Babylon.js (`CubeTexture` of a `.env`, `scene.environmentTexture`, `PBRMaterial`): the
+//! whole chain in RGBD at Babylon's roughness per mip, in its left-handed frame, with the
+//! irradiance as its spherical polynomial.
+
+use crate::io::cubemap::Container;
+use crate::io::staging::Staging;
+use crate::io::{env, PixelFormat};
+use crate::math::cubemap::AxisMap;
+use crate::plan::chain::MipRoughness;
+use crate::stages::light::BakedEnvironment;
+use crate::targets::{engine_sh, FileContext, FileSet, Orientation, Target, BRDF_LUT_PNG};
+use crate::{Error, Result};
+
+/// Babylon.js (`CubeTexture` of a `.env`, `scene.environmentTexture`, `PBRMaterial`).
+pub const BABYLON: Target = Target {
+    name: "babylon",
+    summary: "Babylon.js: <stem>.env, the whole chain as RGBD PNGs at Babylon's roughness per mip and the SH as its spherical polynomial, x and z swapped",
+    // Babylon's world is left-handed: its own HDRCubeTexture of an equirect holds the generic
+    // direction (x, y, z) at (z, y, x) (measured texel for texel in engines/babylon), it
+    // samples cubes with the world direction as it is, and evaluates the irradiance
+    // polynomial in the same frame.
+    orientation: Orientation {
+        frame: AxisMap {
+            axis: [2, 1, 0],
+            sign: [1, 1, 1],
+        },
+        shader: AxisMap::IDENTITY,
+        description: "babylon (left-handed): texel at (z, y, x) holds the light from (x, y, z)",
+    },
+    // Unused: a .env holds RGBD PNGs whatever the format.
+    pixel_format: PixelFormat::Rgba16f,
+    zstd: None,
+    roughness: MipRoughness::Babylon,
+    // Babylon reads a .env only with its whole chain.
+    min_mip_size: 1,
+    irradiance: false,
+    sh: true,
+    lut: false,
+    luts: BRDF_LUT_PNG,
+    files: FILES,
+    format_warnings: &[],
+    notes: &[
+        "<stem>.env: new CubeTexture(url, scene) (or CubeTexture.CreateFromPrefilteredData) as scene.environmentTexture; scene.createDefaultSkybox(texture) for the background",
+        "Babylon samples lod = 0.8 * log2(size * (r^2 + 0.0005)); mip m holds GGX at alpha = 2^(m / 0.8) / size",
+        "the irradiance is the header's spherical polynomial (E / pi, in the cube's frame)",
+        "RGBD holds radiance up to 255: brighter texels (a sun) are clipped; scale with --exposure and scene.environmentIntensity to keep them",
+    ],
+};
+
+/// Babylon's prefiltered environment: `<stem>.env`, the whole chain as RGBD PNGs and the
+/// irradiance as a spherical polynomial (see [`crate::io::env`]).
+pub const FILES: FileSet = FileSet {
+    fixed_container: Some("env (Babylon.js)"),
+    has_pixel_format: false,
+    carries_sh: true,
+    sheen: false,
+    whole_chain: true,
+    cube_container: Container::Ktx2,
+    write,
+};
+
+/// Writes [`FILES`]; warns when level 0 holds radiance RGBD cannot (above 255).
+fn write(ctx: &FileContext, baked: BakedEnvironment, out: &mut Staging) -> Result<Vec<String>> {
+    let path = ctx.dir.join(format!("{}.env", ctx.stem));
+    let specular = ctx.target.orientation.apply(baked.specular);
+    let enc_err = |message: String| Error::Encode {
+        path: path.clone(),
+        format: "Babylon .env",
+        message,
+    };
+    let sh = baked
+        .sh
+        .as_ref()
+        .ok_or_else(|| enc_err("a .env carries the irradiance SH".into()))?;
+    let polynomial = env::SphericalPolynomial::from_prescaled(&engine_sh(sh, ctx.target));
+    let bytes = env::encode(&specular, &polynomial).map_err(enc_err)?;
+    let (clipped, largest) = specular.levels[0]
+        .iter()
+        .map(|t| t[0].max(t[1]).max(t[2]))
+        .filter(|&m| m > env::RGBD_MAX)
+        .fold((0usize, 0.0f32), |(n, top), m| (n + 1, top.max(m)));
+    let levels = specular.levels.len() as u32;
+    out.add(
+        path.clone(),
+        bytes,
+        ("specular", "rgbd png", specular.size, levels),
+    );
+    Ok((clipped > 0)
+        .then(|| {
+            format!(
+                "{}: {clipped} texels of level 0 are brighter than the {} a .env (RGBD) holds (the largest {largest:.0}) and are clipped; bake N stops darker (--exposure -N) and set scene.environmentIntensity = 2^N to keep them",
+                path.display(),
+                env::RGBD_MAX
+            )
+        })
+        .into_iter()
+        .collect())
+}

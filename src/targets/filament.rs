@@ -1,0 +1,115 @@
+//! Filament (`IndirectLight`, `Skybox`; the web build's `Engine.createIblFromKtx1` and
+//! `createSkyFromKtx1`), as cmgen deploys an environment for it: KTX 1 files in cmgen's
+//! frame (a quarter turn about +Y), the chain to 16² at Filament's roughness per mip.
+
+use std::path::Path;
+
+use crate::environment::Cubemap;
+use crate::io::cubemap::{encode_texture, Container};
+use crate::io::staging::Staging;
+use crate::io::{ktx1, sh_text, PixelFormat};
+use crate::math::cubemap::AxisMap;
+use crate::plan::chain::MipRoughness;
+use crate::stages::light::BakedEnvironment;
+use crate::targets::{engine_sh, FileContext, FileSet, Orientation, Target, BRDF_LUT_PNG};
+use crate::{Error, Result};
+
+/// The smallest mip of the Filament target's chain: cmgen's default (`--ibl-min-lod-size`).
+pub const FILAMENT_MIN_MIP_SIZE: u32 = 16;
+
+/// Filament (`IndirectLight`, `Skybox`; the web build's `Engine.createIblFromKtx1` and
+/// `createSkyFromKtx1`), as cmgen deploys an environment for it.
+pub const FILAMENT: Target = Target {
+    name: "filament",
+    summary: "Filament (cmgen's files): <stem>_ibl.ktx with the SH, <stem>_skybox.ktx and sh.txt, KTX 1 rg11b10f, a quarter turn about +Y, the chain to 16×16",
+    // cmgen's faces: the generic direction d is stored at (−z, y, x), a quarter turn about
+    // +Y (measured against cmgen 1.9's output in tests/targets.rs). Filament samples its
+    // cubes with the world direction as it is, and evaluates the SH in the same frame.
+    orientation: Orientation {
+        frame: AxisMap {
+            axis: [2, 1, 0],
+            sign: [-1, 1, 1],
+        },
+        shader: AxisMap::IDENTITY,
+        description: "filament (cmgen's faces): texel at (-z, y, x) holds the light from (x, y, z), a quarter turn about +y",
+    },
+    // cmgen's KTX format; Filament's web loader warns about any other but RGB32F.
+    pixel_format: PixelFormat::Rg11b10f,
+    zstd: None,
+    // Filament's perceptualRoughnessToLod: lod = iblRoughnessOneLevel · r (2 − r), with
+    // iblRoughnessOneLevel = the reflections texture's level count − 1.
+    roughness: MipRoughness::Quadratic,
+    min_mip_size: FILAMENT_MIN_MIP_SIZE,
+    irradiance: false,
+    sh: true,
+    lut: false,
+    luts: BRDF_LUT_PNG,
+    files: FILES,
+    format_warnings: &[
+        (
+            PixelFormat::Rgba16f,
+            "Filament's web loader (createIblFromKtx1) warns about any IBL format but R11F_G11F_B10F and RGB32F; the native engine loads rgba16f",
+        ),
+        (
+            PixelFormat::Rgba32f,
+            "Filament's web loader (createIblFromKtx1) warns about any IBL format but R11F_G11F_B10F and RGB32F; the native engine loads rgba32f",
+        ),
+    ],
+    notes: &[
+        "<stem>_ibl.ktx: IndirectLight reflections (web: engine.createIblFromKtx1), its key 'sh' the irradiance SH pre-scaled for Filament's shader (IndirectLight::Builder::irradiance(3, sh); web: ibl.shfloats)",
+        "<stem>_skybox.ktx: Skybox environment (web: engine.createSkyFromKtx1)",
+        "Filament samples lod = (levels - 1) * r * (2 - r) (perceptualRoughnessToLod); without SH it reads diffuse from the last level, which holds E / pi",
+        "sh.txt: the same SH as cmgen --sh-shader writes them",
+    ],
+};
+
+/// cmgen's deploy set: `<stem>_ibl.ktx` (KTX 1: the specular chain, with the SH
+/// pre-scaled for Filament's shader as text under the key `sh`), `<stem>_skybox.ktx`
+/// (the environment, level 0 alone) and `sh.txt`.
+pub const FILES: FileSet = FileSet {
+    fixed_container: Some("ktx (KTX 1)"),
+    has_pixel_format: true,
+    carries_sh: true,
+    sheen: false,
+    whole_chain: false,
+    cube_container: Container::Ktx1,
+    write,
+};
+
+/// Writes [`FILES`].
+fn write(ctx: &FileContext, baked: BakedEnvironment, out: &mut Staging) -> Result<Vec<String>> {
+    let (dir, stem, format) = (ctx.dir, ctx.stem, ctx.encoding.format);
+    let specular = ctx.target.orientation.apply(baked.specular);
+    let sh = baked.sh.as_ref().map(|sh| engine_sh(sh, ctx.target));
+    let fmt = format.name();
+    let ktx = |path: &Path, cube: &Cubemap, key_values: &[(&str, &[u8])]| {
+        ktx1::encode(&encode_texture(cube, format), key_values).map_err(|message| {
+            Error::Encode {
+                path: path.to_path_buf(),
+                format: "KTX 1",
+                message,
+            }
+        })
+    };
+    let ibl = dir.join(format!("{stem}_ibl.ktx"));
+    let sh_value = sh.as_ref().map(sh_text::ktx_value);
+    let key_values: Vec<(&str, &[u8])> = sh_value.iter().map(|v| ("sh", v.as_slice())).collect();
+    let bytes = ktx(&ibl, &specular, &key_values)?;
+    let levels = specular.levels.len() as u32;
+    out.add(ibl, bytes, ("specular", fmt, specular.size, levels));
+    let skybox_cube = Cubemap {
+        size: specular.size,
+        levels: vec![specular.levels[0].clone()],
+    };
+    let skybox = dir.join(format!("{stem}_skybox.ktx"));
+    let bytes = ktx(&skybox, &skybox_cube, &[])?;
+    out.add(skybox, bytes, ("skybox", fmt, specular.size, 1));
+    if let Some(sh) = &sh {
+        out.add(
+            dir.join("sh.txt"),
+            sh_text::sh_txt(sh).into_bytes(),
+            ("sh", "text (cmgen --sh-shader)", 0, 0),
+        );
+    }
+    Ok(Vec::new())
+}

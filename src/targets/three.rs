@@ -1,0 +1,46 @@
+//! three.js r187: a cube with `isPMREMTexture = true` (assembled by `js/splitsum-three.js`)
+//! after mirroring x, at three's PMREM roughness per mip, with the SH as a `LightProbe`.
+
+use crate::io::PixelFormat;
+use crate::math::cubemap::AxisMap;
+use crate::plan::chain::MipRoughness;
+use crate::plan::lut::LutModel;
+use crate::targets::generic::STANDARD;
+use crate::targets::{LutChannels, LutSpec, Orientation, Target};
+
+/// three.js r187 (`MeshStandardMaterial`, `MeshPhysicalMaterial`, `scene.background`).
+pub const THREE: Target = Target {
+    name: "three",
+    summary: "three.js r187: x mirrored, a PMREM chain to 8×8 at r = 1 − √(1 − m/(levels − 1)), no irradiance cube or LUT",
+    // `flipEnvMap`: WebGLMaterials and WebGLBackground premultiply (-1, 1, 1) for cube
+    // textures that are not render targets.
+    orientation: Orientation {
+        frame: AxisMap::IDENTITY,
+        shader: AxisMap::mirror(0),
+        description: "mirror x: texel at (-x, y, z) holds the light from (x, y, z)",
+    },
+    pixel_format: PixelFormat::Rgba16f,
+    zstd: Some(10),
+    roughness: MipRoughness::Quadratic,
+    min_mip_size: 8,
+    irradiance: false,
+    sh: true,
+    lut: false,
+    // Browsers decode 16-bit PNGs to 8 bits and three's TextureLoader flips PNGs.
+    luts: &[LutSpec {
+        file: "brdf_lut.ktx2",
+        model: LutModel::SchlickGgx,
+        channels: LutChannels::Model,
+    }],
+    files: STANDARD,
+    format_warnings: &[(
+        PixelFormat::Rgba32f,
+        "rgba32f cubes are filtered only where WebGL has OES_texture_float_linear; rgba16f is filterable everywhere",
+    )],
+    notes: &[
+        "load with js/splitsum-three.js: a cube with isPMREMTexture = true, used by MeshStandardMaterial as it is (no run-time PMREM)",
+        "three samples lod = maxLod * r * (2 - r) (roughnessToMip), mips down to 8x8 as r187's PMREMGenerator (LOD_MIN = 3)",
+        "the last level holds E / pi: three reads diffuse as PI * textureLod(envMap, N, maxLod)",
+        "sh.json radiance_sh9 is the SphericalHarmonics3 of a THREE.LightProbe as is (world space, not mirrored)",
+    ],
+};

@@ -1,0 +1,147 @@
+//! Fixtures of the integration tests: the binary, output folders under `target/`, the
+//! backends and GPU context (skipped with a message without an adapter, unless required),
+//! the bundled HDRIs, random directions, and the peers (cmgen) some tests compare with.
+
+use std::f64::consts::PI;
+use std::path::PathBuf;
+
+/// The splitsum binary of this build.
+pub fn splitsum() -> std::process::Command {
+    std::process::Command::new(env!("CARGO_BIN_EXE_splitsum"))
+}
+
+/// SHA-256 of `bytes`, lower-case hex.
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    use sha2::Digest;
+    sha2::Sha256::digest(bytes)
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
+}
+
+/// Texels to check in a W×H LUT: a spread grid plus the grazing column, the first and last
+/// columns and rows (roughness ≈ 0 and ≈ 1). At least 32.
+pub fn check_texels(width: u32, height: u32) -> Vec<(u32, u32)> {
+    let mut out = Vec::new();
+    let n = 6;
+    for a in 0..n {
+        for b in 0..n {
+            let i = ((a as f64 + 0.37) / n as f64 * width as f64) as u32;
+            let j = ((b as f64 + 0.61) / n as f64 * height as f64) as u32;
+            out.push((i, j));
+        }
+    }
+    for b in 0..n {
+        let j = ((b as f64 + 0.5) / n as f64 * height as f64) as u32;
+        out.push((0, j));
+        out.push((width - 1, j));
+    }
+    for a in 0..n {
+        let i = ((a as f64 + 0.5) / n as f64 * width as f64) as u32;
+        out.push((i, 0));
+        out.push((i, height - 1));
+    }
+    out.extend([
+        (0, 0),
+        (0, height - 1),
+        (width - 1, 0),
+        (width - 1, height - 1),
+    ]);
+    out
+}
+
+/// A fresh folder under `target/test-output/<name>` for a test's files.
+pub fn output_dir(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// The GPU context for GPU tests. Without an adapter the test is skipped with a message,
+/// unless `SPLITSUM_REQUIRE_GPU=1` (set by `.ci/run`, which installs lavapipe), in which
+/// case a missing adapter fails the test.
+pub fn gpu() -> Option<splitsum::gpu::GpuContext> {
+    match splitsum::gpu::GpuContext::new() {
+        Ok(ctx) => Some(ctx),
+        Err(e) => {
+            if std::env::var("SPLITSUM_REQUIRE_GPU").is_ok_and(|v| v == "1") {
+                panic!("SPLITSUM_REQUIRE_GPU=1 but no GPU context: {e}");
+            }
+            eprintln!("skipping GPU test: {e}");
+            None
+        }
+    }
+}
+
+/// Both backends when a GPU is available (see [`gpu`]), else the CPU alone.
+pub fn backends() -> Vec<Box<dyn splitsum::backend::Backend>> {
+    let mut v: Vec<Box<dyn splitsum::backend::Backend>> =
+        vec![Box::new(splitsum::backend::CpuBackend)];
+    if let Some(ctx) = gpu() {
+        v.push(Box::new(splitsum::backend::GpuBackend { ctx }));
+    }
+    v
+}
+
+/// An HDRI from `tests/data` as an equirect (the tests' real environments).
+pub fn test_equirect(name: &str) -> splitsum::Equirect {
+    use splitsum::environment::Environment;
+    let path = std::path::Path::new("tests/data").join(name);
+    match splitsum::io::input::load_environment(&path, &Default::default())
+        .unwrap()
+        .env
+    {
+        Environment::Equirect(e) => e,
+        Environment::Cube(_) => panic!("{name} is not an equirect"),
+    }
+}
+
+/// A small deterministic generator (an LCG with Knuth's MMIX constants), so random test
+/// positions are the same on every run.
+pub struct Lcg(pub u64);
+
+impl Lcg {
+    /// The next number in [0, 1).
+    pub fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// `count` directions uniform on the sphere (cos θ and φ uniform) from `seed`.
+pub fn uniform_directions(count: usize, seed: u64) -> Vec<[f64; 3]> {
+    let mut rng = Lcg(seed);
+    (0..count)
+        .map(|_| {
+            let y = 1.0 - 2.0 * rng.next();
+            let phi = 2.0 * PI * rng.next();
+            let r = (1.0 - y * y).sqrt();
+            [r * phi.cos(), y, r * phi.sin()]
+        })
+        .collect()
+}
+
+/// cmgen (Filament's baker, Debian libfilament-tools) on PATH, for the peer comparisons.
+pub fn which_cmgen() -> Result<PathBuf, ()> {
+    std::env::var_os("PATH")
+        .and_then(|p| {
+            std::env::split_paths(&p)
+                .map(|d| d.join("cmgen"))
+                .find(|c| c.is_file())
+        })
+        .ok_or(())
+}
+
+/// A peer comparison whose peer is missing skips, except where SPLITSUM_REQUIRE_PEERS=1
+/// (`.ci/run` sets it, so CI cannot pass without comparing).
+pub fn skip_peer(why: &str) {
+    assert!(
+        std::env::var("SPLITSUM_REQUIRE_PEERS").as_deref() != Ok("1"),
+        "{why}, and SPLITSUM_REQUIRE_PEERS=1"
+    );
+    eprintln!("{why}; skipping");
+}
