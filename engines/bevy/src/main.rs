@@ -41,7 +41,7 @@ use bevy::render::render_resource::TextureFormat;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
 use bevy::window::ExitCondition;
 
-/// The bars: sun within 1°, skybox mean |Δ ln(1 + L)| ≤ 0.01, the rough sphere
+/// The bars: sun within 1°, skybox mean |Δ ln(1 + L)| ≤ 0.01, the rough sphere
 /// within 2 % of E/π in mean with correlation ≥ 0.99.
 const SUN_DEGREES: f32 = 1.0;
 const SKY_LOG_DIFF: f32 = 0.01;
@@ -55,14 +55,40 @@ const FORMATS: [(&str, &[&str]); 3] = [
     ("rgba16f", &["--pixel-format", "rgba16f"]),
     ("rg11b10f", &["--pixel-format", "rg11b10f"]),
 ];
-const SIZE: u32 = 160;
-/// The mirror sphere is rendered larger: one pixel of it turns the reflected direction by
-/// twice the normal's change.
-const MIRROR_SIZE: u32 = 512;
-/// Vertical field of view of every camera.
-const FOV: f32 = 50.0 * PI / 180.0;
-const SPHERE_DISTANCE: f32 = 4.2;
-const SPHERE_FOV: f32 = 30.0 * PI / 180.0;
+/// The views' geometry, the same as the browser checks': SIZE² images (MIRROR_SIZE² for the
+/// mirror sphere, one pixel of which turns the reflected direction by twice the normal's
+/// change), spheres seen from SPHERE_DISTANCE with a SPHERE_FOV° vertical field of view,
+/// the sky in SKY_FOV° views.
+struct ViewGeometry {
+    size: u32,
+    mirror_size: u32,
+    sphere_distance: f32,
+    /// Radians.
+    sphere_fov: f32,
+    /// Radians.
+    sky_fov: f32,
+}
+
+/// [`ViewGeometry`] as `engines/measure.js` (the browser checks' module) defines it, read
+/// from its `export const NAME = value;` lines so that the numbers live in one place.
+fn view_geometry() -> ViewGeometry {
+    const MEASURE_JS: &str = include_str!("../../measure.js");
+    let number = |name: &str| -> f32 {
+        let key = format!("export const {name} = ");
+        MEASURE_JS
+            .lines()
+            .find_map(|l| l.strip_prefix(key.as_str()))
+            .and_then(|v| v.trim().trim_end_matches(';').parse().ok())
+            .unwrap_or_else(|| panic!("engines/measure.js has no number {name}"))
+    };
+    ViewGeometry {
+        size: number("SIZE") as u32,
+        mirror_size: number("MIRROR_SIZE") as u32,
+        sphere_distance: number("SPHERE_DISTANCE"),
+        sphere_fov: number("SPHERE_FOV") * PI / 180.0,
+        sky_fov: number("SKY_FOV") * PI / 180.0,
+    }
+}
 
 /// An equirect in splitsum's convention (u = 0.5 + atan2(z, x)/2π, v = acos(y)/π).
 #[derive(Clone)]
@@ -395,11 +421,12 @@ fn setup(
                 diffuse.id().untyped(),
                 sky.id().untyped(),
             ]);
+            let geometry = view_geometry();
             for view in [View::Sky, View::Mirror, View::Rough] {
                 let size = if view == View::Mirror {
-                    MIRROR_SIZE
+                    geometry.mirror_size
                 } else {
-                    SIZE
+                    geometry.size
                 };
                 let target = images.add(Image::new_target_texture(
                     size,
@@ -408,11 +435,14 @@ fn setup(
                     None,
                 ));
                 let (transform, fov) = match view {
-                    View::Sky => (Transform::IDENTITY.looking_to(sun, Vec3::Y), FOV),
+                    View::Sky => (
+                        Transform::IDENTITY.looking_to(sun, Vec3::Y),
+                        geometry.sky_fov,
+                    ),
                     _ => (
-                        Transform::from_translation(view_dir * SPHERE_DISTANCE)
+                        Transform::from_translation(view_dir * geometry.sphere_distance)
                             .looking_at(Vec3::ZERO, Vec3::Y),
-                        SPHERE_FOV,
+                        geometry.sphere_fov,
                     ),
                 };
                 let mut camera = commands.spawn((
