@@ -93,7 +93,7 @@ export function decode8(bytes, decode, e) {
   return { px, max };
 }
 
-// The GL cube-face table (DESIGN.md's): the direction through face coordinates (s, t).
+// The GL cube-face table (docs/conventions.md, "Cube faces"): the direction through face coordinates (s, t).
 export const faceDirection = (face, s, t) => [[1, -t, -s], [-1, -t, s], [s, 1, t], [s, -1, -t], [s, -t, 1], [-s, -t, -1]][face];
 
 // Calls visit(face, i, j, s, t, w) for every texel of an n² cube, face by face, rows as GL

@@ -25,7 +25,7 @@ const out = join(root, 'target/engines/babylon');
 const splitsum = process.env.SPLITSUM ?? join(root, 'target/release/splitsum');
 const chromium = process.env.CHROMIUM ?? '/usr/bin/chromium';
 
-// The bars (README, "Babylon.js"): the sun within 1° of Babylon's own path, spheres
+// The bars (docs/engines.md, "Babylon.js"): the sun within 1° of Babylon's own path, spheres
 // at r = 0.25, 0.5, 1 within 5 % of it in mean brightness with correlation ≥ 0.98.
 const BARS = { sunDegrees: 1, brightness: 0.05, correlation: 0.98, controlDegrees: 10, cubeCorrelation: 0.99 };
 const ROUGHNESS = [0.25, 0.5, 1];

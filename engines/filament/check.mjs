@@ -26,7 +26,7 @@ const splitsum = process.env.SPLITSUM ?? join(root, 'target/release/splitsum');
 const cmgen = process.env.CMGEN ?? 'cmgen';
 const chromium = process.env.CHROMIUM ?? '/usr/bin/chromium';
 
-// The issue's bars (README, "Filament"): the sun within 1° of Filament's own path (a
+// The bars (docs/engines.md, "Filament"): the sun within 1° of Filament's own path (a
 // cmgen bake), spheres at r = 0.25, 0.5, 1 within 5 % of it in mean brightness with
 // correlation ≥ 0.98. The negative control must miss the sun bar by far.
 const BARS = { sunDegrees: 1, brightness: 0.05, correlation: 0.98, controlDegrees: 10 };
@@ -46,7 +46,7 @@ for (const h of HDRIS) {
   // cmgen names the files after the deploy folder.
   execFileSync(cmgen, ['-q', '-x', join(out, 'cmgen', h), '--format=ktx', '--size=256', `tests/data/${h}.hdr`], { cwd: root, stdio: 'inherit' });
   // splitsum's bake of cmgen's own level-0 cube: cmgen's faces are the Filament target's
-  // quarter turn of DESIGN.md's, which --rotate 90 undoes on input.
+  // quarter turn of the generic one, which --rotate 90 undoes on input.
   execFileSync(
     splitsum,
     ['bake', join(out, 'cmgen', h, `${h}_skybox.ktx`), '--target', 'filament', '--rotate', '90', '-q', '-o', join(out, 'from_cmgen_cube')],

@@ -22,7 +22,7 @@ const out = join(root, 'target/engines/three');
 const splitsum = process.env.SPLITSUM ?? join(root, 'target/release/splitsum');
 const chromium = process.env.CHROMIUM ?? '/usr/bin/chromium';
 
-// The bars (README, "three.js"): the sun within 1° of three's own path, spheres
+// The bars (docs/engines.md, "three.js"): the sun within 1° of three's own path, spheres
 // within 5 % of three's PMREM in mean brightness with correlation ≥ 0.98.
 const BARS = { sunDegrees: 1, brightness: 0.05, correlation: 0.98 };
 const ROUGHNESS = [0.25, 0.5, 1];
