@@ -1,4 +1,7 @@
-//! Every GPU kernel against its CPU reference.
+//! The LUT kernel on the GPU against its CPU twin, every model. (The other kernels are
+//! compared with their CPU twins beside their accuracy tests: conversion in
+//! `tests/cubemap.rs`, prefilter and irradiance in `tests/specular.rs`, the sheen chain in
+//! `tests/sheen.rs`, the preview's renders in `tests/preview.rs`.)
 mod common;
 
 use splitsum::plan::lut::{LutModel, LutQuadrature};
