@@ -17,11 +17,17 @@
 // Formats: rgba16f and rgba32f are uploaded as they are (rgba32f needs
 // OES_texture_float_linear to be filtered); rgb9e5 and rg11b10f are decoded to rgba16f,
 // since three.js uploads uncompressed cube mips through the CompressedCubeTexture path
-// only for RGBA data.
+// only for RGBA data. BC6H (`--pixel-format bc6h`), which KTX2Loader r187 has no entry
+// for, is read here (three's ktx-parse and zstddec) and uploaded compressed as
+// RGB_BPTC_UNSIGNED_Format: 1 byte a texel in video memory. It needs the WebGL extension
+// EXT_texture_compression_bptc (desktop GPUs; not most phones): without it the loader
+// throws an Error that says so, and a page can load an rgba16f or rgb9e5 bake instead.
 
 import {
   CompressedCubeTexture,
   DataUtils,
+  RGB_BPTC_UNSIGNED_Format,
+  UnsignedByteType,
   FloatType,
   HalfFloatType,
   LightProbe,
@@ -34,6 +40,53 @@ import {
   UnsignedInt5999Type,
 } from 'three';
 import { KTX2Loader } from 'three/addons/loaders/KTX2Loader.js';
+import {
+  read as readKtx2,
+  KHR_SUPERCOMPRESSION_NONE,
+  KHR_SUPERCOMPRESSION_ZSTD,
+  VK_FORMAT_BC6H_UFLOAT_BLOCK,
+} from 'three/addons/libs/ktx-parse.module.js';
+import { ZSTDDecoder } from 'three/addons/libs/zstddec.module.js';
+
+/**
+ * Whether `renderer` can sample BC6H textures (EXT_texture_compression_bptc).
+ * @param {THREE.WebGLRenderer} renderer
+ * @returns {boolean}
+ */
+export function supportsBc6h(renderer) {
+  return renderer.extensions.has('EXT_texture_compression_bptc');
+}
+
+// A BC6H KTX2 cube (ktx-parse's container) as a CompressedCubeTexture of its blocks.
+async function bc6hCube(url, container, renderer) {
+  if (!supportsBc6h(renderer)) {
+    throw new Error(
+      `${url}: BC6H needs the WebGL extension EXT_texture_compression_bptc, which this GPU or browser does not have; ` +
+        'bake with --pixel-format rgba16f or rgb9e5 for it, or fall back to such a bake when this throws',
+    );
+  }
+  let zstd = null;
+  if (container.supercompressionScheme === KHR_SUPERCOMPRESSION_ZSTD) {
+    zstd = new ZSTDDecoder();
+    await zstd.init();
+  } else if (container.supercompressionScheme !== KHR_SUPERCOMPRESSION_NONE) {
+    throw new Error(`${url}: supercompression ${container.supercompressionScheme} is not one splitsum writes`);
+  }
+  const faces = [[], [], [], [], [], []];
+  container.levels.forEach((level, m) => {
+    const data = zstd ? zstd.decode(level.levelData, level.uncompressedByteLength) : level.levelData;
+    const n = Math.max(1, container.pixelWidth >> m);
+    const faceBytes = data.byteLength / 6;
+    for (let f = 0; f < 6; f++) {
+      faces[f].push({ data: data.subarray(f * faceBytes, (f + 1) * faceBytes), width: n, height: n });
+    }
+  });
+  return new CompressedCubeTexture(
+    faces.map((mipmaps) => ({ mipmaps, width: mipmaps[0].width, height: mipmaps[0].height })),
+    RGB_BPTC_UNSIGNED_Format,
+    UnsignedByteType,
+  );
+}
 
 // E5B9G9R9_UFLOAT_PACK32: 9-bit mantissas, shared exponent with bias 15.
 function unpackRgb9e5(p) {
@@ -80,8 +133,26 @@ function toRgbaHalf(packed, unpack) {
  * @returns {Promise<CompressedCubeTexture>}
  */
 export async function loadSplitsumCube(url, renderer, { pmrem = true } = {}) {
+  const bytes = new Uint8Array(await (await fetch(url)).arrayBuffer());
+  const container = readKtx2(bytes);
+  const cube =
+    container.vkFormat === VK_FORMAT_BC6H_UFLOAT_BLOCK
+      ? await bc6hCube(url, container, renderer)
+      : await uncompressedCube(url, bytes, renderer);
+  cube.minFilter = cube.image[0].mipmaps.length > 1 ? LinearMipmapLinearFilter : LinearFilter;
+  cube.magFilter = LinearFilter;
+  cube.generateMipmaps = false;
+  cube.colorSpace = LinearSRGBColorSpace;
+  cube.isPMREMTexture = pmrem;
+  cube.name = pmrem ? 'splitsum PMREM' : 'splitsum cube';
+  cube.needsUpdate = true;
+  return cube;
+}
+
+// An uncompressed KTX2 cube through KTX2Loader, its flat levels split into faces.
+async function uncompressedCube(url, bytes, renderer) {
   const loader = new KTX2Loader().detectSupport(renderer);
-  const flat = await loader.loadAsync(url);
+  const flat = await new Promise((resolve, reject) => loader.parse(bytes.buffer, resolve, reject));
   loader.dispose();
   if (!flat.mipmaps || flat.mipmaps.length === 0 || flat.mipmaps[0].data.length % 6 !== 0) {
     throw new Error(`${url}: not a splitsum KTX2 cube (six faces per level expected)`);
@@ -104,15 +175,7 @@ export async function loadSplitsumCube(url, renderer, { pmrem = true } = {}) {
     faces.push({ mipmaps, width: mipmaps[0].width, height: mipmaps[0].height });
   }
   flat.dispose();
-  const cube = new CompressedCubeTexture(faces, RGBAFormat, type);
-  cube.minFilter = faces[0].mipmaps.length > 1 ? LinearMipmapLinearFilter : LinearFilter;
-  cube.magFilter = LinearFilter;
-  cube.generateMipmaps = false;
-  cube.colorSpace = LinearSRGBColorSpace;
-  cube.isPMREMTexture = pmrem;
-  cube.name = pmrem ? 'splitsum PMREM' : 'splitsum cube';
-  cube.needsUpdate = true;
-  return cube;
+  return new CompressedCubeTexture(faces, RGBAFormat, type);
 }
 
 /**

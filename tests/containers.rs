@@ -155,6 +155,7 @@ fn ktx2_cubemaps_are_valid_and_round_trip() {
                 format,
                 zstd,
                 layout: CubeLayout::Faces,
+                ..Default::default()
             };
             write_cubemap(&path, &cube, &opts).unwrap();
             let bytes = std::fs::read(&path).unwrap();
@@ -211,6 +212,7 @@ fn dds_cubemaps_load_with_ddsfile() {
             format,
             zstd: None,
             layout: CubeLayout::Faces,
+            ..Default::default()
         };
         write_cubemap(&path, &cube, &opts).unwrap();
         let dds = ddsfile::Dds::read(std::fs::File::open(&path).unwrap()).unwrap();

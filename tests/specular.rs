@@ -102,7 +102,6 @@ fn analytic_irradiance() {
             .unwrap();
         let mut worst = 0.0f32;
         for (face, i, j, d) in texel_centres(32) {
-            let d = d;
             worst = worst.max((irr.texel(0, face, i, j)[0] - exact(d)).abs());
             worst = worst.max((sh_eval(&sh.irradiance, d)[0] - exact(d)).abs());
         }
@@ -135,7 +134,6 @@ fn specular_matches_brute_force_on_quarry() {
             let n = env.level_size(m as usize);
             let (mut err, mut tot, mut worst) = (0.0f64, 0.0f64, 0.0f64);
             for (face, i, j, d) in texel_centres(n) {
-                let d = d;
                 let b = lum(brute_force_ggx(&env, d, r));
                 let t = spec.texel(m as usize, face, i, j);
                 let p = lum([t[0] as f64, t[1] as f64, t[2] as f64]);
@@ -184,7 +182,6 @@ fn irradiance_matches_brute_force_on_real_hdris() {
             .unwrap();
         let mut worst = 0.0f32;
         for (face, i, j, d) in texel_centres(32) {
-            let d = d;
             let mut b = [0.0f32; 3];
             for (l, lw) in &all {
                 let c = d[0] * l[0] + d[1] * l[1] + d[2] * l[2];

@@ -5,7 +5,7 @@
 // mapping), so the numbers are linear radiance.
 import * as THREE from 'three';
 import { HDRLoader } from 'three/addons/loaders/HDRLoader.js';
-import { loadSplitsumBake, loadSplitsumCube } from '/js/splitsum-three.js';
+import { loadSplitsumBake, loadSplitsumCube, supportsBc6h } from '/js/splitsum-three.js';
 import * as measure from '/engines/measure.js';
 
 // Edge of the renders; the mirror sphere is rendered larger, since one pixel of it turns
@@ -74,6 +74,11 @@ function pixelRay(camera, [x, y]) {
 const degrees = (a, b) => THREE.MathUtils.radToDeg(a.angleTo(b));
 
 window.runCheck = async function ({ hdrUrl, bakeDir, cubeUrl, roughness }) {
+  const manifest = await (await fetch(`${bakeDir}/manifest.json`)).json();
+  const format = manifest.parameters.pixel_format;
+  if (format === 'bc6h' && !supportsBc6h(renderer)) {
+    return { out: { skipped: true, path: 'bc6h not rendered: this WebGL context has no EXT_texture_compression_bptc' }, images: {} };
+  }
   const hdr = await new HDRLoader().setDataType(THREE.FloatType).loadAsync(hdrUrl);
   hdr.mapping = THREE.EquirectangularReflectionMapping;
   const bake = await loadSplitsumBake(bakeDir, renderer);
@@ -82,7 +87,11 @@ window.runCheck = async function ({ hdrUrl, bakeDir, cubeUrl, roughness }) {
   const exactCube = await loadSplitsumCube(cubeUrl, renderer, { pmrem: false });
   const sun = sunDirection(hdr);
   const images = {};
-  const out = { sun: sun.toArray(), levels: bake.envMap.image[0].mipmaps.length };
+  const out = {
+    sun: sun.toArray(),
+    levels: bake.envMap.image[0].mipmaps.length,
+    path: format === 'bc6h' ? 'bc6h, uploaded compressed as RGB_BPTC_UNSIGNED_Format' : `${format} cube`,
+  };
 
   // Background, looking at the sun: three's equirect path against the bake's cube.
   const camera = new THREE.PerspectiveCamera(50, 1, 0.1, 10);

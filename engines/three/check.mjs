@@ -1,12 +1,14 @@
-// The three.js engine check: bakes the bundled HDRIs with `splitsum bake --target three`,
-// renders them in three.js r187 (npm three 0.187.0) in headless Chromium (SwiftShader
+// The three.js engine check: bakes the bundled HDRIs with `splitsum bake --target three`
+// (rgba16f, and BC6H: the `_bc6h` cases), renders them in three.js r187 (npm three 0.187.0) in headless Chromium (SwiftShader
 // WebGL2) with js/splitsum-three.js and built-in materials, and compares against three's
 // own path for the same HDRI (HDRLoader as float, equirect background, run-time PMREM).
 //
 //   cd engines/three && npm ci && node check.mjs
 //
 // Environment: SPLITSUM (the binary; default ../../target/release/splitsum), CHROMIUM
-// (default /usr/bin/chromium). Writes renders and results.json to
+// (default /usr/bin/chromium). A BC6H case renders where the WebGL context exposes
+// EXT_texture_compression_bptc and is reported as not run otherwise. Writes renders and
+// results.json to
 // ../../target/engines/three/. Exits 1 when a bar is missed or the console shows a WebGL
 // error or warning.
 import { execFileSync } from 'node:child_process';
@@ -36,6 +38,11 @@ execFileSync(
   ['bake', ...HDRIS.map((h) => `tests/data/${h}.hdr`), '--target', 'three', '-q', '-o', 'target/engines/three/bakes'],
   { cwd: root, stdio: 'inherit' },
 );
+execFileSync(
+  splitsum,
+  ['bake', ...HDRIS.map((h) => `tests/data/${h}.hdr`), '--target', 'three', '--pixel-format', 'bc6h', '-q', '-o', 'target/engines/three/bakes_bc6h'],
+  { cwd: root, stdio: 'inherit' },
+);
 for (const h of HDRIS) {
   execFileSync(
     splitsum,
@@ -50,15 +57,21 @@ await runEngineCheck({
   root,
   page: '/engines/three/check.html',
   out,
-  cases: HDRIS,
+  cases: [...HDRIS, ...HDRIS.map((h) => `${h}_bc6h`)],
   bars: BARS,
-  config: (hdri) => ({
-    hdrUrl: `/tests/data/${hdri}.hdr`,
-    bakeDir: `/target/engines/three/bakes/${hdri}`,
-    cubeUrl: `/target/engines/three/bakes/${hdri}_cube.ktx2`,
-    roughness: ROUGHNESS,
-  }),
-  judge: (r, { bad }) => {
+  config: (name) => {
+    const hdri = name.replace(/_bc6h$/, '');
+    const bakes = name.endsWith('_bc6h') ? 'bakes_bc6h' : 'bakes';
+    return {
+      hdrUrl: `/tests/data/${hdri}.hdr`,
+      bakeDir: `/target/engines/three/${bakes}/${hdri}`,
+      cubeUrl: `/target/engines/three/bakes/${hdri}_cube.ktx2`,
+      roughness: ROUGHNESS,
+    };
+  },
+  judge: (r, { bad, note }) => {
+    note(true, `path: ${r.path}`);
+    if (r.skipped) return;
     bad(r.background.sunError <= BARS.sunDegrees,
       `background sun ${r.background.sunError.toFixed(2)}° from three's equirect path (bar ${BARS.sunDegrees}°; three's own path is ${r.background.threeSunVsEquirect.toFixed(2)}° from the HDRI's sun); mean |Δ ln(1+L)| ${r.background.logDiff.toFixed(4)} at the sun, ${r.background.logDiffAllViews.toFixed(4)} over six views`);
     bad(r.mirror.sunError <= BARS.sunDegrees,

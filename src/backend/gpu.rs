@@ -4,6 +4,7 @@ use crate::backend::cpu::CpuBackend;
 use crate::backend::Backend;
 use crate::environment::{Cubemap, EquirectIntegral, IrradianceSource};
 use crate::gpu::{self, GpuContext};
+use crate::plan::bc6h::Bc6hQuality;
 use crate::plan::chain::SpecularChain;
 use crate::plan::convert::EquirectToCubeParams;
 use crate::plan::lut::{validate_lut_size, BrdfLut, LutModel, LutQuadrature};
@@ -96,6 +97,12 @@ impl Backend for GpuBackend {
             gpu::preview::preview_truth(device, queue, scene, inputs)
         })
     }
+
+    fn encode_bc6h(&self, cube: &Cubemap, quality: Bc6hQuality) -> Result<Vec<Vec<u8>>> {
+        self.ctx.run_kernel("bc6h", |device, queue| {
+            gpu::bc6h::encode_bc6h(device, queue, &self.ctx.bc6h, cube, quality)
+        })
+    }
 }
 
 /// What `--backend auto` uses on a software adapter (Mesa's lavapipe and the like): the
@@ -134,6 +141,10 @@ impl Backend for SoftwareAdapterBackend {
             "{} for the preview's truth, cpu for the LUT, conversion, prefilter, irradiance and the preview's split-sum",
             self.gpu.identity()
         )
+    }
+
+    fn bc6h_identity(&self) -> String {
+        CpuBackend.identity()
     }
 
     fn brdf_lut_model(&self, width: u32, height: u32, model: LutModel) -> Result<BrdfLut> {
@@ -182,5 +193,9 @@ impl Backend for SoftwareAdapterBackend {
 
     fn preview_truth(&self, scene: &SceneUniform, inputs: &TruthInputs) -> Result<Vec<[f32; 3]>> {
         self.gpu.preview_truth(scene, inputs)
+    }
+
+    fn encode_bc6h(&self, cube: &Cubemap, quality: Bc6hQuality) -> Result<Vec<Vec<u8>>> {
+        CpuBackend.encode_bc6h(cube, quality)
     }
 }

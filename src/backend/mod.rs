@@ -8,6 +8,7 @@ pub use cpu::CpuBackend;
 pub use gpu::{GpuBackend, SoftwareAdapterBackend};
 
 use crate::environment::{Cubemap, EquirectIntegral, IrradianceSource};
+use crate::plan::bc6h::Bc6hQuality;
 use crate::plan::chain::SpecularChain;
 use crate::plan::convert::EquirectToCubeParams;
 use crate::plan::lut::{BrdfLut, LutModel};
@@ -46,7 +47,12 @@ pub trait Backend {
         self.description()
     }
 
-    /// The BRDF LUT of `model` (see [`crate::lut`]).
+    /// Where [`Backend::encode_bc6h`] runs, for manifests: "cpu" or the GPU adapter.
+    fn bc6h_identity(&self) -> String {
+        self.identity()
+    }
+
+    /// The BRDF LUT of `model` (see [`crate::plan::lut`]).
     fn brdf_lut_model(&self, width: u32, height: u32, model: LutModel) -> Result<BrdfLut>;
 
     /// The split-sum BRDF LUT of the default model (Schlick-GGX scale and bias).
@@ -99,6 +105,10 @@ pub trait Backend {
 
     /// The preview's ground-truth panel, see [`crate::cpu::preview_truth`].
     fn preview_truth(&self, scene: &SceneUniform, inputs: &TruthInputs) -> Result<Vec<[f32; 3]>>;
+
+    /// The BC6H blocks of every level of `cube`, each level its six faces one after the
+    /// other (see [`crate::plan::bc6h`]).
+    fn encode_bc6h(&self, cube: &Cubemap, quality: Bc6hQuality) -> Result<Vec<Vec<u8>>>;
 }
 
 /// A backend picked by `choice`, and a note for the user when `Auto` fell back to the CPU.

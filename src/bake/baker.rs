@@ -10,6 +10,7 @@ use std::path::Path;
 use crate::backend::{create_backend, Backend, BackendChoice, CpuBackend};
 use crate::bake::{bake, bake_environment, BakeOptions, BakeReport};
 use crate::environment::{Cubemap, Environment};
+use crate::io::cubemap::{clip_warning, write_cubemap_with, Container, CubeWriteOptions};
 use crate::io::input::{load_faces, load_input, InputOptions, LoadedEnvironment};
 use crate::plan::lut::{BrdfLut, LutModel, DEFAULT_LUT_SIZE};
 use crate::stages::convert::{default_cube_size, environment_into_cube};
@@ -230,6 +231,23 @@ impl Baker {
             environment_into_cube(backend, env, size, mips, rotate)
         })?;
         Ok(target.orientation.apply(cube))
+    }
+
+    /// Writes `cube` (as [`Baker::cubemap`] returns it) to `path` in the container its
+    /// extension names, a block format (BC6H) encoded on this baker's backend; refuses a
+    /// pixel format the target's engine cannot read, and warns (see
+    /// [`Baker::take_warnings`]) about values the format clips. Returns the paths written.
+    pub fn write_cubemap(
+        &mut self,
+        path: &Path,
+        cube: &Cubemap,
+        opts: &CubeWriteOptions,
+    ) -> Result<Vec<std::path::PathBuf>> {
+        self.opts.target.check_format(opts.format)?;
+        if Container::of_path(path).is_some_and(Container::is_texture) {
+            self.warnings.extend(clip_warning(cube, opts.format));
+        }
+        self.with_fallback(|baker| write_cubemap_with(path, cube, opts, baker.backend.as_ref()))
     }
 
     /// The preview of `baked` (generic orientation) with `lut` (the default model's

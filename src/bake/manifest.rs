@@ -11,6 +11,7 @@ use crate::bake::options::BakeOptions;
 use crate::environment::Cubemap;
 use crate::io::staging::OutputRecord;
 use crate::io::to_json;
+use crate::plan::bc6h::{ENCODER, ENCODER_VERSION};
 use crate::plan::chain::SpecularChain;
 use crate::plan::lut::BrdfLut;
 use crate::stages::light::BakedEnvironment;
@@ -72,6 +73,9 @@ pub struct Parameters {
     pub container: String,
     /// Their pixel format.
     pub pixel_format: String,
+    /// The encoder of a block format (BC6H), its version and preset.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub encoder: Option<EncoderRecord>,
     /// KTX2 Zstandard level.
     pub zstd: Option<i32>,
     /// GGX samples per texel of the importance-sampled levels.
@@ -82,6 +86,19 @@ pub struct Parameters {
     pub exposure_ev: f32,
     /// Edge of the LUTs written, if any.
     pub lut_size: Option<u32>,
+}
+
+/// The encoder of a block format.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct EncoderRecord {
+    /// The encoder.
+    pub name: String,
+    /// Its version.
+    pub version: String,
+    /// Its preset (which modes and partitions it searches).
+    pub preset: String,
+    /// The backend it ran on (`cpu`, or the GPU's WGSL port).
+    pub ran_on: String,
 }
 
 /// How preview.png was made and what it measured.
@@ -154,6 +171,7 @@ impl Manifest {
     pub fn new(
         input: &Path,
         backend: String,
+        bc6h_ran_on: &str,
         opts: &BakeOptions,
         lut_size: Option<u32>,
         preview: Option<&Preview>,
@@ -180,6 +198,12 @@ impl Manifest {
                 irradiance: "E / pi".into(),
                 container: opts.container_name().into(),
                 pixel_format: opts.pixel_format().name().into(),
+                encoder: opts.pixel_format().is_block().then(|| EncoderRecord {
+                    name: ENCODER.into(),
+                    version: ENCODER_VERSION.into(),
+                    preset: opts.bc6h_quality.name().into(),
+                    ran_on: bc6h_ran_on.into(),
+                }),
                 zstd: opts.zstd,
                 samples: opts.samples,
                 rotate_degrees: opts.rotate_degrees,

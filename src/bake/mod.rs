@@ -18,7 +18,7 @@ pub use options::BakeOptions;
 use crate::backend::Backend;
 use crate::environment::Environment;
 use crate::io::atomic::write_all_atomic;
-use crate::io::cubemap::CubeEncoding;
+use crate::io::cubemap::{clip_warning, BlockEncoder, CubeEncoding};
 use crate::io::input::{input_stem, load_input, LoadedEnvironment};
 use crate::io::staging::{OutputRecord, Staging};
 use crate::plan::lut::{BrdfLut, LutModel};
@@ -111,6 +111,9 @@ pub fn bake(
             warnings.push(format!("target {}: {w}", target.name));
         }
     }
+    if target.files.has_pixel_format {
+        warnings.extend(clip_warning(&baked.specular, opts.pixel_format()));
+    }
     let dir = output_dir(out_root, input);
     let stem = input_stem(input);
     let ctx = FileContext {
@@ -123,6 +126,10 @@ pub fn bake(
             zstd: opts.zstd,
             layout: crate::io::cubemap::CubeLayout::Cross,
             every_level: true,
+            blocks: BlockEncoder {
+                backend,
+                quality: opts.bc6h_quality,
+            },
         },
     };
     let mut out = Staging::default();
@@ -142,6 +149,7 @@ pub fn bake(
     let manifest = Manifest::new(
         input,
         identity.clone(),
+        &backend.bc6h_identity(),
         opts,
         luts.first().map(|l| l.width),
         preview.as_ref(),

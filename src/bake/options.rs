@@ -5,6 +5,7 @@ use crate::backend::BackendChoice;
 use crate::io::cubemap::Container;
 use crate::io::input::InputOptions;
 use crate::io::PixelFormat;
+use crate::plan::bc6h::Bc6hQuality;
 use crate::plan::chain::{chain_levels, SpecularChain, DEFAULT_SAMPLES};
 use crate::stages::convert::validate_cube_size;
 use crate::stages::light::LightOptions;
@@ -43,6 +44,8 @@ pub struct BakeOptions {
     pub pixel_format: Option<PixelFormat>,
     /// KTX2 Zstandard level (1 to 22), or none.
     pub zstd: Option<i32>,
+    /// How hard the BC6H encoder searches, for the BC6H pixel format.
+    pub bc6h_quality: Bc6hQuality,
     /// GGX samples per texel for importance-sampled levels (1 to 65536).
     pub samples: u32,
     /// Rotation about +Y in degrees.
@@ -70,6 +73,7 @@ impl BakeOptions {
             container: Container::Ktx2,
             pixel_format: None,
             zstd: target.zstd,
+            bc6h_quality: Bc6hQuality::default(),
             samples: DEFAULT_SAMPLES,
             rotate_degrees: 0.0,
             exposure_ev: 0.0,
@@ -191,11 +195,12 @@ impl BakeOptions {
                 ),
             );
         }
+        target.check_format(self.pixel_format())?;
         if files.cube_container == Container::Ktx1 && !crate::io::ktx1::holds(self.pixel_format()) {
             return invalid(
                 "pixel_format",
                 format!(
-                    "{} cannot be written as KTX 1 for Filament (its KTX 1 reader takes rg11b10f, rgba16f and rgba32f)",
+                    "{} cannot be written as KTX 1 for Filament (its KTX 1 reader takes rg11b10f, rgba16f, rgba32f and bc6h)",
                     self.pixel_format().name()
                 ),
             );

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand, ValueEnum};
-use splitsum::{LutModel, PixelFormat, Target, CUBE_PIXEL_FORMATS, TARGETS};
+use splitsum::{Bc6hQuality, LutModel, PixelFormat, Target, CUBE_PIXEL_FORMATS, TARGETS};
 
 /// `--target`'s values: the names of [`TARGETS`], each with its summary.
 fn target_parser() -> impl TypedValueParser<Value = &'static Target> {
@@ -248,6 +248,9 @@ pub struct BakeArgs {
     #[command(flatten)]
     pub zstd: ZstdArgs,
 
+    #[command(flatten)]
+    pub bc6h: Bc6hArgs,
+
     #[arg(long, conflicts_with = "no_lut", help = lut_help())]
     pub lut: bool,
 
@@ -455,6 +458,9 @@ pub struct CubemapArgs {
     #[command(flatten)]
     pub zstd: ZstdArgs,
 
+    #[command(flatten)]
+    pub bc6h: Bc6hArgs,
+
     /// Layout of .exr/.hdr outputs.
     #[arg(long, value_enum, default_value_t = LayoutArg::Faces)]
     pub layout: LayoutArg,
@@ -464,6 +470,21 @@ pub struct CubemapArgs {
 
     #[command(flatten)]
     pub common: CommonArgs,
+}
+
+/// The BC6H encoder's preset.
+#[derive(Debug, Args)]
+pub struct Bc6hArgs {
+    /// With --pixel-format bc6h: how hard the encoder searches (fast, basic, slow; see
+    /// docs/accuracy.md, "BC6H").
+    #[arg(long, value_name = "PRESET", default_value = "fast", value_parser = bc6h_parser())]
+    pub bc6h_quality: Bc6hQuality,
+}
+
+/// `--bc6h-quality`'s values.
+fn bc6h_parser() -> impl TypedValueParser<Value = Bc6hQuality> {
+    PossibleValuesParser::new(Bc6hQuality::ALL.map(|q| q.name()))
+        .map(|name| Bc6hQuality::by_name(&name).unwrap_or_default())
 }
 
 /// KTX2 supercompression, defaulting to the target's.

@@ -10,9 +10,9 @@ use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use splitsum::{
     check_cube_path, check_cube_size, check_lut_path, check_output_extension, input_stem,
-    png_clip_warning, read_bake_dir, write_atomic, write_cubemap, write_lut, BakeOptions,
-    BakeReport, Baker, Container, CubeWriteOptions, LutWriteOptions, Preview, PreviewOptions,
-    Stage, PREVIEW_ROUGHNESS,
+    png_clip_warning, read_bake_dir, write_atomic, write_lut, BakeOptions, BakeReport, Baker,
+    Container, CubeWriteOptions, LutWriteOptions, Preview, PreviewOptions, Stage,
+    PREVIEW_ROUGHNESS,
 };
 
 use super::args::{
@@ -67,6 +67,7 @@ pub fn bake(args: BakeArgs) -> anyhow::Result<()> {
         container: args.container.into(),
         pixel_format: args.pixel_format,
         zstd: args.zstd.level(target),
+        bc6h_quality: args.bc6h.bc6h_quality,
         samples: args.samples,
         rotate_degrees: args.input_opts.rotate,
         exposure_ev: args.input_opts.exposure,
@@ -260,6 +261,9 @@ pub fn cubemap(args: CubemapArgs) -> anyhow::Result<()> {
         .into());
     }
     let format = args.pixel_format.unwrap_or(target.pixel_format);
+    target
+        .check_format(format)
+        .map_err(|e| for_user("cubemap", e))?;
     if let Some(w) = target
         .format_warning(format)
         .filter(|_| container.is_texture())
@@ -299,15 +303,19 @@ pub fn cubemap(args: CubemapArgs) -> anyhow::Result<()> {
             start.elapsed().as_secs_f64()
         );
     }
-    let written = write_cubemap(
-        &output,
-        &cube,
-        &CubeWriteOptions {
-            format,
-            zstd: args.zstd.level(target),
-            layout: args.layout.into(),
-        },
-    )?;
+    let written = baker
+        .write_cubemap(
+            &output,
+            &cube,
+            &CubeWriteOptions {
+                format,
+                zstd: args.zstd.level(target),
+                layout: args.layout.into(),
+                bc6h_quality: args.bc6h.bc6h_quality,
+            },
+        )
+        .map_err(|e| for_user("cubemap", e))?;
+    warn(baker.take_warnings());
     let shown: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
     eprintln!(
         "wrote {} ({}×{}, {} levels)",

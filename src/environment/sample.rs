@@ -194,8 +194,8 @@ pub fn cube_texel_solid_angle_at(cube: &Cubemap, d: [f32; 3]) -> f32 {
 
 /// A 16² … chain with `mips` levels whose texels follow three incommensurate patterns
 /// (no two neighbours alike, so a wrong tap shows), for the lookup and prefilter tests.
-#[cfg(test)]
-pub(crate) fn patterned_chain(size: u32, mips: u32) -> Cubemap {
+#[cfg(any(test, feature = "internals"))]
+pub fn patterned_chain(size: u32, mips: u32) -> Cubemap {
     let mut cube = Cubemap {
         size,
         levels: vec![(0..Cubemap::level_len(size))

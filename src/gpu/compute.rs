@@ -208,6 +208,21 @@ pub fn read_texture_level(
         queue.submit([encoder.finish()]);
         staging
     })?;
+    let bytes = map_read(device, &staging)?;
+    let mut out = Vec::with_capacity((width * height * layers * 4) as usize);
+    for row in bytes.chunks_exact(padded_row as usize) {
+        out.extend(
+            row[..row_bytes as usize]
+                .chunks_exact(4)
+                .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]])),
+        );
+    }
+    Ok(out)
+}
+
+/// Maps a `MAP_READ` buffer whose copies have been submitted, waits for the GPU and
+/// returns its bytes (the buffer is unmapped again).
+pub fn map_read(device: &wgpu::Device, staging: &wgpu::Buffer) -> Result<Vec<u8>> {
     let slice = staging.slice(..);
     let (tx, rx) = std::sync::mpsc::channel();
     slice.map_async(wgpu::MapMode::Read, move |r| {
@@ -230,11 +245,8 @@ pub fn read_texture_level(
         stage: "readback map".into(),
         message: e.to_string(),
     })?;
-    let mut out = Vec::with_capacity((width * height * layers * 4) as usize);
-    for row in view.chunks_exact(padded_row as usize) {
-        out.extend_from_slice(bytemuck::cast_slice::<u8, f32>(&row[..row_bytes as usize]));
-    }
+    let bytes = view.to_vec();
     drop(view);
     staging.unmap();
-    Ok(out)
+    Ok(bytes)
 }

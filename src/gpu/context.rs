@@ -39,6 +39,9 @@ pub struct GpuContext {
     uncaptured: Arc<Mutex<Option<String>>>,
     /// Why the device was lost, once it has been (wgpu's device-lost callback).
     lost: Arc<Mutex<Option<String>>>,
+    /// The BC6H encoder, its pipeline compiled on first use and kept (compiling it takes a
+    /// software adapter over a minute).
+    pub(crate) bc6h: crate::gpu::bc6h::CompressorCache,
 }
 
 impl std::fmt::Debug for GpuContext {
@@ -122,6 +125,7 @@ impl GpuContext {
             adapter_info,
             uncaptured,
             lost,
+            bc6h: Default::default(),
         })
     }
 

@@ -4,6 +4,7 @@
 //! Kernels take `&wgpu::Device, &wgpu::Queue`, so tests, the CLI and library users share
 //! one [`GpuContext`].
 
+pub mod bc6h;
 pub mod brdf_lut;
 pub mod compute;
 pub mod context;

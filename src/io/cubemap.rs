@@ -11,7 +11,9 @@ use super::format::{EncodedTexture, PixelFormat};
 use super::input::HORIZONTAL_CROSS;
 use super::{dds, exr, extension_of, hdr, ktx1, ktx2};
 use crate::stages::resample::sample_cube;
+use crate::backend::{Backend, CpuBackend};
 use crate::environment::Cubemap;
+use crate::plan::bc6h::Bc6hQuality;
 use crate::math::cubemap::{equirect_direction, FACES};
 use crate::{Error, Result};
 
@@ -91,6 +93,8 @@ pub struct CubeWriteOptions {
     pub zstd: Option<i32>,
     /// Layout of EXR/HDR outputs.
     pub layout: CubeLayout,
+    /// The BC6H preset, for `format` BC6H.
+    pub bc6h_quality: Bc6hQuality,
 }
 
 impl Default for CubeWriteOptions {
@@ -99,13 +103,14 @@ impl Default for CubeWriteOptions {
             format: PixelFormat::Rgba16f,
             zstd: None,
             layout: CubeLayout::Faces,
+            bc6h_quality: Bc6hQuality::default(),
         }
     }
 }
 
 /// How a cube is encoded.
 #[derive(Clone, Copy, Debug)]
-pub struct CubeEncoding {
+pub struct CubeEncoding<'a> {
     /// The container.
     pub container: Container,
     /// Pixel format of texture containers.
@@ -116,6 +121,8 @@ pub struct CubeEncoding {
     pub layout: CubeLayout,
     /// Image containers: one file per level, `<stem>_m<m>.<ext>`, instead of level 0 alone.
     pub every_level: bool,
+    /// What encodes a block format.
+    pub blocks: BlockEncoder<'a>,
 }
 
 /// Reads the cube of a texture container (`.ktx2`, `.dds`, `.ktx`: level 0, or the whole
@@ -151,15 +158,71 @@ pub fn output_paths(path: &Path, layout: CubeLayout) -> Vec<PathBuf> {
     }
 }
 
-/// Encodes every level of `cube` in `format` (faces concatenated per level).
-pub fn encode_texture(cube: &Cubemap, format: PixelFormat) -> EncodedTexture {
-    EncodedTexture {
+/// What encodes block formats (BC6H): a backend's kernel, at a preset.
+#[derive(Clone, Copy)]
+pub struct BlockEncoder<'a> {
+    /// The backend that runs the encoder.
+    pub backend: &'a dyn Backend,
+    /// The BC6H preset.
+    pub quality: Bc6hQuality,
+}
+
+impl std::fmt::Debug for BlockEncoder<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("BlockEncoder")
+            .field("backend", &self.backend.identity())
+            .field("quality", &self.quality)
+            .finish()
+    }
+}
+
+impl Default for BlockEncoder<'static> {
+    /// The CPU backend at the default preset.
+    fn default() -> Self {
+        BlockEncoder {
+            backend: &CpuBackend,
+            quality: Bc6hQuality::default(),
+        }
+    }
+}
+
+/// The warning for storing `cube` in `format` when its level 0 holds values above the
+/// largest the format holds (rgba16f and BC6H 65504, rg11b10f 65024, rgb9e5 65408), which
+/// are clipped to it.
+pub fn clip_warning(cube: &Cubemap, format: PixelFormat) -> Option<String> {
+    let max = format.max_value();
+    let (clipped, largest) = cube.levels[0]
+        .iter()
+        .map(|t| t[0].max(t[1]).max(t[2]))
+        .filter(|&m| m > max)
+        .fold((0usize, 0.0f32), |(n, top), m| (n + 1, top.max(m)));
+    (clipped > 0).then(|| {
+        format!(
+            "{clipped} texels of level 0 are brighter than the {max:.0} that {} holds (the largest {largest:.0}) and are clipped to it; bake N stops darker (--exposure -N) and raise the engine's intensity by 2^N to keep them",
+            format.name()
+        )
+    })
+}
+
+/// Encodes every level of `cube` in `format` (faces concatenated per level); a block
+/// format through `blocks`.
+pub fn encode_texture(
+    cube: &Cubemap,
+    format: PixelFormat,
+    blocks: &BlockEncoder,
+) -> Result<EncodedTexture> {
+    let levels = if format.is_block() {
+        blocks.backend.encode_bc6h(cube, blocks.quality)?
+    } else {
+        cube.levels.iter().map(|l| format.encode(l)).collect()
+    };
+    Ok(EncodedTexture {
         format,
         width: cube.size,
         height: cube.size,
         faces: FACES as u32,
-        levels: cube.levels.iter().map(|l| format.encode(l)).collect(),
-    }
+        levels,
+    })
 }
 
 fn rgb(texels: &[[f32; 4]]) -> Vec<[f32; 3]> {
@@ -208,16 +271,17 @@ pub fn encode_cube(
         format,
         message,
     };
-    let texture = || encode_texture(cube, enc.format);
+    let texture = || encode_texture(cube, enc.format, &enc.blocks);
     Ok(match enc.container {
         Container::Ktx2 => vec![(
             path.to_path_buf(),
-            ktx2::encode(&texture(), enc.zstd).map_err(|e| enc_err(path, "KTX2", e.to_string()))?,
+            ktx2::encode(&texture()?, enc.zstd)
+                .map_err(|e| enc_err(path, "KTX2", e.to_string()))?,
         )],
-        Container::Dds => vec![(path.to_path_buf(), dds::encode(&texture()))],
+        Container::Dds => vec![(path.to_path_buf(), dds::encode(&texture()?))],
         Container::Ktx1 => vec![(
             path.to_path_buf(),
-            ktx1::encode(&texture(), &[]).map_err(|e| enc_err(path, "KTX 1", e))?,
+            ktx1::encode(&texture()?, &[]).map_err(|e| enc_err(path, "KTX 1", e))?,
         )],
         Container::Exr | Container::Hdr if enc.every_level => {
             let stem = path
@@ -277,9 +341,19 @@ fn encode_images(
 }
 
 /// Encodes `cube` as `path` (its extension names the container; an image container holds
-/// level 0) and writes the files atomically, together. Returns the
-/// paths written.
+/// level 0) and writes the files atomically, together; BC6H is encoded on the CPU. Returns
+/// the paths written.
 pub fn write_cubemap(path: &Path, cube: &Cubemap, opts: &CubeWriteOptions) -> Result<Vec<PathBuf>> {
+    write_cubemap_with(path, cube, opts, &CpuBackend)
+}
+
+/// [`write_cubemap`], a block format encoded on `backend`.
+pub fn write_cubemap_with(
+    path: &Path,
+    cube: &Cubemap,
+    opts: &CubeWriteOptions,
+    backend: &dyn Backend,
+) -> Result<Vec<PathBuf>> {
     check_cube_path(path)?;
     let enc = CubeEncoding {
         container: Container::of_path(path).unwrap_or(Container::Ktx2),
@@ -287,6 +361,10 @@ pub fn write_cubemap(path: &Path, cube: &Cubemap, opts: &CubeWriteOptions) -> Re
         zstd: opts.zstd,
         layout: opts.layout,
         every_level: false,
+        blocks: BlockEncoder {
+            backend,
+            quality: opts.bc6h_quality,
+        },
     };
     let files = encode_cube(path, cube, &enc)?;
     write_all_atomic(&files)?;

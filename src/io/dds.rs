@@ -18,6 +18,7 @@ const DDSD_WIDTH: u32 = 0x4;
 const DDSD_PITCH: u32 = 0x8;
 const DDSD_PIXELFORMAT: u32 = 0x1000;
 const DDSD_MIPMAPCOUNT: u32 = 0x20000;
+const DDSD_LINEARSIZE: u32 = 0x80000;
 const DDPF_FOURCC: u32 = 0x4;
 const DDSCAPS_COMPLEX: u32 = 0x8;
 const DDSCAPS_TEXTURE: u32 = 0x1000;
@@ -30,7 +31,17 @@ const DDS_RESOURCE_MISC_TEXTURECUBE: u32 = 0x4;
 pub fn encode(tex: &EncodedTexture) -> Vec<u8> {
     let levels = tex.levels.len() as u32;
     let cube = tex.faces == 6;
-    let mut flags = DDSD_CAPS | DDSD_HEIGHT | DDSD_WIDTH | DDSD_PIXELFORMAT | DDSD_PITCH;
+    // Uncompressed formats give a row's pitch; block formats the size of level 0's face
+    // ("linear size").
+    let (size_flag, pitch_or_linear) = if tex.format.is_block() {
+        (
+            DDSD_LINEARSIZE,
+            tex.format.image_bytes(tex.width, tex.height) as u32,
+        )
+    } else {
+        (DDSD_PITCH, tex.width * tex.format.texel_bytes())
+    };
+    let mut flags = DDSD_CAPS | DDSD_HEIGHT | DDSD_WIDTH | DDSD_PIXELFORMAT | size_flag;
     let mut caps = DDSCAPS_TEXTURE;
     if levels > 1 {
         flags |= DDSD_MIPMAPCOUNT;
@@ -44,8 +55,8 @@ pub fn encode(tex: &EncodedTexture) -> Vec<u8> {
         flags,
         tex.height,
         tex.width,
-        tex.width * tex.format.texel_bytes(), // pitch
-        0,                                    // depth
+        pitch_or_linear,
+        0, // depth
         levels,
     ];
     words.extend([0u32; 11]); // dwReserved1
@@ -116,7 +127,8 @@ pub fn decode_cube(path: &Path, bytes: &[u8]) -> Result<Cubemap> {
         .filter(|f| !matches!(f, PixelFormat::Rg16f | PixelFormat::Rg32f))
         .ok_or_else(|| {
             unsupported(
-                "DDS format is not one splitsum reads (rgba16f, rgba32f, rgb9e5, rg11b10f)".into(),
+                "DDS format is not one splitsum reads (rgba16f, rgba32f, rgb9e5, rg11b10f, bc6h)"
+                    .into(),
             )
         })?;
     check_dimensions(path, n, n)?;
@@ -129,11 +141,9 @@ pub fn decode_cube(path: &Path, bytes: &[u8]) -> Result<Cubemap> {
             "header claims {mips} mip levels; a {n}×{n} face has at most {full}"
         )));
     }
-    let texel = pf.texel_bytes() as usize;
-    let face_bytes = (n as usize) * (n as usize) * texel;
-    let stride: usize = (0..mips)
-        .map(|m| ((n >> m).max(1) as usize).pow(2) * texel)
-        .sum();
+    let size = |m: u32| (n >> m).max(1);
+    let face_bytes = pf.image_bytes(n, n);
+    let stride: usize = (0..mips).map(|m| pf.image_bytes(size(m), size(m))).sum();
     let data = &dds.data;
     if data.len() < stride * (FACES - 1) + face_bytes {
         return Err(bad(format!(
@@ -144,7 +154,7 @@ pub fn decode_cube(path: &Path, bytes: &[u8]) -> Result<Cubemap> {
     }
     let mut level = Vec::with_capacity(Cubemap::level_len(n));
     for face in 0..FACES {
-        level.extend(pf.decode(&data[face * stride..face * stride + face_bytes]));
+        level.extend(pf.decode_faces(&data[face * stride..face * stride + face_bytes], n, 1));
     }
     Ok(Cubemap {
         size: n,

@@ -18,6 +18,9 @@ pub enum PixelFormat {
     Rgb9e5,
     /// Unsigned floats: R and G with 6-bit mantissas, B with 5, 5-bit exponents, 32 bits.
     Rg11b10f,
+    /// BC6H unsigned float (BPTC): 4×4 texels in 16 bytes, half-float endpoints; encoded
+    /// by a backend ([`crate::plan::bc6h`]), decoded here.
+    Bc6h,
 }
 
 /// The pixel formats a cubemap can be written in, by their command-line names.
@@ -26,12 +29,14 @@ pub const CUBE_PIXEL_FORMATS: &[(&str, PixelFormat)] = &[
     ("rgba32f", PixelFormat::Rgba32f),
     ("rgb9e5", PixelFormat::Rgb9e5),
     ("rg11b10f", PixelFormat::Rg11b10f),
+    ("bc6h", PixelFormat::Bc6h),
 ];
 
 impl PixelFormat {
     /// What it stores, in a line (with its Vulkan name).
     pub fn description(self) -> &'static str {
         match self {
+            PixelFormat::Bc6h => "BC6H unsigned float, 1 byte a texel in the file and in video memory (BC6H_UFLOAT_BLOCK)",
             PixelFormat::Rg16f => "2 × 16-bit float (R16G16_SFLOAT)",
             PixelFormat::Rg32f => "2 × 32-bit float (R32G32_SFLOAT)",
             PixelFormat::Rgba16f => "4 × 16-bit float (R16G16B16A16_SFLOAT)",
@@ -41,12 +46,36 @@ impl PixelFormat {
         }
     }
 
-    /// Bytes per texel.
+    /// Bytes per texel, or per 4×4 block for a block format ([`PixelFormat::is_block`]).
     pub fn texel_bytes(self) -> u32 {
         match self {
             PixelFormat::Rg16f | PixelFormat::Rgb9e5 | PixelFormat::Rg11b10f => 4,
             PixelFormat::Rg32f | PixelFormat::Rgba16f => 8,
-            PixelFormat::Rgba32f => 16,
+            PixelFormat::Rgba32f | PixelFormat::Bc6h => 16,
+        }
+    }
+
+    /// Whether texels are stored in 4×4 blocks (BC6H).
+    pub fn is_block(self) -> bool {
+        self == PixelFormat::Bc6h
+    }
+
+    /// Bytes of one `width`×`height` image.
+    pub fn image_bytes(self, width: u32, height: u32) -> usize {
+        if self.is_block() {
+            (width.div_ceil(4) * height.div_ceil(4)) as usize * self.texel_bytes() as usize
+        } else {
+            (width * height) as usize * self.texel_bytes() as usize
+        }
+    }
+
+    /// The largest value a channel holds: texels above it are clipped to it.
+    pub fn max_value(self) -> f32 {
+        match self {
+            PixelFormat::Rg32f | PixelFormat::Rgba32f => f32::MAX,
+            PixelFormat::Rg16f | PixelFormat::Rgba16f | PixelFormat::Bc6h => f16::MAX.to_f32(),
+            PixelFormat::Rgb9e5 => rgb9e5_max(),
+            PixelFormat::Rg11b10f => ufloat_to_f32(0x7BF, 6).min(ufloat_to_f32(0x3DF, 5)),
         }
     }
 
@@ -55,6 +84,7 @@ impl PixelFormat {
     pub fn type_size(self) -> u32 {
         match self {
             PixelFormat::Rg16f | PixelFormat::Rgba16f => 2,
+            PixelFormat::Bc6h => 1,
             _ => 4,
         }
     }
@@ -68,6 +98,7 @@ impl PixelFormat {
             PixelFormat::Rgba32f => 109,  // VK_FORMAT_R32G32B32A32_SFLOAT
             PixelFormat::Rgb9e5 => 123,   // VK_FORMAT_E5B9G9R9_UFLOAT_PACK32
             PixelFormat::Rg11b10f => 122, // VK_FORMAT_B10G11R11_UFLOAT_PACK32
+            PixelFormat::Bc6h => 143,     // VK_FORMAT_BC6H_UFLOAT_BLOCK
         }
     }
 
@@ -80,6 +111,7 @@ impl PixelFormat {
             PixelFormat::Rgba32f => 2,   // DXGI_FORMAT_R32G32B32A32_FLOAT
             PixelFormat::Rgb9e5 => 67,   // DXGI_FORMAT_R9G9B9E5_SHAREDEXP
             PixelFormat::Rg11b10f => 26, // DXGI_FORMAT_R11G11B10_FLOAT
+            PixelFormat::Bc6h => 95,     // DXGI_FORMAT_BC6H_UF16
         }
     }
 
@@ -102,12 +134,15 @@ impl PixelFormat {
             PixelFormat::Rgba32f => "rgba32f",
             PixelFormat::Rgb9e5 => "rgb9e5",
             PixelFormat::Rg11b10f => "rg11b10f",
+            PixelFormat::Bc6h => "bc6h",
         }
     }
 
-    /// Encodes RGBA texels, little endian (RG formats keep R and G; packed formats RGB).
-    /// Values beyond a format's range are clamped to its largest finite value (half:
-    /// ±65504), never turned into infinity.
+    /// Encodes RGBA texels of a texel format, little endian (RG formats keep R and G;
+    /// packed formats RGB). Values beyond a format's range are clamped to its largest
+    /// finite value (half: ±65504), never turned into infinity. A block format's images are
+    /// encoded whole, by a backend (`io::cubemap::encode_texture`); here they give no
+    /// bytes.
     pub fn encode(self, texels: &[[f32; 4]]) -> Vec<u8> {
         let half =
             |v: f32| f16::from_f32(v.clamp(f16::MIN.to_f32(), f16::MAX.to_f32())).to_le_bytes();
@@ -122,13 +157,29 @@ impl PixelFormat {
                 PixelFormat::Rg11b10f => {
                     out.extend(pack_rg11b10f([t[0], t[1], t[2]]).to_le_bytes())
                 }
+                PixelFormat::Bc6h => return Vec::new(),
             }
         }
         out
     }
 
+    /// Decodes the square `n`² faces of an image (`faces` of them, one after the other)
+    /// back to RGBA texels: [`PixelFormat::decode`] for a texel format, each face's blocks
+    /// for a block format (`bytes` must hold [`PixelFormat::image_bytes`] per face).
+    pub fn decode_faces(self, bytes: &[u8], n: u32, faces: u32) -> Vec<[f32; 4]> {
+        if !self.is_block() {
+            return self.decode(bytes);
+        }
+        let face = self.image_bytes(n, n);
+        bytes
+            .chunks_exact(face)
+            .take(faces as usize)
+            .flat_map(|b| super::bc6h::decode_face(b, n))
+            .collect()
+    }
+
     /// Decodes texels written by [`encode`](Self::encode) back to RGBA (missing channels:
-    /// 0 for B, 1 for A).
+    /// 0 for B, 1 for A); a block format through [`PixelFormat::decode_faces`].
     pub fn decode(self, bytes: &[u8]) -> Vec<[f32; 4]> {
         let h = |b: &[u8]| f16::from_le_bytes([b[0], b[1]]).to_f32();
         let f = |b: &[u8]| f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
@@ -148,18 +199,21 @@ impl PixelFormat {
                     let [r, g, b] = unpack_rg11b10f(w(b));
                     [r, g, b, 1.0]
                 }
+                // Only through decode_faces, which knows the image's size.
+                PixelFormat::Bc6h => [0.0, 0.0, 0.0, 1.0],
             })
             .collect()
     }
 }
 
-const ALL: [PixelFormat; 6] = [
+const ALL: [PixelFormat; 7] = [
     PixelFormat::Rg16f,
     PixelFormat::Rg32f,
     PixelFormat::Rgba16f,
     PixelFormat::Rgba32f,
     PixelFormat::Rgb9e5,
     PixelFormat::Rg11b10f,
+    PixelFormat::Bc6h,
 ];
 
 const RGB9E5_MANTISSA_BITS: i32 = 9;

@@ -36,6 +36,8 @@ const GL_R11F_G11F_B10F: u32 = 0x8C3A;
 const GL_UNSIGNED_INT_10F_11F_11F_REV: u32 = 0x8C3B;
 const GL_RGBA16F: u32 = 0x881A;
 const GL_RGBA32F: u32 = 0x8814;
+/// `GL_COMPRESSED_RGB_BPTC_UNSIGNED_FLOAT` (ARB_texture_compression_bptc): BC6H unsigned.
+const GL_COMPRESSED_RGB_BPTC_UNSIGNED_FLOAT: u32 = 0x8E8F;
 
 /// The OpenGL description of a pixel format in a KTX 1 header.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -52,16 +54,25 @@ pub struct GlFormat {
     pub base_internal_format: u32,
 }
 
-/// The KTX 1 description of `format`; `None` for formats Filament cannot load from KTX 1
-/// (RGB9_E5: its reader has no pixel type for `GL_UNSIGNED_INT_5_9_9_9_REV`) and for the
-/// two-channel LUT formats.
 /// Whether `format` can be stored in KTX 1 for Filament ([`gl_format`]).
 pub fn holds(format: PixelFormat) -> bool {
     gl_format(format).is_some()
 }
 
+/// The KTX 1 description of `format`; `None` for formats Filament cannot load from KTX 1
+/// (RGB9_E5: its reader has no pixel type for `GL_UNSIGNED_INT_5_9_9_9_REV`) and for the
+/// two-channel LUT formats. BC6H is a compressed format: `glType`, `glTypeSize` 1 and
+/// `glFormat` 0 as the specification wants, which Filament's reader maps to
+/// `RGB_BPTC_UNSIGNED_FLOAT` (desktop GL and WebGL with `EXT_texture_compression_bptc`).
 pub fn gl_format(format: PixelFormat) -> Option<GlFormat> {
     match format {
+        PixelFormat::Bc6h => Some(GlFormat {
+            gl_type: 0,
+            type_size: 1,
+            format: 0,
+            internal_format: GL_COMPRESSED_RGB_BPTC_UNSIGNED_FLOAT,
+            base_internal_format: GL_RGB,
+        }),
         PixelFormat::Rg11b10f => Some(GlFormat {
             gl_type: GL_R11F_G11F_B10F, // cmgen's value, see the module documentation
             type_size: 4,
@@ -95,6 +106,7 @@ fn pixel_format(h: &GlFormat) -> Option<PixelFormat> {
         }
         (GL_RGBA16F, GL_HALF_FLOAT) => Some(PixelFormat::Rgba16f),
         (GL_RGBA32F, GL_FLOAT) => Some(PixelFormat::Rgba32f),
+        (GL_COMPRESSED_RGB_BPTC_UNSIGNED_FLOAT, 0) => Some(PixelFormat::Bc6h),
         _ => None,
     }
 }
@@ -113,7 +125,7 @@ pub fn encode(
 ) -> std::result::Result<Vec<u8>, String> {
     let gl = gl_format(tex.format).ok_or_else(|| {
         format!(
-            "{} cannot be written as KTX 1 for Filament (its KTX 1 reader takes rg11b10f, rgba16f and rgba32f)",
+            "{} cannot be written as KTX 1 for Filament (its KTX 1 reader takes rg11b10f, rgba16f, rgba32f and bc6h)",
             tex.format.name()
         )
     })?;
@@ -148,8 +160,9 @@ pub fn encode(
     out.extend_from_slice(&kvd);
     for level in &tex.levels {
         let face_bytes = level.len() / tex.faces as usize;
-        // Rows of every format written here are whole 4-byte words, so the specification's
-        // row padding (GL_UNPACK_ALIGNMENT 4), cubePadding and mipPadding are all empty.
+        // Rows of every format written here are whole 4-byte words (a BC6H block row 16
+        // bytes a block), so the specification's row padding (GL_UNPACK_ALIGNMENT 4),
+        // cubePadding and mipPadding are all empty.
         debug_assert!(face_bytes.is_multiple_of(4));
         // For a non-array cubemap imageSize is the size of one face.
         out.extend_from_slice(&(face_bytes as u32).to_le_bytes());
@@ -238,9 +251,9 @@ pub fn decode(bytes: &[u8]) -> std::result::Result<Ktx1, String> {
         internal_format,
         base_internal_format,
     };
-    if gl_type == 0 || format == 0 {
+    if (gl_type == 0 || format == 0) && internal_format != GL_COMPRESSED_RGB_BPTC_UNSIGNED_FLOAT {
         return Err(format!(
-            "compressed format {internal_format:#x}: only uncompressed textures are read"
+            "compressed format {internal_format:#x}: of the compressed formats only BPTC unsigned float (BC6H) is read"
         ));
     }
     if depth > 1 || array > 0 {
@@ -279,7 +292,16 @@ pub fn decode(bytes: &[u8]) -> std::result::Result<Ktx1, String> {
     let mut out = Vec::with_capacity(levels as usize);
     for m in 0..levels {
         let face_bytes = r.u32("a level's imageSize")? as usize;
-        let mut level = Vec::with_capacity(face_bytes * faces as usize);
+        // The claimed size sizes the allocation: it must fit in what the file still holds
+        // (found by fuzzing: an imageSize of 2 GB in a 6 kB file).
+        let claimed = face_bytes.saturating_mul(faces as usize);
+        if claimed > r.bytes.len() - r.pos {
+            return Err(format!(
+                "level {m} claims {claimed} bytes; the file holds {} more (truncated?)",
+                r.bytes.len() - r.pos
+            ));
+        }
+        let mut level = Vec::with_capacity(claimed);
         for _ in 0..faces {
             level.extend_from_slice(r.take(face_bytes, &format!("level {m}"))?);
             r.take(face_bytes.next_multiple_of(4) - face_bytes, "cube padding")?;
@@ -314,21 +336,21 @@ pub fn decode_cube(path: &Path, bytes: &[u8]) -> Result<Cubemap> {
     super::limits::check_dimensions(path, ktx.width, ktx.height)?;
     let format = pixel_format(&ktx.gl).ok_or_else(|| {
         bad(format!(
-            "glInternalFormat {:#x} with glType {:#x}: splitsum reads R11F_G11F_B10F, RGBA16F and RGBA32F",
+            "glInternalFormat {:#x} with glType {:#x}: splitsum reads R11F_G11F_B10F, RGBA16F, RGBA32F and BPTC unsigned float",
             ktx.gl.internal_format, ktx.gl.gl_type
         ))
     })?;
     let mut levels = Vec::with_capacity(ktx.levels.len());
     for (m, bytes) in ktx.levels.iter().enumerate() {
         let n = (ktx.width >> m).max(1);
-        let expected = Cubemap::level_len(n) * format.texel_bytes() as usize;
+        let expected = FACES * format.image_bytes(n, n);
         if bytes.len() != expected {
             return Err(bad(format!(
                 "level {m} holds {} bytes, {expected} expected for {n}×{n} faces",
                 bytes.len()
             )));
         }
-        levels.push(format.decode(bytes));
+        levels.push(format.decode_faces(bytes, n, FACES as u32));
     }
     Ok(Cubemap {
         size: ktx.width,
@@ -370,7 +392,7 @@ mod tests {
             PixelFormat::Rg11b10f,
         ] {
             let bytes = encode(
-                &encode_texture(&c, format),
+                &encode_texture(&c, format, &Default::default()).unwrap(),
                 &[("sh", b"1 2 3\n\0"), ("odd", b"abcde")],
             )
             .unwrap();
@@ -391,7 +413,8 @@ mod tests {
     #[test]
     fn the_layout_is_the_specifications() {
         let c = cube(4, 3);
-        let bytes = encode(&encode_texture(&c, PixelFormat::Rg11b10f), &[("sh", b"x")]).unwrap();
+        let texture = encode_texture(&c, PixelFormat::Rg11b10f, &Default::default()).unwrap();
+        let bytes = encode(&texture, &[("sh", b"x")]).unwrap();
         let word = |i: usize| u32::from_le_bytes(bytes[i..i + 4].try_into().unwrap());
         assert_eq!(&bytes[..12], &IDENTIFIER);
         assert_eq!(word(12), 0x0403_0201);
@@ -411,7 +434,7 @@ mod tests {
 
     #[test]
     fn bad_files_are_errors_not_panics() {
-        let good = encode(&encode_texture(&cube(4, 2), PixelFormat::Rgba16f), &[]).unwrap();
+        let good = encode(&encode_texture(&cube(4, 2), PixelFormat::Rgba16f, &Default::default()).unwrap(), &[]).unwrap();
         for cut in [0, 11, 40, 64, 70, good.len() - 1] {
             assert!(
                 decode_cube(Path::new("x.ktx"), &good[..cut]).is_err(),
@@ -425,6 +448,6 @@ mod tests {
         let mut huge_kv = good.clone();
         huge_kv[60..64].copy_from_slice(&u32::MAX.to_le_bytes());
         assert!(decode(&huge_kv).is_err());
-        assert!(encode(&encode_texture(&cube(4, 1), PixelFormat::Rgb9e5), &[]).is_err());
+        assert!(encode(&encode_texture(&cube(4, 1), PixelFormat::Rgb9e5, &Default::default()).unwrap(), &[]).is_err());
     }
 }

@@ -19,6 +19,9 @@ pub const IDENTIFIER: [u8; 12] = [
 
 // Khronos Data Format Specification 1.3, section 5 ("basic" descriptor block).
 const KHR_DF_MODEL_RGBSDA: u32 = 1;
+const KHR_DF_MODEL_BC6H: u32 = 133;
+/// The one channel of a BC6H block (KDF 1.3, "BC6H").
+const KHR_DF_CHANNEL_BC6H_COLOR: u32 = 0;
 const KHR_DF_PRIMARIES_BT709: u32 = 1;
 const KHR_DF_TRANSFER_LINEAR: u32 = 1;
 const KHR_DF_VERSION: u32 = 2;
@@ -95,18 +98,33 @@ fn samples(format: PixelFormat) -> Vec<Sample> {
                 ]
             })
             .collect(),
+        // One sample for the whole 128-bit block, unsigned float with the 0.0 and 1.0 limits
+        // of KTX-Software's descriptor for VK_FORMAT_BC6H_UFLOAT_BLOCK.
+        PixelFormat::Bc6h => vec![(
+            0,
+            128,
+            KHR_DF_CHANNEL_BC6H_COLOR | KHR_DF_SAMPLE_DATATYPE_FLOAT,
+            0,
+            FLOAT_ONE,
+        )],
     }
 }
 
 /// The Data Format Descriptor for `format`, including its leading total-size word.
 pub fn data_format_descriptor(format: PixelFormat) -> Vec<u8> {
     let samples = samples(format);
+    // 1×1×1×1 texels, or a 4×4×1×1 block.
+    let (model, block) = if format.is_block() {
+        (KHR_DF_MODEL_BC6H, 3 | (3 << 8))
+    } else {
+        (KHR_DF_MODEL_RGBSDA, 0)
+    };
     let mut words: Vec<u32> = vec![
         0, // vendorId = Khronos, descriptorType = basic
         KHR_DF_VERSION | ((24 + 16 * samples.len() as u32) << 16),
-        KHR_DF_MODEL_RGBSDA | (KHR_DF_PRIMARIES_BT709 << 8) | (KHR_DF_TRANSFER_LINEAR << 16),
-        0,                    // texelBlockDimension 1×1×1×1 (stored minus one)
-        format.texel_bytes(), // bytesPlane0
+        model | (KHR_DF_PRIMARIES_BT709 << 8) | (KHR_DF_TRANSFER_LINEAR << 16),
+        block,                // texelBlockDimension (each stored minus one)
+        format.texel_bytes(), // bytesPlane0: a texel's, or a block's
         0,
     ];
     for (offset, len, channel_type, lower, upper) in samples {
@@ -300,7 +318,7 @@ fn decode_ktx2_levels(path: &Path, bytes: &[u8], max_levels: u32) -> Result<Cube
         .filter(|f| f.texel_bytes() >= 4 && !matches!(f, PixelFormat::Rg16f | PixelFormat::Rg32f))
         .ok_or_else(|| {
             unsupported(format!(
-                "KTX2 format {:?} is not one splitsum reads (rgba16f, rgba32f, rgb9e5, rg11b10f)",
+                "KTX2 format {:?} is not one splitsum reads (rgba16f, rgba32f, rgb9e5, rg11b10f, bc6h)",
                 h.format
             ))
         })?;
@@ -309,7 +327,7 @@ fn decode_ktx2_levels(path: &Path, bytes: &[u8], max_levels: u32) -> Result<Cube
     let mut levels = Vec::new();
     for (m, level) in reader.levels().enumerate().take(max_levels as usize) {
         let n = (n0 >> m).max(1);
-        let exact = Cubemap::level_len(n) * pf.texel_bytes() as usize;
+        let exact = 6 * pf.image_bytes(n, n);
         let data = match h.supercompression_scheme {
             None => level.data.to_vec(),
             Some(::ktx2::SupercompressionScheme::Zstandard) => {
@@ -338,7 +356,7 @@ fn decode_ktx2_levels(path: &Path, bytes: &[u8], max_levels: u32) -> Result<Cube
                 data.len()
             )));
         }
-        levels.push(pf.decode(&data[..exact]));
+        levels.push(pf.decode_faces(&data[..exact], n, 6));
     }
     if levels.is_empty() {
         return Err(bad("no mip levels".into()));

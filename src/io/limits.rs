@@ -45,7 +45,7 @@ pub fn check_cube_level0(
     pf: PixelFormat,
 ) -> Result<()> {
     check_dimensions(path, n, n)?;
-    let expected = FACES * (n as usize) * (n as usize) * pf.texel_bytes() as usize;
+    let expected = FACES * pf.image_bytes(n, n);
     if bytes < expected {
         return Err(Error::Decode {
             path: path.to_path_buf(),

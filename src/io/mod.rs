@@ -2,6 +2,7 @@
 //! [`atomic::write_atomic`], so an output is either complete or absent.
 
 pub mod atomic;
+pub mod bc6h;
 pub mod cubemap;
 pub mod dds;
 pub mod env;

@@ -3,8 +3,10 @@
 //! method per level ([`chain`]), the prepared sources of the prefilter ([`sources`]), the
 //! sheen chain's plan and driver ([`sheen`]), the least-squares fit of a level for
 //! bilinear lookups ([`fit`]), the conversion's parameters ([`convert`]), the LUT models
-//! and their quadrature ([`lut`]) and the preview's scene ([`scene`]).
+//! and their quadrature ([`lut`]), the BC6H encoder's settings ([`bc6h`]) and the
+//! preview's scene ([`scene`]).
 
+pub mod bc6h;
 pub mod chain;
 pub mod convert;
 pub mod fit;

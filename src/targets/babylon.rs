@@ -39,6 +39,7 @@ pub const BABYLON: Target = Target {
     luts: BRDF_LUT_PNG,
     files: FILES,
     format_warnings: &[],
+    format_refusals: &[],
     notes: &[
         "<stem>.env: new CubeTexture(url, scene) (or CubeTexture.CreateFromPrefilteredData) as scene.environmentTexture; scene.createDefaultSkybox(texture) for the background",
         "Babylon samples lod = 0.8 * log2(size * (r^2 + 0.0005)); mip m holds GGX at alpha = 2^(m / 0.8) / size",

@@ -31,6 +31,7 @@ pub const BEVY: Target = Target {
         PixelFormat::Rgba32f,
         "rgba32f is not filterable under WebGPU's limits: Bevy fails to bind it without the native FLOAT32_FILTERABLE feature; rgba16f or rgb9e5 render everywhere",
     )],
+    format_refusals: &[],
     notes: &[
         "EnvironmentMapLight { diffuse_map: irradiance.ktx2, specular_map: specular.ktx2, intensity }",
         "Bevy samples lod = perceptual_roughness * (mip_level_count - 1) after negating z",

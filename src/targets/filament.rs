@@ -47,6 +47,10 @@ pub const FILAMENT: Target = Target {
     files: FILES,
     format_warnings: &[
         (
+            PixelFormat::Bc6h,
+            "Filament reads BC6H (RGB_BPTC_UNSIGNED_FLOAT) on desktop GL, Vulkan and Metal and in WebGL with EXT_texture_compression_bptc, not on mobile GPUs, whose HDR compression is ASTC",
+        ),
+        (
             PixelFormat::Rgba16f,
             "Filament's web loader (createIblFromKtx1) warns about any IBL format but R11F_G11F_B10F and RGB32F; the native engine loads rgba16f",
         ),
@@ -55,6 +59,7 @@ pub const FILAMENT: Target = Target {
             "Filament's web loader (createIblFromKtx1) warns about any IBL format but R11F_G11F_B10F and RGB32F; the native engine loads rgba32f",
         ),
     ],
+    format_refusals: &[],
     notes: &[
         "<stem>_ibl.ktx: IndirectLight reflections (web: engine.createIblFromKtx1), its key 'sh' the irradiance SH pre-scaled for Filament's shader (IndirectLight::Builder::irradiance(3, sh); web: ibl.shfloats)",
         "<stem>_skybox.ktx: Skybox environment (web: engine.createSkyFromKtx1)",
@@ -82,13 +87,12 @@ fn write(ctx: &FileContext, baked: BakedEnvironment, out: &mut Staging) -> Resul
     let specular = ctx.target.orientation.apply(baked.specular);
     let sh = baked.sh.as_ref().map(|sh| engine_sh(sh, ctx.target));
     let fmt = format.name();
-    let ktx = |path: &Path, cube: &Cubemap, key_values: &[(&str, &[u8])]| {
-        ktx1::encode(&encode_texture(cube, format), key_values).map_err(|message| {
-            Error::Encode {
-                path: path.to_path_buf(),
-                format: "KTX 1",
-                message,
-            }
+    let ktx = |path: &Path, cube: &Cubemap, key_values: &[(&str, &[u8])]| -> Result<Vec<u8>> {
+        let texture = encode_texture(cube, format, &ctx.encoding.blocks)?;
+        ktx1::encode(&texture, key_values).map_err(|message| Error::Encode {
+            path: path.to_path_buf(),
+            format: "KTX 1",
+            message,
         })
     };
     let ibl = dir.join(format!("{stem}_ibl.ktx"));

@@ -41,6 +41,7 @@ pub const GENERIC: Target = Target {
     luts: BRDF_LUT_PNG,
     files: STANDARD,
     format_warnings: &[],
+    format_refusals: &[],
     notes: &[
         "sample specular at lod = roughness * (levels - 1), seamless trilinear",
         "irradiance holds E / pi: multiply by the diffuse albedo",

@@ -160,6 +160,8 @@ pub struct Target {
     pub files: FileSet,
     /// Pixel formats the engine cannot use everywhere, with the reason (a warning).
     pub format_warnings: &'static [(PixelFormat, &'static str)],
+    /// Pixel formats the engine cannot read at all, with the reason (refused).
+    pub format_refusals: &'static [(PixelFormat, &'static str)],
     /// How the engine reads the files, for the manifest.
     pub notes: &'static [&'static str],
 }
@@ -175,7 +177,7 @@ pub struct FileContext<'a> {
     pub target: &'static Target,
     /// How the cubes are encoded (the container applies to [`FileSet::fixed_container`]
     /// `None` sets; the others use their engine's own).
-    pub encoding: CubeEncoding,
+    pub encoding: CubeEncoding<'a>,
 }
 
 /// Writes a file set: stages the files of `baked` (in the generic orientation; the writer
@@ -226,6 +228,25 @@ impl Target {
             .iter()
             .find(|(f, _)| *f == format)
             .map(|(_, w)| *w)
+    }
+
+    /// Why the engine cannot read `format`, if it cannot.
+    pub fn format_refusal(&self, format: PixelFormat) -> Option<&'static str> {
+        self.format_refusals
+            .iter()
+            .find(|(f, _)| *f == format)
+            .map(|(_, w)| *w)
+    }
+
+    /// An [`Error::InvalidOption`] (`pixel_format`) when the engine cannot read `format`.
+    pub fn check_format(&self, format: PixelFormat) -> Result<()> {
+        match self.format_refusal(format) {
+            None => Ok(()),
+            Some(why) => Err(Error::InvalidOption {
+                option: "pixel_format",
+                message: format!("target {} cannot use {}: {why}", self.name, format.name()),
+            }),
+        }
     }
 }
 

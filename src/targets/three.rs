@@ -33,10 +33,16 @@ pub const THREE: Target = Target {
         channels: LutChannels::Model,
     }],
     files: STANDARD,
-    format_warnings: &[(
+    format_warnings: &[
+        (
+            PixelFormat::Bc6h,
+            "three.js needs EXT_texture_compression_bptc for bc6h (desktop browsers; not most phones); js/splitsum-three.js throws a clear error without it",
+        ),
+        (
         PixelFormat::Rgba32f,
         "rgba32f cubes are filtered only where WebGL has OES_texture_float_linear; rgba16f is filterable everywhere",
     )],
+    format_refusals: &[],
     notes: &[
         "load with js/splitsum-three.js: a cube with isPMREMTexture = true, used by MeshStandardMaterial as it is (no run-time PMREM)",
         "three samples lod = maxLod * r * (2 - r) (roughnessToMip), mips down to 8x8 as r187's PMREMGenerator (LOD_MIN = 3)",

@@ -49,11 +49,13 @@ const DIFFUSE_BRIGHTNESS: f32 = 0.02;
 const DIFFUSE_CORRELATION: f32 = 0.99;
 
 const HDRIS: [&str; 2] = ["quarry_01_1k", "venice_sunset_1k"];
-/// (pixel format, extra bake arguments): the target's default and the other two Bevy reads.
-const FORMATS: [(&str, &[&str]); 3] = [
+/// (pixel format, extra bake arguments): the target's default and the others Bevy reads:
+/// BC6H (`Bc6hRgbUfloat`, with the device's TEXTURE_COMPRESSION_BC, which lavapipe has).
+const FORMATS: [(&str, &[&str]); 4] = [
     ("rgb9e5_zstd", &[]),
     ("rgba16f", &["--pixel-format", "rgba16f"]),
     ("rg11b10f", &["--pixel-format", "rg11b10f"]),
+    ("bc6h_zstd", &["--pixel-format", "bc6h"]),
 ];
 /// The views' geometry, the same as the browser checks': SIZE² images (MIRROR_SIZE² for the
 /// mirror sphere, one pixel of which turns the reflected direction by twice the normal's

@@ -3,6 +3,7 @@
 //! sums, runs for the irradiance, interpolation where the LUT is smooth), each checked
 //! against the texel-by-texel twin in its tests.
 
+pub mod bc6h;
 pub mod irradiance;
 pub mod lanes;
 pub mod lut_interpolation;
@@ -12,6 +13,7 @@ pub mod specular;
 use crate::backend::Backend;
 use crate::cpu;
 use crate::environment::{Cubemap, EquirectIntegral, IrradianceSource};
+use crate::plan::bc6h::Bc6hQuality;
 use crate::plan::chain::SpecularChain;
 use crate::plan::convert::EquirectToCubeParams;
 use crate::plan::lut::{validate_lut_size, BrdfLut, LutModel, LutQuadrature};
@@ -89,5 +91,9 @@ impl Backend for CpuBackend {
 
     fn preview_truth(&self, scene: &SceneUniform, inputs: &TruthInputs) -> Result<Vec<[f32; 3]>> {
         Ok(cpu::preview_truth::render_truth(scene, inputs))
+    }
+
+    fn encode_bc6h(&self, cube: &Cubemap, quality: Bc6hQuality) -> Result<Vec<Vec<u8>>> {
+        Ok(bc6h::encode_bc6h(cube, quality))
     }
 }
