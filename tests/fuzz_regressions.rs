@@ -96,3 +96,12 @@ fn exr_dwa_chunk_claiming_a_huge_count() {
     check("exr-dwa-huge-count.exr", splitsum::io::exr::decode);
     assert_no_allocation_over_64_mib();
 }
+
+/// A KTX 1 file whose level claims an imageSize of gigabytes in a file of kilobytes (a
+/// libFuzzer out-of-memory find): the claim is now held to the bytes the file has left
+/// before anything is allocated.
+#[test]
+fn ktx1_claiming_a_huge_image_size() {
+    check("ktx1-huge-image-size.ktx", splitsum::io::ktx1::decode_cube);
+    assert_no_allocation_over_64_mib();
+}
