@@ -82,6 +82,17 @@ pub enum Error {
         reason: String,
     },
 
+    /// `splitsum view` was asked for a window where no display is reachable.
+    #[error("no display to open a window on ($DISPLAY and $WAYLAND_DISPLAY are unset); `splitsum view --screenshot view.png` renders the same picture without one")]
+    NoDisplay,
+
+    /// The viewer's window or its surface failed.
+    #[error("{message}")]
+    Window {
+        /// What failed, in words.
+        message: String,
+    },
+
     /// The GPU device could not be created, or reported an error while running a kernel.
     #[error("GPU error in {stage}: {message}")]
     Gpu {

@@ -51,7 +51,8 @@
 //! 7. `io` (every format, read and written in its own module, and the one cube container
 //!    dispatcher) and `targets` (one module per engine: its table and its writer).
 //! 8. `bake` (the whole bake, the manifest, [`Baker`]) and `verify`.
-//! 9. the command line (`src/main.rs`, `src/cli/`), which only uses what is exported here.
+//! 9. `view` (feature `view`): the interactive viewer, its renderers and window.
+//! 10. the command line (`src/main.rs`, `src/cli/`), which only uses what is exported here.
 
 #![warn(missing_docs)]
 
@@ -85,6 +86,14 @@ internal_modules!(
     verify,
 );
 
+/// `splitsum view` (feature `view`): public but hidden with `internals`, crate-private
+/// otherwise; its front door is re-exported below.
+#[cfg(all(feature = "view", feature = "internals"))]
+#[doc(hidden)]
+pub mod view;
+#[cfg(all(feature = "view", not(feature = "internals")))]
+pub(crate) mod view;
+
 pub use backend::BackendChoice;
 pub use bake::{read_bake_dir, BakeOptions, BakeReport, Baker, LoadedInput, Manifest};
 pub use environment::{Cubemap, Environment, Equirect};
@@ -110,3 +119,9 @@ pub use targets::{
     TARGETS, THREE,
 };
 pub use verify::{verify_input, Verification, VerifyRow};
+#[cfg(feature = "view")]
+pub use view::{
+    render_screenshot, run as run_view,
+    state::{parse_keys, Action as ViewAction, KEYS as VIEW_KEYS},
+    LightSource, ViewOptions, DEFAULT_SIZE as VIEW_DEFAULT_SIZE,
+};

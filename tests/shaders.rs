@@ -209,3 +209,55 @@ fn source_texel_structs_are_whole_vec4s() {
     assert_eq!(std::mem::size_of::<SourceTexel>(), 2 * 16);
     assert_eq!(std::mem::size_of::<MomentTexel>(), 5 * 16);
 }
+
+/// The viewer's render shaders (no `main`: vertex and fragment stages) validate, and its
+/// uniform blocks have the layout the WGSL declares.
+#[test]
+fn viewer_shaders_validate_and_match_rust() {
+    use splitsum::gpu::shaders::{VIEW_GBUFFER, VIEW_SPLIT_SUM, VIEW_TRUTH};
+    use splitsum::view::frame::{FrameUniform, PresentUniform};
+    let present = splitsum::view::gpu::present_source();
+    for (name, source, entries) in [
+        ("view_gbuffer", VIEW_GBUFFER, &["vs_main", "fs_mesh", "fs_sphere"][..]),
+        ("view_present", present.as_str(), &["vs_main", "fs_main"][..]),
+    ] {
+        let module = parse(name, source);
+        Validator::new(ValidationFlags::all(), Capabilities::empty())
+            .validate(&module)
+            .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)));
+        for entry in entries {
+            assert!(
+                module.entry_points.iter().any(|e| e.name == *entry),
+                "{name} has no {entry}"
+            );
+        }
+    }
+    for source in [VIEW_GBUFFER, VIEW_SPLIT_SUM, VIEW_TRUTH] {
+        assert_layout!(
+            source,
+            "FrameParams",
+            FrameUniform,
+            [
+                width,
+                height,
+                truth_frame,
+                light_count,
+                position,
+                right,
+                up,
+                front,
+                view_projection,
+                object,
+                floor,
+                sphere,
+                floor_plane
+            ]
+        );
+    }
+    assert_layout!(
+        present.as_str(),
+        "PresentParams",
+        PresentUniform,
+        [width, height, mode, target_is_srgb, exposure, heat_lo, heat_hi, heat_entries]
+    );
+}

@@ -12,6 +12,11 @@ fn k_ibl(roughness: f32) -> f32 {
     return 0.5 * alpha_from_roughness(roughness);
 }
 
+// Schlick-GGX k for analytic lights: k = (r + 1)^2 / 8 (Karis 2013; the viewer's point lights).
+fn k_direct(roughness: f32) -> f32 {
+    return (roughness + 1.0) * (roughness + 1.0) / 8.0;
+}
+
 // GGX / Trowbridge-Reitz NDF (Walter et al. 2007, eq. 33):
 // D(h) = alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2).
 fn d_ggx(n_dot_h: f32, alpha: f32) -> f32 {

@@ -1,6 +1,7 @@
 // The preview's scene: which sphere (material row, roughness column) or background ray a
-// pixel of a panel sees. Mirror of src/preview/scene.rs (same function names); every
+// pixel of a panel sees. Mirror of src/plan/scene.rs (same function names); every
 // number comes from the uniform block, filled by Scene::uniform on the Rust side.
+// `preview_material` reads the including kernel's `columns` and `materials` tables.
 
 struct SceneParams {
     width: u32,
@@ -51,4 +52,18 @@ fn pixel_geometry(s: SceneParams, x: u32, y: u32) -> PixelGeometry {
     g.sphere = false;
     g.dir = normalize((nx * s.tan_half_x) * s.right.xyz + (ny * s.tan_half_y) * s.up.xyz + s.forward.xyz);
     return g;
+}
+
+// The material of the sphere in row `material`, column `column`: the row's (F0, metallic),
+// (albedo, 0) from `materials`, the column's (roughness, lod, 0, 0) from `columns`.
+fn preview_material(material: u32, column: u32) -> ShadeMaterial {
+    let fm = materials[2u * material];
+    let col = columns[column];
+    var m: ShadeMaterial;
+    m.f0 = fm.rgb;
+    m.metallic = fm.w;
+    m.albedo = materials[2u * material + 1u].rgb;
+    m.roughness = col.x;
+    m.lod = col.y;
+    return m;
 }

@@ -207,9 +207,20 @@ impl Baker {
     /// files): the specular chain, the irradiance cube, the SH when asked for, and the
     /// sheen chain when the target has one.
     pub fn bake_environment(&mut self, env: Environment) -> Result<BakedEnvironment> {
+        self.bake_environment_with_progress(env, &mut |_| {})
+    }
+
+    /// [`Baker::bake_environment`], calling `progress` as each [`Stage`] starts.
+    pub fn bake_environment_with_progress(
+        &mut self,
+        env: Environment,
+        progress: &mut dyn FnMut(Stage),
+    ) -> Result<BakedEnvironment> {
         let opts = self.opts.clone();
+        let progress = std::cell::RefCell::new(progress);
         self.with_env_fallback(env, |backend, env| {
-            bake_environment(backend, env, &opts, &mut |_| {}, &mut Vec::new())
+            let mut progress = progress.borrow_mut();
+            bake_environment(backend, env, &opts, &mut **progress, &mut Vec::new())
         })
     }
 

@@ -201,6 +201,76 @@ pub enum Command {
     /// Runs every kernel on the GPU and on the CPU reference on a reduced problem and
     /// prints their differences; exits 1 when one is out of tolerance.
     Verify(VerifyArgs),
+
+    /// Opens a window on a bake: an object above a floor under the baked light.
+    ///
+    /// Walk around it (WASD, the mouse while the cursor is captured), switch materials and
+    /// models, turn the roughness; G shows the ground truth of the same view (the full
+    /// reflectance integral per pixel, accumulated while the view is still), H the heat
+    /// map of |split-sum − truth| / truth. INPUT is an HDRI (baked in memory with the bake
+    /// defaults; drop another on the window) or a folder `bake` wrote. With --screenshot,
+    /// renders offscreen into a PNG instead (no display needed).
+    View(ViewArgs),
+}
+
+/// The viewer's keys, for `view --help`.
+fn view_keys_help() -> String {
+    let mut s = String::from("Keys (window) and --keys tokens:\n");
+    for (key, token, what, _) in splitsum::VIEW_KEYS {
+        let token = if token.is_empty() {
+            String::new()
+        } else {
+            format!(" [{token}]")
+        };
+        s.push_str(&format!("  {key}{token}: {what}\n"));
+    }
+    s
+}
+
+/// `WxH` as (width, height).
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X', '×'])
+        .ok_or_else(|| format!("'{s}' is not WIDTHxHEIGHT (for example 1280x720)"))?;
+    let parse = |v: &str| {
+        v.trim()
+            .parse::<u32>()
+            .map_err(|_| format!("'{s}' is not WIDTHxHEIGHT (for example 1280x720)"))
+    };
+    Ok((parse(w)?, parse(h)?))
+}
+
+/// `splitsum view`.
+#[derive(Debug, Args)]
+#[command(after_long_help = view_keys_help())]
+pub struct ViewArgs {
+    /// An HDRI or a folder `bake` wrote [default: the bundled venice_sunset_1k.hdr].
+    pub input: Option<PathBuf>,
+
+    /// A model (.obj, .gltf, .glb) shown first, after Spot, the sphere and the torus on
+    /// keys 7, 8, 9 (key 0).
+    #[arg(long, value_name = "FILE")]
+    pub model: Option<PathBuf>,
+
+    /// Window or picture size.
+    #[arg(long, value_name = "WxH", default_value = "1280x720", value_parser = parse_size)]
+    pub size: (u32, u32),
+
+    /// Render offscreen into this PNG and exit (no window; works without a display).
+    #[arg(long, value_name = "PNG")]
+    pub screenshot: Option<PathBuf>,
+
+    /// Actions before the first frame, as tokens: for example "2 r+ r+ m2 g" (copper, two
+    /// steps rougher, the sphere, the ground truth); see the key table below.
+    #[arg(long, value_name = "TOKENS", allow_hyphen_values = true)]
+    pub keys: Option<String>,
+
+    /// Frames rendered with --screenshot (the ground truth adds 64 samples a frame).
+    #[arg(long, default_value_t = 1)]
+    pub frames: u32,
+
+    #[command(flatten)]
+    pub common: CommonArgs,
 }
 
 /// `splitsum bake`.

@@ -17,6 +17,7 @@ use splitsum::{
 
 use super::args::{
     BakeArgs, CommonArgs, CubemapArgs, LutArgs, PreviewArgs, PreviewRenderArgs, VerifyArgs,
+    ViewArgs,
 };
 use super::{for_user, Usage};
 
@@ -382,5 +383,42 @@ pub fn lut(args: LutArgs) -> anyhow::Result<()> {
         args.size,
         args.model.name()
     );
+    Ok(())
+}
+
+/// `splitsum view`.
+pub fn view(args: ViewArgs) -> anyhow::Result<()> {
+    let keys = match &args.keys {
+        Some(k) => splitsum::parse_keys(k).map_err(|e| for_user("view", e))?,
+        None => Vec::new(),
+    };
+    let opts = splitsum::ViewOptions {
+        input: args.input,
+        model: args.model,
+        size: args.size,
+        backend: args.common.backend.into(),
+        screenshot: args.screenshot.clone(),
+        keys,
+        frames: args.frames,
+    };
+    opts.validate().map_err(|e| for_user("view", e))?;
+    let Some(path) = args.screenshot else {
+        return splitsum::run_view(opts, &mut |_| {}).map_err(|e| for_user("view", e));
+    };
+    check_output_extension(&path, "a screenshot", &["png"]).map_err(|e| for_user("view", e))?;
+    let spinner = progress_bar(true, 0, "{spinner} {msg} ({elapsed})");
+    spinner.enable_steady_tick(std::time::Duration::from_millis(120));
+    let verbose = args.common.verbose;
+    let result = splitsum::run_view(opts, &mut |line| {
+        if let Some(w) = line.strip_prefix("warning: ") {
+            spinner.suspend(|| eprintln!("warning: {w}"));
+        } else if verbose {
+            spinner.suspend(|| eprintln!("{line}"));
+        }
+        spinner.set_message(line);
+    });
+    spinner.finish_and_clear();
+    result.map_err(|e| for_user("view", e))?;
+    println!("wrote {} ({}x{})", path.display(), args.size.0, args.size.1);
     Ok(())
 }

@@ -44,7 +44,9 @@ pub fn for_user(command: &str, e: splitsum::Error) -> anyhow::Error {
         splitsum::Error::InvalidOption { option, message } => {
             Usage(format!("invalid {}: {message}", flag(command, option))).into()
         }
-        e @ splitsum::Error::UnsupportedOutputFormat { .. } => Usage(e.to_string()).into(),
+        e @ (splitsum::Error::UnsupportedOutputFormat { .. } | splitsum::Error::NoDisplay) => {
+            Usage(e.to_string()).into()
+        }
         e => e.into(),
     }
 }

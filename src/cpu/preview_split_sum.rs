@@ -1,5 +1,6 @@
-//! The preview's split-sum render: every sphere pixel shaded exactly as the README tells an
-//! engine to, from the baked files' contents. CPU mirror of
+//! Split-sum shading ([`split_sum_shade`], also the viewer's) and the preview's split-sum
+//! render: every sphere pixel shaded exactly as the README tells an engine to, from the
+//! baked files' contents. CPU mirror of `shaders/common/split_sum.wgsl` and
 //! `shaders/preview_split_sum.wgsl` (same function names).
 //!
 //! For normal n, view v, roughness r and a material (F0, albedo c, metallic m):
@@ -17,10 +18,13 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use crate::environment::sample::sample_cube_lod;
-use crate::plan::scene::SplitSumInputs;
-use crate::plan::lut::BrdfLut;
 use crate::math::brdf::fresnel_schlick_roughness;
-use crate::plan::scene::{pixel_geometry, PixelGeometry, SceneUniform, MIN_N_DOT_V};
+use crate::plan::lut::BrdfLut;
+use crate::plan::material::ShadeMaterial;
+use crate::plan::scene::{
+    pixel_geometry, preview_material, PixelGeometry, SceneUniform, SplitSumInputs, SplitSumLight,
+    MIN_N_DOT_V,
+};
 
 /// Bilinear lookup of the LUT at uv = (n·v, r) with clamp-to-edge addressing and texel
 /// centres at ((i + ½)/W, (j + ½)/H), as a GPU sampler reads it.
@@ -43,32 +47,21 @@ pub fn sample_lut(lut: &BrdfLut, n_dot_v: f32, roughness: f32) -> [f32; 2] {
     })
 }
 
-/// The split-sum radiance towards the camera of one sphere point.
-pub fn split_sum_shade(
-    inputs: &SplitSumInputs,
-    n: Vec3,
-    v: Vec3,
-    material: usize,
-    column: usize,
-) -> Vec3 {
-    let col = inputs.columns[column];
-    let (r, lod) = (col[0], col[1]);
-    let fm = inputs.materials[2 * material];
-    let albedo = Vec3::from_slice(&inputs.materials[2 * material + 1][..3]);
-    let (f0, metallic) = (Vec3::new(fm[0], fm[1], fm[2]), fm[3]);
-    let n_dot_v = n.dot(v).max(MIN_N_DOT_V);
+/// The split-sum radiance towards `v` of a point with normal `n`; `n_dot_v` is n·v clamped
+/// away from 0 by the caller (silhouette normals are perpendicular to v).
+pub fn split_sum_shade(light: &SplitSumLight, n: Vec3, v: Vec3, n_dot_v: f32, m: &ShadeMaterial) -> Vec3 {
     let refl = 2.0 * n.dot(v) * n - v;
-    let prefiltered = Vec3::from(sample_cube_lod(inputs.specular, refl.into(), lod));
-    let ab = sample_lut(inputs.lut, n_dot_v, r);
-    let specular = prefiltered * (f0 * ab[0] + Vec3::splat(ab[1]));
+    let prefiltered = Vec3::from(sample_cube_lod(light.specular, refl.into(), m.lod));
+    let ab = sample_lut(light.lut, n_dot_v, m.roughness);
+    let specular = prefiltered * (m.f0 * ab[0] + Vec3::splat(ab[1]));
     let f_r = Vec3::new(
-        fresnel_schlick_roughness(f0.x, n_dot_v, r),
-        fresnel_schlick_roughness(f0.y, n_dot_v, r),
-        fresnel_schlick_roughness(f0.z, n_dot_v, r),
+        fresnel_schlick_roughness(m.f0.x, n_dot_v, m.roughness),
+        fresnel_schlick_roughness(m.f0.y, n_dot_v, m.roughness),
+        fresnel_schlick_roughness(m.f0.z, n_dot_v, m.roughness),
     );
-    let kd = (Vec3::ONE - f_r) * (1.0 - metallic);
-    let irradiance = Vec3::from(sample_cube_lod(inputs.irradiance, n.into(), 0.0));
-    specular + irradiance * albedo * kd
+    let kd = (Vec3::ONE - f_r) * (1.0 - m.metallic);
+    let irradiance = Vec3::from(sample_cube_lod(light.irradiance, n.into(), 0.0));
+    specular + irradiance * m.albedo * kd
 }
 
 /// The split-sum panel, row-major linear RGB.
@@ -85,7 +78,10 @@ pub fn render_split_sum(scene: &SceneUniform, inputs: &SplitSumInputs) -> Vec<[f
                     v,
                     material,
                     column,
-                } => split_sum_shade(inputs, n, v, material, column).into(),
+                } => {
+                    let m = preview_material(inputs.columns, inputs.materials, material, column);
+                    split_sum_shade(&inputs.light(), n, v, n.dot(v).max(MIN_N_DOT_V), &m).into()
+                }
             })
         })
         .collect()

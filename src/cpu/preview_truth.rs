@@ -1,14 +1,15 @@
-//! The preview's ground truth: per sphere pixel, the full reflectance integral
+//! The ground truth of a surface point ([`truth_shade`], also the viewer's) and the
+//! preview's truth render: per sphere pixel, the full reflectance integral
 //! L_o(v) = ∫ f(l, v) L(l) (n·l) dl of the preview BRDF over the environment, with the real
 //! view direction (no v = n assumption, no separable product). CPU mirror of
-//! `shaders/preview_truth.wgsl` (same function names).
+//! `shaders/common/truth.wgsl` and `shaders/preview_truth.wgsl` (same function names).
 //!
 //! The BRDF: f = kD(h) c/π + D(h) G(l, v) F(v·h) / (4 (n·l)(n·v)), GGX D with α = r²,
 //! G = G1(n·l) G1(n·v) Schlick-GGX with k = r²/2, F Fresnel-Schlick, and
 //! kD(h) = (1 − F(v·h))(1 − metallic) (docs/conventions.md, "Roughness, BRDF").
 //!
 //! The environment is the bake's own cube (level 0), split as the specular bake splits it
-//! (`prefilter_specular::split_hot_texels`): its hot texels (a sun, lamps: at most 512,
+//! (`plan::sources::split_hot_texels`): its hot texels (a sun, lamps: at most 512,
 //! each with its radiance centroid and solid angle) are summed exactly,
 //! Σ L Ω f (n·l); the cold rest, whose dynamic range is low, is integrated by
 //! quasi-Monte Carlo with one estimator per lobe:
@@ -29,21 +30,23 @@ use rayon::prelude::*;
 
 use crate::environment::sample::sample_cube_lod;
 use crate::environment::texels::SourceTexel;
-use crate::plan::scene::TruthInputs;
 use crate::math::brdf::{
-    alpha_from_roughness, d_ggx, fresnel_schlick_weight, g1_over_n_dot_v, g1_schlick_ggx,
-    g1_smith_ggx, k_ibl,
+    alpha_from_roughness, d_ggx, g1_over_n_dot_v, g1_schlick_ggx, g1_smith_ggx, k_ibl,
 };
 use crate::math::sampling::{
     cosine_hemisphere_from_disk, pcg_hash, sample_ggx_vndf, tangent_frame, unit_float,
 };
-use crate::plan::scene::{pixel_geometry, PixelGeometry, SceneUniform, MIN_N_DOT_V};
+use crate::plan::material::{fresnel3, ShadeMaterial};
+use crate::plan::scene::{
+    pixel_geometry, preview_material, PixelGeometry, SceneUniform, TruthInputs, TruthLight,
+    MIN_N_DOT_V,
+};
 
-/// The pixel's quadrature shift: (radial shift s ∈ [0, 1), cos ψ, sin ψ) of its azimuthal
-/// rotation ψ, from hashes of the pixel index (the angle need not be uniform: any rotation
-/// of the point set is an equally good rule).
-pub fn pixel_shift(pixel: u32) -> [f32; 3] {
-    let h1 = pcg_hash(pixel);
+/// An estimate's quadrature shift: (radial shift s ∈ [0, 1), cos ψ, sin ψ) of its azimuthal
+/// rotation ψ, from hashes of `seed` (the preview's pixel index; the angle need not be
+/// uniform: any rotation of the point set is an equally good rule).
+pub fn pixel_shift(seed: u32) -> [f32; 3] {
+    let h1 = pcg_hash(seed);
     let h2 = pcg_hash(h1);
     let h3 = pcg_hash(h2);
     let (x, y) = (2.0 * unit_float(h2) - 1.0, 2.0 * unit_float(h3) - 1.0);
@@ -63,12 +66,6 @@ pub fn shifted_disk_point(p: [f32; 4], shift: [f32; 3]) -> [f32; 2] {
         p[1] * shift[2] + p[2] * shift[1],
     );
     [r * c, r * s]
-}
-
-/// Fresnel-Schlick per channel: F0 + (1 − F0)(1 − v·h)⁵.
-fn fresnel3(f0: Vec3, v_dot_h: f32) -> Vec3 {
-    let w = fresnel_schlick_weight(v_dot_h);
-    f0 * (1.0 - w) + Vec3::splat(w)
 }
 
 /// The exact part: Σ L Ω f (n·l) over the hot texels, split into (specular, diffuse / c).
@@ -109,34 +106,29 @@ pub fn hot_texels_shade(
     (spec, diff)
 }
 
-/// The truth's radiance towards the camera of one sphere point (`pixel` seeds its
-/// quadrature).
+/// One estimate of the radiance towards `v` of a point with normal `n`, its quadrature
+/// rotated by `shift` ([`pixel_shift`]); `n_dot_v` is n·v clamped away from 0 by the caller.
 pub fn truth_shade(
-    inputs: &TruthInputs,
+    light: &TruthLight,
     n: Vec3,
     v: Vec3,
-    material: usize,
-    column: usize,
-    pixel: u32,
+    n_dot_v: f32,
+    m: &ShadeMaterial,
+    shift: [f32; 3],
 ) -> Vec3 {
-    let r = inputs.columns[column][0];
-    let fm = inputs.materials[2 * material];
-    let albedo = Vec3::from_slice(&inputs.materials[2 * material + 1][..3]);
-    let (f0, metallic) = (Vec3::new(fm[0], fm[1], fm[2]), fm[3]);
+    let (r, f0, metallic, albedo) = (m.roughness, m.f0, m.metallic, m.albedo);
     let alpha = alpha_from_roughness(r);
     let k = k_ibl(r);
-    let n_dot_v = n.dot(v).max(MIN_N_DOT_V);
     let (t0, b0) = tangent_frame(n.into());
     let (t0, b0) = (Vec3::from(t0), Vec3::from(b0));
-    let shift = pixel_shift(pixel);
     let vt = Vec3::new(v.dot(t0), v.dot(b0), n_dot_v);
-    let count = inputs.points.len() as f32;
+    let count = light.points.len() as f32;
 
-    let (mut spec, mut diff) = hot_texels_shade(inputs.hot, n, v, n_dot_v, alpha, f0, metallic);
+    let (mut spec, mut diff) = hot_texels_shade(light.hot, n, v, n_dot_v, alpha, f0, metallic);
     if alpha > 0.0 {
         let view_term = g1_schlick_ggx(n_dot_v, k) / g1_smith_ggx(n_dot_v, alpha * alpha);
         let mut sum = Vec3::ZERO;
-        for &p in inputs.points {
+        for &p in light.points {
             let h = Vec3::from(sample_ggx_vndf(
                 vt.into(),
                 alpha,
@@ -146,7 +138,7 @@ pub fn truth_shade(
             let lt = 2.0 * v_dot_h * h - vt;
             if lt.z > 0.0 {
                 let l = lt.x * t0 + lt.y * b0 + lt.z * n;
-                let radiance = Vec3::from(sample_cube_lod(inputs.cold, l.into(), 0.0));
+                let radiance = Vec3::from(sample_cube_lod(light.cold, l.into(), 0.0));
                 sum += radiance
                     * fresnel3(f0, v_dot_h.max(0.0))
                     * (g1_schlick_ggx(lt.z, k) * view_term);
@@ -155,15 +147,15 @@ pub fn truth_shade(
         spec += sum / count;
     } else {
         let refl = 2.0 * n.dot(v) * n - v;
-        spec = Vec3::from(sample_cube_lod(inputs.env, refl.into(), 0.0)) * fresnel3(f0, n_dot_v);
+        spec = Vec3::from(sample_cube_lod(light.env, refl.into(), 0.0)) * fresnel3(f0, n_dot_v);
     }
     if metallic < 1.0 {
         let mut sum = Vec3::ZERO;
-        for &p in inputs.points {
+        for &p in light.points {
             let lt = Vec3::from(cosine_hemisphere_from_disk(shifted_disk_point(p, shift)));
             let h = (vt + lt).normalize();
             let l = lt.x * t0 + lt.y * b0 + lt.z * n;
-            let radiance = Vec3::from(sample_cube_lod(inputs.cold, l.into(), 0.0));
+            let radiance = Vec3::from(sample_cube_lod(light.cold, l.into(), 0.0));
             sum += radiance * (Vec3::ONE - fresnel3(f0, vt.dot(h).max(0.0)));
         }
         diff += sum * ((1.0 - metallic) / count);
@@ -183,7 +175,12 @@ pub fn render_truth(scene: &SceneUniform, inputs: &TruthInputs) -> Vec<[f32; 3]>
                     v,
                     material,
                     column,
-                } => truth_shade(inputs, n, v, material, column, y * scene.width + x).into(),
+                } => {
+                    let m = preview_material(inputs.columns, inputs.materials, material, column);
+                    let shift = pixel_shift(y * scene.width + x);
+                    let n_dot_v = n.dot(v).max(MIN_N_DOT_V);
+                    truth_shade(&inputs.light(), n, v, n_dot_v, &m, shift).into()
+                }
             })
         })
         .collect()

@@ -85,6 +85,12 @@ impl GpuContext {
         .map_err(|e| Error::NoAdapter {
             reason: e.to_string(),
         })?;
+        Self::from_adapter(&adapter)
+    }
+
+    /// A device on `adapter` with the adapter's own limits, its errors and loss recorded
+    /// (instead of wgpu's default handler, which panics).
+    pub fn from_adapter(adapter: &wgpu::Adapter) -> Result<Self> {
         let adapter_info = adapter.get_info();
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("splitsum"),

@@ -37,18 +37,22 @@ pub const PREFILTER_SAMPLED: &str = kernel_source!(
 pub const CONVOLVE_EXACT: &str =
     kernel_source!("convolve_exact.wgsl", ["brdf.wgsl", "cubemap.wgsl"]);
 
-/// `shaders/preview_split_sum.wgsl` with brdf, cubemap, cube_sample, preview_scene.
+/// `shaders/preview_split_sum.wgsl` with brdf, cubemap, cube_sample, material,
+/// split_sum, preview_scene.
 pub const PREVIEW_SPLIT_SUM: &str = kernel_source!(
     "preview_split_sum.wgsl",
     [
         "brdf.wgsl",
         "cubemap.wgsl",
         "cube_sample.wgsl",
+        "material.wgsl",
+        "split_sum.wgsl",
         "preview_scene.wgsl"
     ]
 );
 
-/// `shaders/preview_truth.wgsl` with brdf, sampling, cubemap, cube_sample, preview_scene.
+/// `shaders/preview_truth.wgsl` with brdf, sampling, cubemap, cube_sample, material,
+/// truth, preview_scene.
 pub const PREVIEW_TRUTH: &str = kernel_source!(
     "preview_truth.wgsl",
     [
@@ -56,9 +60,54 @@ pub const PREVIEW_TRUTH: &str = kernel_source!(
         "sampling.wgsl",
         "cubemap.wgsl",
         "cube_sample.wgsl",
+        "material.wgsl",
+        "truth.wgsl",
         "preview_scene.wgsl"
     ]
 );
+
+/// `shaders/view_split_sum.wgsl` with brdf, cubemap, cube_sample, material, split_sum,
+/// view_frame, view_surface.
+pub const VIEW_SPLIT_SUM: &str = kernel_source!(
+    "view_split_sum.wgsl",
+    [
+        "brdf.wgsl",
+        "cubemap.wgsl",
+        "cube_sample.wgsl",
+        "material.wgsl",
+        "split_sum.wgsl",
+        "view_frame.wgsl",
+        "view_surface.wgsl"
+    ]
+);
+
+/// `shaders/view_truth.wgsl` with brdf, sampling, cubemap, cube_sample, material, truth,
+/// view_frame, view_surface.
+pub const VIEW_TRUTH: &str = kernel_source!(
+    "view_truth.wgsl",
+    [
+        "brdf.wgsl",
+        "sampling.wgsl",
+        "cubemap.wgsl",
+        "cube_sample.wgsl",
+        "material.wgsl",
+        "truth.wgsl",
+        "view_frame.wgsl",
+        "view_surface.wgsl"
+    ]
+);
+
+/// `shaders/view_gbuffer.wgsl` (vertex and fragment stages, so without the workgroup
+/// overrides) with view_frame.
+pub const VIEW_GBUFFER: &str = concat!(
+    include_str!("../../shaders/common/view_frame.wgsl"),
+    "\n",
+    include_str!("../../shaders/view_gbuffer.wgsl")
+);
+
+/// `shaders/view_present.wgsl` (vertex and fragment stages), without the constants the
+/// viewer writes before it (`view::gpu::present_source`).
+pub const VIEW_PRESENT_BODY: &str = include_str!("../../shaders/view_present.wgsl");
 
 #[cfg(any(test, feature = "internals"))]
 /// Every assembled kernel by name, for validation.
@@ -70,4 +119,6 @@ pub const ALL: &[(&str, &str)] = &[
     ("cube_downsample", CUBE_DOWNSAMPLE),
     ("preview_split_sum", PREVIEW_SPLIT_SUM),
     ("preview_truth", PREVIEW_TRUTH),
+    ("view_split_sum", VIEW_SPLIT_SUM),
+    ("view_truth", VIEW_TRUTH),
 ];

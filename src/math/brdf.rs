@@ -16,6 +16,13 @@ pub fn k_ibl(roughness: f32) -> f32 {
     0.5 * alpha_from_roughness(roughness)
 }
 
+/// Schlick-GGX k for analytic lights: k = (r + 1)²/8 (Karis 2013, "Specular G": the
+/// remapping that keeps point-lit rough surfaces from going too bright; the viewer's point
+/// lights).
+pub fn k_direct(roughness: f32) -> f32 {
+    (roughness + 1.0) * (roughness + 1.0) / 8.0
+}
+
 /// GGX / Trowbridge-Reitz normal distribution (Walter et al. 2007, eq. 33):
 /// D(h) = α² / (π ((n·h)² (α² − 1) + 1)²).
 pub fn d_ggx(n_dot_h: f32, alpha: f32) -> f32 {

@@ -3,14 +3,15 @@
 //! method per level ([`chain`]), the prepared sources of the prefilter ([`sources`]), the
 //! sheen chain's plan and driver ([`sheen`]), the least-squares fit of a level for
 //! bilinear lookups ([`fit`]), the conversion's parameters ([`convert`]), the LUT models
-//! and their quadrature ([`lut`]), the BC6H encoder's settings ([`bc6h`]) and the
-//! preview's scene ([`scene`]).
+//! and their quadrature ([`lut`]), the BC6H encoder's settings ([`bc6h`]), the shading
+//! functions' material ([`material`]) and the preview's scene ([`scene`]).
 
 pub mod bc6h;
 pub mod chain;
 pub mod convert;
 pub mod fit;
 pub mod lut;
+pub mod material;
 pub mod scene;
 pub mod sheen;
 pub mod sources;

@@ -17,6 +17,7 @@ use crate::environment::texels::SourceTexel;
 use crate::environment::Cubemap;
 use crate::math::sampling::hammersley;
 use crate::plan::lut::BrdfLut;
+use crate::plan::material::ShadeMaterial;
 
 /// A material of the preview: Cook-Torrance with GGX D, Smith/Schlick-GGX G and
 /// Fresnel-Schlick, plus Lambert diffuse weighted by kD = (1 − F)(1 − metallic).
@@ -218,8 +219,52 @@ pub fn material_table() -> Vec<[f32; 4]> {
         .collect()
 }
 
+/// The material of the sphere in row `material`, column `column` of the kernels' tables:
+/// the row's (F0, metallic), (albedo, 0), the column's (roughness, lod, 0, 0). Mirror of
+/// `preview_material` in `shaders/common/preview_scene.wgsl`.
+pub fn preview_material(
+    columns: &[[f32; 4]],
+    materials: &[[f32; 4]],
+    material: usize,
+    column: usize,
+) -> ShadeMaterial {
+    let fm = materials[2 * material];
+    let col = columns[column];
+    ShadeMaterial {
+        f0: Vec3::new(fm[0], fm[1], fm[2]),
+        metallic: fm[3],
+        albedo: Vec3::from_slice(&materials[2 * material + 1][..3]),
+        roughness: col[0],
+        lod: col[1],
+    }
+}
+
 /// Default number of quasi-Monte Carlo points per lobe and pixel.
 pub const DEFAULT_TRUTH_SAMPLES: u32 = 2048;
+
+/// The environment the truth integrates: what `truth_shade` reads besides the point.
+#[derive(Clone, Copy, Debug)]
+pub struct TruthLight<'a> {
+    /// The environment (level 0 read).
+    pub env: &'a Cubemap,
+    /// The environment without its hot texels (level 0 read).
+    pub cold: &'a Cubemap,
+    /// The hot texels, summed exactly.
+    pub hot: &'a [SourceTexel],
+    /// The quasi-Monte Carlo points ([`disk_points`]).
+    pub points: &'a [[f32; 4]],
+}
+
+/// The baked light the split-sum reads: what `split_sum_shade` reads besides the point.
+#[derive(Clone, Copy, Debug)]
+pub struct SplitSumLight<'a> {
+    /// The prefiltered specular chain (level 0: the environment), generic orientation.
+    pub specular: &'a Cubemap,
+    /// The irradiance cube (E/π).
+    pub irradiance: &'a Cubemap,
+    /// The split-sum LUT (scale A, bias B).
+    pub lut: &'a BrdfLut,
+}
 
 /// What the truth render reads.
 #[derive(Clone, Copy, Debug)]
@@ -236,6 +281,18 @@ pub struct TruthInputs<'a> {
     pub materials: &'a [[f32; 4]],
     /// The quasi-Monte Carlo points ([`disk_points`]).
     pub points: &'a [[f32; 4]],
+}
+
+impl<'a> TruthInputs<'a> {
+    /// The environment part.
+    pub fn light(&self) -> TruthLight<'a> {
+        TruthLight {
+            env: self.env,
+            cold: self.cold,
+            hot: self.hot,
+            points: self.points,
+        }
+    }
 }
 
 /// The N points of the truth's quadrature: Hammersley (i/N, φ-radical-inverse) as
@@ -264,6 +321,17 @@ pub struct SplitSumInputs<'a> {
     pub columns: &'a [[f32; 4]],
     /// Per material: (F0, metallic), (albedo, 0) (`scene::material_table`).
     pub materials: &'a [[f32; 4]],
+}
+
+impl<'a> SplitSumInputs<'a> {
+    /// The baked-light part.
+    pub fn light(&self) -> SplitSumLight<'a> {
+        SplitSumLight {
+            specular: self.specular,
+            irradiance: self.irradiance,
+            lut: self.lut,
+        }
+    }
 }
 
 #[cfg(test)]

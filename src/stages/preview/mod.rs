@@ -27,7 +27,7 @@ use crate::plan::scene::{
     disk_points, material_table, pixel_geometry, PixelGeometry, Scene, SceneUniform,
     SplitSumInputs, TruthInputs, DEFAULT_CELL, DEFAULT_TRUTH_SAMPLES, MATERIALS, ROUGHNESS,
 };
-use crate::plan::sources::split_hot_texels;
+use crate::plan::sources::{split_hot_texels, SampledSource};
 use crate::stages::light::BakedEnvironment;
 use crate::stages::preview::picture::{auto_exposure, compose, luminance, Comparison};
 use crate::{Error, Result};
@@ -191,6 +191,19 @@ pub fn compare(
     (relative, stats)
 }
 
+/// What the truth integrates, from a specular chain: its level 0 with every mip (as the
+/// hot/cold split needs it) and the split into hot texels and the cold rest.
+pub fn truth_environment(specular: &Cubemap) -> (Cubemap, SampledSource) {
+    let mut env = Cubemap {
+        size: specular.size,
+        levels: vec![specular.levels[0].clone()],
+    };
+    let mips = Cubemap::full_mip_count(env.size);
+    crate::environment::mips::build_mips(&mut env, mips);
+    let split = split_hot_texels(&env);
+    (env, split)
+}
+
 /// Renders the preview of `light` with `backend`.
 pub fn render_preview(
     backend: &dyn Backend,
@@ -220,14 +233,7 @@ pub fn render_preview(
     let truth = if opts.truth_samples == 0 {
         Vec::new()
     } else {
-        // The environment with every mip, as the hot/cold split needs it.
-        let mut env = Cubemap {
-            size: light.specular.size,
-            levels: vec![light.specular.levels[0].clone()],
-        };
-        let mips = Cubemap::full_mip_count(env.size);
-        crate::environment::mips::build_mips(&mut env, mips);
-        let split = split_hot_texels(&env);
+        let (env, split) = truth_environment(light.specular);
         let points = disk_points(opts.truth_samples);
         backend.preview_truth(
             &uniform,

@@ -23,7 +23,7 @@ use crate::math::cubemap::cube_texel_solid_angle;
 use crate::plan::scene::{Scene, MATERIALS, ROUGHNESS};
 
 /// The label font (DejaVu Sans; licence in `assets/fonts/DejaVuSans-LICENSE.txt`).
-const FONT: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf");
+pub const FONT: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf");
 
 /// The luminance the default exposure maps the log-average to (Reinhard's key value).
 pub const KEY_VALUE: f32 = 0.18;
@@ -31,9 +31,12 @@ pub const KEY_VALUE: f32 = 0.18;
 /// The heat map's range of relative differences: log10 of its ends (0.1 % and 100 %).
 pub const HEAT_LOG10_RANGE: [f32; 2] = [-3.0, 0.0];
 
+/// Rec. 709 luminance weights of linear RGB.
+pub const LUMINANCE: [f32; 3] = [0.2126, 0.7152, 0.0722];
+
 /// Rec. 709 luminance of linear RGB.
 pub fn luminance(c: [f32; 3]) -> f32 {
-    0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
+    LUMINANCE[0] * c[0] + LUMINANCE[1] * c[1] + LUMINANCE[2] * c[2]
 }
 
 /// The default exposure scale of `env` (level 0): [`KEY_VALUE`] / exp(mean ln(ε + Y)),
@@ -60,11 +63,16 @@ pub fn auto_exposure(env: &Cubemap) -> f32 {
     (KEY_VALUE as f64 / log_mean.exp()) as f32
 }
 
+/// PBR Neutral's startCompression (0.8 − 0.04): below it colours pass unchanged.
+pub const PBR_NEUTRAL_START_COMPRESSION: f32 = 0.8 - 0.04;
+/// PBR Neutral's desaturation of compressed highlights.
+pub const PBR_NEUTRAL_DESATURATION: f32 = 0.15;
+
 /// Khronos PBR Neutral tone mapping of linear RGB (the reference GLSL of the
 /// specification, term for term).
 pub fn pbr_neutral(c: [f32; 3]) -> [f32; 3] {
-    const START_COMPRESSION: f32 = 0.8 - 0.04;
-    const DESATURATION: f32 = 0.15;
+    const START_COMPRESSION: f32 = PBR_NEUTRAL_START_COMPRESSION;
+    const DESATURATION: f32 = PBR_NEUTRAL_DESATURATION;
     let x = c[0].min(c[1]).min(c[2]);
     let offset = if x < 0.08 { x - 6.25 * x * x } else { 0.04 };
     let c = c.map(|v| v - offset);
@@ -93,7 +101,7 @@ pub fn heat_colour(relative: f32) -> Rgb<u8> {
 }
 
 /// Background of the heat-map panel.
-const HEAT_BACKGROUND: Rgb<u8> = Rgb([40, 40, 40]);
+pub const HEAT_BACKGROUND: Rgb<u8> = Rgb([40, 40, 40]);
 /// Page colour around the panels.
 const PAGE: Rgb<u8> = Rgb([24, 24, 24]);
 /// Label colour.

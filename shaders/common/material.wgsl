@@ -1,0 +1,39 @@
+// A surface's material as the shading functions take it: Cook-Torrance (GGX D, Smith /
+// Schlick-GGX G, Fresnel-Schlick) plus Lambert diffuse weighted by kD = (1 - F)(1 - metallic)
+// (docs/conventions.md, "Roughness, BRDF"). Mirror of `plan::scene::ShadeMaterial`.
+struct ShadeMaterial {
+    f0: vec3<f32>,      // linear-RGB reflectance at normal incidence
+    metallic: f32,      // 1 for a metal, 0 for a dielectric
+    albedo: vec3<f32>,  // linear-RGB diffuse albedo c (Lambert c/pi)
+    roughness: f32,     // perceptual roughness r (alpha = r^2)
+    lod: f32,           // the specular chain's lod for r (the split-sum lookup)
+}
+
+// Fresnel-Schlick per channel: F0 + (1 - F0)(1 - v.h)^5.
+fn fresnel3(f0: vec3<f32>, v_dot_h: f32) -> vec3<f32> {
+    let w = fresnel_schlick_weight(v_dot_h);
+    return f0 * (1.0 - w) + vec3<f32>(w);
+}
+
+// The radiance towards v that a point light (position, intensity) sends off the point p
+// with normal n: Cook-Torrance with GGX D (alpha = max(r^2, min_alpha)), Schlick-GGX G1
+// with k = (r + 1)^2 / 8 for l and v, Fresnel-Schlick at v.h, plus Lambert c/pi weighted
+// by (1 - F)(1 - metallic), times n.l and colour / d^2. Mirror of plan::material::point_light.
+fn point_light(p: vec3<f32>, n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, m: ShadeMaterial, light_position: vec3<f32>, light_colour: vec3<f32>, min_alpha: f32) -> vec3<f32> {
+    let to_light = light_position - p;
+    let d2 = dot(to_light, to_light);
+    let l = to_light / sqrt(d2);
+    let n_dot_l = dot(n, l);
+    if (n_dot_l <= 0.0 || d2 <= 0.0) {
+        return vec3<f32>(0.0);
+    }
+    let h = normalize(l + v);
+    let f = fresnel3(m.f0, max(dot(v, h), 0.0));
+    let k = k_direct(m.roughness);
+    let alpha = max(alpha_from_roughness(m.roughness), min_alpha);
+    let d = d_ggx(max(dot(n, h), 0.0), alpha);
+    let g = g1_schlick_ggx(n_dot_l, k) * g1_schlick_ggx(n_dot_v, k);
+    let specular = f * (d * g / (4.0 * n_dot_l * n_dot_v));
+    let diffuse = (vec3<f32>(1.0) - f) * (1.0 - m.metallic) * m.albedo / PI;
+    return (specular + diffuse) * light_colour * (n_dot_l / d2);
+}

@@ -1,0 +1,57 @@
+// Split-sum shading of one surface point, exactly as the README tells an engine to:
+// L = prefiltered(reflect(-v, n), lod(r)) (F0 A + B) + E/pi(n) albedo kD,
+// kD = (1 - F_r(n.v))(1 - metallic), F_r Lagarde's roughness-aware Fresnel.
+// CPU mirror: src/cpu/preview_split_sum.rs (same function names).
+//
+// The including kernel declares the baked light as module globals:
+//   light: SplitSumParams (uniform), specular, irradiance: texture_2d_array<f32>,
+//   lut: texture_2d<f32>.
+
+struct SplitSumParams {
+    specular_size: u32,
+    specular_levels: u32,
+    irradiance_size: u32,
+    lut_width: u32,
+    lut_height: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+}
+
+// Bilinear LUT lookup at uv = (n.v, r), clamp-to-edge, texel centres at (i + 0.5) / W.
+fn sample_lut(n_dot_v: f32, roughness: f32) -> vec2<f32> {
+    let w = light.lut_width;
+    let h = light.lut_height;
+    let x = clamp(n_dot_v * f32(w) - 0.5, 0.0, f32(w - 1u));
+    let y = clamp(roughness * f32(h) - 0.5, 0.0, f32(h - 1u));
+    let x0 = floor(x);
+    let y0 = floor(y);
+    let fx = x - x0;
+    let fy = y - y0;
+    let i0 = u32(x0);
+    let j0 = u32(y0);
+    let i1 = min(i0 + 1u, w - 1u);
+    let j1 = min(j0 + 1u, h - 1u);
+    let a = textureLoad(lut, vec2<u32>(i0, j0), 0).xy;
+    let b = textureLoad(lut, vec2<u32>(i1, j0), 0).xy;
+    let c = textureLoad(lut, vec2<u32>(i0, j1), 0).xy;
+    let d = textureLoad(lut, vec2<u32>(i1, j1), 0).xy;
+    return (a * (1.0 - fx) + b * fx) * (1.0 - fy) + (c * (1.0 - fx) + d * fx) * fy;
+}
+
+// The split-sum radiance towards v of a point with normal n; n_dot_v is n.v clamped
+// away from 0 by the caller (silhouette normals are perpendicular to v).
+fn split_sum_shade(n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, m: ShadeMaterial) -> vec3<f32> {
+    let refl = 2.0 * dot(n, v) * n - v;
+    let prefiltered = sample_cube_lod(specular, light.specular_size, light.specular_levels, refl, m.lod);
+    let ab = sample_lut(n_dot_v, m.roughness);
+    let spec = prefiltered * (m.f0 * ab.x + vec3<f32>(ab.y));
+    let f_r = vec3<f32>(
+        fresnel_schlick_roughness(m.f0.x, n_dot_v, m.roughness),
+        fresnel_schlick_roughness(m.f0.y, n_dot_v, m.roughness),
+        fresnel_schlick_roughness(m.f0.z, n_dot_v, m.roughness),
+    );
+    let kd = (vec3<f32>(1.0) - f_r) * (1.0 - m.metallic);
+    let e = sample_cube_lod(irradiance, light.irradiance_size, 1u, n, 0.0);
+    return spec + e * m.albedo * kd;
+}

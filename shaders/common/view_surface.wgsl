@@ -1,0 +1,48 @@
+// What the viewer's shading kernels share: the G-buffer's surfaces, their materials and
+// the point lights. Mirror of src/view/cpu.rs (same function names). The including kernel
+// declares `frame` (FrameParams), `lights` (storage: (position, 0), (colour, 0) each),
+// `gbuffer_position` and `gbuffer_normal` (texture_2d<f32>).
+
+// A packed material (FrameUniform's object or floor).
+fn unpack_material(m: array<vec4<f32>, 3>) -> ShadeMaterial {
+    var s: ShadeMaterial;
+    s.f0 = m[0].xyz;
+    s.metallic = m[0].w;
+    s.albedo = m[1].xyz;
+    s.roughness = m[1].w;
+    s.lod = m[2].x;
+    return s;
+}
+
+// The point lights on (frame.light_count of the including kernel's `lights` table:
+// (position, 0), (colour, 0) each) shading the point p.
+fn direct_lights(p: vec3<f32>, n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, m: ShadeMaterial) -> vec3<f32> {
+    var sum = vec3<f32>(0.0);
+    for (var i = 0u; i < frame.light_count; i++) {
+        sum += point_light(p, n, v, n_dot_v, m, lights[2u * i].xyz, lights[2u * i + 1u].xyz, frame.floor_plane.z);
+    }
+    return sum;
+}
+
+// What a pixel of the G-buffer holds.
+struct Surface {
+    id: u32,          // 0 background, 1 object, 2 floor
+    p: vec3<f32>,
+    n: vec3<f32>,
+}
+
+fn load_surface(pixel: vec2<u32>) -> Surface {
+    let g = textureLoad(gbuffer_position, pixel, 0);
+    var s: Surface;
+    s.id = u32(round(g.w));
+    s.p = g.xyz;
+    s.n = textureLoad(gbuffer_normal, pixel, 0).xyz;
+    return s;
+}
+
+fn surface_material(id: u32) -> ShadeMaterial {
+    if (id == 1u) {
+        return unpack_material(frame.object);
+    }
+    return unpack_material(frame.floor);
+}

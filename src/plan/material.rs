@@ -1,0 +1,72 @@
+//! A surface's material as both renderers' shading functions take it (the preview's
+//! spheres, the viewer's object and floor). CPU twin of `shaders/common/material.wgsl`.
+//!
+//! The BRDF: Cook-Torrance with GGX D (α = r²), Smith / Schlick-GGX G and Fresnel-Schlick,
+//! plus Lambert diffuse c/π weighted by kD = (1 − F)(1 − metallic)
+//! (docs/conventions.md, "Roughness, BRDF").
+
+use glam::Vec3;
+
+use crate::math::brdf::{alpha_from_roughness, d_ggx, fresnel_schlick_weight, g1_schlick_ggx, k_direct};
+
+/// One surface's material and the split-sum lookup's lod for its roughness.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShadeMaterial {
+    /// Linear-RGB reflectance at normal incidence.
+    pub f0: Vec3,
+    /// 1 for a metal (no diffuse), 0 for a dielectric.
+    pub metallic: f32,
+    /// Linear-RGB diffuse albedo c (Lambert c/π).
+    pub albedo: Vec3,
+    /// Perceptual roughness r.
+    pub roughness: f32,
+    /// The specular chain's lod for `roughness` (`RoughnessMapping::lod`).
+    pub lod: f32,
+}
+
+/// Fresnel-Schlick per channel: F0 + (1 − F0)(1 − v·h)⁵ (Schlick 1994).
+pub fn fresnel3(f0: Vec3, v_dot_h: f32) -> Vec3 {
+    let w = fresnel_schlick_weight(v_dot_h);
+    f0 * (1.0 - w) + Vec3::splat(w)
+}
+
+/// The radiance towards `v` that a point light at `light_position` of intensity
+/// `light_colour` sends off a surface point `p` with normal `n`: Cook-Torrance with GGX D
+/// (α = r²), Schlick-GGX G1 with k = (r + 1)²/8 ([`k_direct`]) for l and v, Fresnel-Schlick
+/// at v·h, plus Lambert c/π weighted by (1 − F)(1 − metallic), times n·l and colour/d²;
+/// α is at least `min_alpha` ([`MIN_DIRECT_ALPHA`]).
+/// `n_dot_v` is n·v clamped away from 0 by the caller. Mirror of `point_light` in
+/// `shaders/common/material.wgsl`, argument for argument.
+#[allow(clippy::too_many_arguments)]
+pub fn point_light(
+    p: Vec3,
+    n: Vec3,
+    v: Vec3,
+    n_dot_v: f32,
+    m: &ShadeMaterial,
+    light_position: Vec3,
+    light_colour: Vec3,
+    min_alpha: f32,
+) -> Vec3 {
+    let to_light = light_position - p;
+    let d2 = to_light.length_squared();
+    let l = to_light / d2.sqrt();
+    let n_dot_l = n.dot(l);
+    if n_dot_l <= 0.0 || d2 <= 0.0 {
+        return Vec3::ZERO;
+    }
+    let h = (l + v).normalize();
+    let f = fresnel3(m.f0, v.dot(h).max(0.0));
+    let k = k_direct(m.roughness);
+    let alpha = alpha_from_roughness(m.roughness).max(min_alpha);
+    let d = d_ggx(n.dot(h).max(0.0), alpha);
+    let g = g1_schlick_ggx(n_dot_l, k) * g1_schlick_ggx(n_dot_v, k);
+    let specular = f * (d * g / (4.0 * n_dot_l * n_dot_v));
+    let diffuse = (Vec3::ONE - f) * (1.0 - m.metallic) * m.albedo / std::f32::consts::PI;
+    (specular + diffuse) * light_colour * (n_dot_l / d2)
+}
+
+/// The smallest α the point lights use: a point light on a mirror is a single pixel of
+/// infinite radiance, so r = 0 is lit as α = 1e-3 (r ≈ 0.03), a highlight a few pixels
+/// wide.
+pub const MIN_DIRECT_ALPHA: f32 = 1e-3;

@@ -1,0 +1,201 @@
+//! The viewer's CPU renderer: the G-buffer of [`crate::view::raster`], then the shading
+//! and present passes written function for function like `shaders/view_split_sum.wgsl`,
+//! `shaders/view_truth.wgsl` and `shaders/view_present.wgsl`, with the preview's shading
+//! functions (`cpu::preview_split_sum::split_sum_shade`, `cpu::preview_truth::truth_shade`).
+//! It renders where no adapter is (`--backend cpu`, offscreen) and checks the GPU's
+//! frames.
+
+use glam::Vec3;
+use image::RgbaImage;
+use rayon::prelude::*;
+
+use crate::cpu::preview_split_sum::split_sum_shade;
+use crate::cpu::preview_truth::{pixel_shift, truth_shade};
+use crate::environment::sample::sample_cube_lod;
+use crate::math::color::linear_to_srgb;
+use crate::plan::material::{point_light, ShadeMaterial};
+use crate::stages::preview::picture::{luminance, pbr_neutral, HEAT_BACKGROUND};
+use crate::view::frame::{unpack, FrameUniform, Mode, PresentUniform, Surface, ViewLight};
+use crate::view::raster::GBuffer;
+
+/// The point lights on, shading point `p` (`direct_lights` in view_frame.wgsl).
+fn direct_lights(
+    frame: &FrameUniform,
+    lights: &[[f32; 4]],
+    p: Vec3,
+    n: Vec3,
+    v: Vec3,
+    n_dot_v: f32,
+    m: &ShadeMaterial,
+) -> Vec3 {
+    (0..frame.light_count as usize)
+        .map(|i| {
+            let (pos, colour) = (lights[2 * i], lights[2 * i + 1]);
+            point_light(
+                p,
+                n,
+                v,
+                n_dot_v,
+                m,
+                Vec3::from_slice(&pos[..3]),
+                Vec3::from_slice(&colour[..3]),
+                frame.floor_plane[2],
+            )
+        })
+        .sum()
+}
+
+/// A G-buffer pixel: (surface, position, normal).
+fn surface(g: &GBuffer, k: usize) -> (Surface, Vec3, Vec3) {
+    let p = g.position[k];
+    (
+        Surface::from_id(p[3]),
+        Vec3::from_slice(&p[..3]),
+        Vec3::from_slice(&g.normal[k][..3]),
+    )
+}
+
+fn surface_material(frame: &FrameUniform, s: Surface) -> ShadeMaterial {
+    match s {
+        Surface::Object => unpack(&frame.object),
+        _ => unpack(&frame.floor),
+    }
+}
+
+/// The split-sum pass: per pixel (radiance, surface id).
+pub fn shade_split_sum(
+    frame: &FrameUniform,
+    light: &ViewLight,
+    lights: &[[f32; 4]],
+    g: &GBuffer,
+) -> Vec<[f32; 4]> {
+    let camera = frame.camera();
+    let split = light.split_sum();
+    (0..g.position.len())
+        .into_par_iter()
+        .map(|k| {
+            let (x, y) = ((k as u32) % frame.width, (k as u32) / frame.width);
+            let (_, dir) = camera.pixel_ray(x, y, frame.width, frame.height);
+            let (s, p, n) = surface(g, k);
+            let c = if s == Surface::Background {
+                Vec3::from(sample_cube_lod(&light.specular, dir.into(), 0.0))
+            } else {
+                let v = -dir;
+                let n_dot_v = n.dot(v).max(frame.front[3]);
+                let m = surface_material(frame, s);
+                split_sum_shade(&split, n, v, n_dot_v, &m)
+                    + direct_lights(frame, lights, p, n, v, n_dot_v, &m)
+            };
+            c.extend(s as u32 as f32).into()
+        })
+        .collect()
+}
+
+/// One truth estimate with `points`, accumulated into `accum` (restarted at
+/// `frame.truth_frame` 0).
+pub fn shade_truth(
+    frame: &FrameUniform,
+    light: &ViewLight,
+    points: &[[f32; 4]],
+    lights: &[[f32; 4]],
+    g: &GBuffer,
+    accum: &mut [[f32; 4]],
+) {
+    let camera = frame.camera();
+    let truth = light.truth(points);
+    let weight = points.len() as f32;
+    accum.par_iter_mut().enumerate().for_each(|(k, a)| {
+        let (x, y) = ((k as u32) % frame.width, (k as u32) / frame.width);
+        let (_, dir) = camera.pixel_ray(x, y, frame.width, frame.height);
+        let (s, p, n) = surface(g, k);
+        let c = if s == Surface::Background {
+            Vec3::from(sample_cube_lod(&light.env, dir.into(), 0.0))
+        } else {
+            let v = -dir;
+            let n_dot_v = n.dot(v).max(frame.front[3]);
+            let m = surface_material(frame, s);
+            let seed = (k as u32).wrapping_add(
+                frame
+                    .truth_frame
+                    .wrapping_mul(frame.width)
+                    .wrapping_mul(frame.height),
+            );
+            truth_shade(&truth, n, v, n_dot_v, &m, pixel_shift(seed))
+                + direct_lights(frame, lights, p, n, v, n_dot_v, &m)
+        };
+        let estimate = [c.x * weight, c.y * weight, c.z * weight, weight];
+        if frame.truth_frame == 0 {
+            *a = estimate;
+        } else {
+            for i in 0..4 {
+                a[i] += estimate[i];
+            }
+        }
+    });
+}
+
+/// A linear radiance, exposed, tone-mapped and sRGB-encoded, in [0, 1].
+fn display(c: [f32; 3], exposure: f32) -> [f32; 3] {
+    pbr_neutral(c.map(|v| v.max(0.0) * exposure)).map(linear_to_srgb)
+}
+
+/// The heat-map colour of a relative difference from the colour table, as the present
+/// pass interpolates it.
+pub fn heat_colour(table: &[[f32; 4]], p: &PresentUniform, relative: f32) -> [f32; 3] {
+    let t = ((relative.max(1e-30).ln() / std::f32::consts::LN_10 - p.heat_lo)
+        / (p.heat_hi - p.heat_lo))
+        .clamp(0.0, 1.0);
+    let x = t * (p.heat_entries - 1) as f32;
+    let i = (x.floor() as usize).min(p.heat_entries as usize - 2);
+    let f = x - i as f32;
+    [0, 1, 2].map(|c| table[i][c] + (table[i + 1][c] - table[i][c]) * f)
+}
+
+/// One pixel of the present pass, sRGB-encoded in [0, 1] before the HUD.
+pub fn present_pixel(
+    p: &PresentUniform,
+    table: &[[f32; 4]],
+    shaded: [f32; 4],
+    accum: [f32; 4],
+) -> [f32; 3] {
+    let rgb = |v: [f32; 4]| [v[0], v[1], v[2]];
+    let mean = |a: [f32; 4]| [a[0] / a[3], a[1] / a[3], a[2] / a[3]];
+    if p.mode == Mode::SplitSum as u32 || accum[3] <= 0.0 {
+        display(rgb(shaded), p.exposure)
+    } else if p.mode == Mode::Truth as u32 {
+        display(mean(accum), p.exposure)
+    } else if shaded[3] < 0.5 {
+        HEAT_BACKGROUND.0.map(|v| v as f32 / 255.0)
+    } else {
+        let t = luminance(mean(accum));
+        heat_colour(table, p, (luminance(rgb(shaded)) - t).abs() / t.max(1e-30))
+    }
+}
+
+/// The present pass: the mode's picture with `hud` (straight alpha, sRGB) over it, as
+/// 8-bit sRGB.
+pub fn present(
+    p: &PresentUniform,
+    table: &[[f32; 4]],
+    shaded: &[[f32; 4]],
+    accum: &[[f32; 4]],
+    hud: &RgbaImage,
+) -> RgbaImage {
+    let mut out = RgbaImage::new(p.width, p.height);
+    let pixels: Vec<[u8; 4]> = (0..shaded.len())
+        .into_par_iter()
+        .map(|k| {
+            let c = present_pixel(p, table, shaded[k], accum[k]);
+            let (x, y) = ((k as u32) % p.width, (k as u32) / p.width);
+            let h = hud.get_pixel(x, y).0.map(|v| v as f32 / 255.0);
+            let c = [0, 1, 2].map(|i| c[i] + (h[i] - c[i]) * h[3]);
+            // The 8-bit store of the encoded value, as `math::color::srgb8` rounds.
+            let q = c.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8);
+            [q[0], q[1], q[2], 255]
+        })
+        .collect();
+    for (k, px) in pixels.into_iter().enumerate() {
+        out.put_pixel((k as u32) % p.width, (k as u32) / p.width, image::Rgba(px));
+    }
+    out
+}

@@ -1,0 +1,327 @@
+//! What both viewer renderers read for one frame: the baked light ([`ViewLight`]), and
+//! the uniform blocks of the kernels ([`FrameUniform`] for the G-buffer and shading
+//! passes, [`PresentUniform`] for tone mapping), built in Rust once so the GPU and CPU
+//! renderers cannot disagree (layouts checked in tests/shaders.rs).
+//!
+//! A frame is three passes: the **G-buffer** (per pixel: the world position and what it
+//! is — background, object, floor — and the unit normal), the **shading** (split-sum, or
+//! one more truth estimate accumulated), and the **present** pass (the mode's picture,
+//! exposure, Khronos PBR Neutral, sRGB, the HUD over it).
+
+use glam::{Mat4, Vec3};
+
+use crate::environment::texels::SourceTexel;
+use crate::environment::Cubemap;
+use crate::plan::chain::SpecularChain;
+use crate::plan::lut::BrdfLut;
+use crate::plan::material::{ShadeMaterial, MIN_DIRECT_ALPHA};
+use crate::plan::scene::{SplitSumLight, TruthLight, MIN_N_DOT_V};
+use crate::stages::light::BakedEnvironment;
+use crate::stages::preview::picture::{auto_exposure, HEAT_LOG10_RANGE};
+use crate::stages::preview::truth_environment;
+use crate::view::camera::CameraFrame;
+use crate::view::scene::{PointLight, FIT_HALF_EXTENT, FLOOR_HALF_EXTENT, FLOOR_Y, OBJECT_CENTRE};
+
+/// A frame before tone mapping, per pixel: the split-sum (radiance, surface id) and the
+/// truth accumulation (radiance × points, points).
+pub type HdrFrame = (Vec<[f32; 4]>, Vec<[f32; 4]>);
+
+/// What a G-buffer pixel holds (the w of its position texel).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u32)]
+pub enum Surface {
+    /// Nothing: the environment.
+    Background = 0,
+    /// The object.
+    Object = 1,
+    /// The floor.
+    Floor = 2,
+}
+
+impl Surface {
+    /// The surface of a stored id.
+    pub fn from_id(id: f32) -> Surface {
+        match id.round() as u32 {
+            1 => Surface::Object,
+            2 => Surface::Floor,
+            _ => Surface::Background,
+        }
+    }
+}
+
+/// What the viewer shows.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[repr(u32)]
+pub enum Mode {
+    /// The split-sum render, as an engine shows the bake.
+    #[default]
+    SplitSum = 0,
+    /// The ground truth, accumulated while the view stands still.
+    Truth = 1,
+    /// |Y_split-sum − Y_truth| / Y_truth, the preview's colour scale.
+    Heat = 2,
+}
+
+/// The baked light the viewer renders with (generic orientation), and the environment's
+/// split for the truth.
+#[derive(Clone, Debug)]
+pub struct ViewLight {
+    /// What the HUD calls it (the input's file name).
+    pub name: String,
+    /// The prefiltered specular chain (level 0: the environment).
+    pub specular: Cubemap,
+    /// Its layout (the lod of a roughness).
+    pub chain: SpecularChain,
+    /// The irradiance cube (E/π).
+    pub irradiance: Cubemap,
+    /// The split-sum LUT.
+    pub lut: BrdfLut,
+    /// The environment with its full mip chain (the truth's mirror lookups).
+    pub env: Cubemap,
+    /// The environment without its hot texels.
+    pub cold: Cubemap,
+    /// The hot texels, summed exactly by the truth.
+    pub hot: Vec<SourceTexel>,
+    /// The preview's default exposure of this environment (a linear scale).
+    pub exposure: f32,
+}
+
+impl ViewLight {
+    /// The viewer's light from a bake and its LUT.
+    pub fn new(name: impl Into<String>, baked: &BakedEnvironment, lut: BrdfLut) -> ViewLight {
+        let (env, split) = truth_environment(&baked.specular);
+        ViewLight {
+            name: name.into(),
+            exposure: auto_exposure(&baked.specular),
+            specular: baked.specular.clone(),
+            chain: baked.chain,
+            irradiance: baked.irradiance.clone(),
+            lut,
+            env,
+            cold: split.rest,
+            hot: split.hot,
+        }
+    }
+
+    /// A black environment, shown while the first bake runs.
+    pub fn blank() -> ViewLight {
+        let black = |size: u32, levels: usize| Cubemap {
+            size,
+            levels: (0..levels)
+                .map(|m| vec![[0.0; 4]; 6 * ((size >> m).max(1) as usize).pow(2)])
+                .collect(),
+        };
+        ViewLight {
+            name: "(baking)".into(),
+            specular: black(4, 3),
+            chain: SpecularChain::linear(3),
+            irradiance: black(4, 1),
+            lut: BrdfLut {
+                width: 2,
+                height: 2,
+                data: vec![[0.0; 2]; 4],
+                third: None,
+                model: Default::default(),
+            },
+            env: black(4, 3),
+            cold: black(4, 3),
+            hot: Vec::new(),
+            exposure: 1.0,
+        }
+    }
+
+    /// The chain's lod for roughness `r`.
+    pub fn lod(&self, r: f32) -> f32 {
+        self.chain.roughness.lod(r, self.chain.levels)
+    }
+
+    /// What the split-sum shading reads.
+    pub fn split_sum(&self) -> SplitSumLight<'_> {
+        SplitSumLight {
+            specular: &self.specular,
+            irradiance: &self.irradiance,
+            lut: &self.lut,
+        }
+    }
+
+    /// What the truth reads, with `points` for its quadrature.
+    pub fn truth<'a>(&'a self, points: &'a [[f32; 4]]) -> TruthLight<'a> {
+        TruthLight {
+            env: &self.env,
+            cold: &self.cold,
+            hot: &self.hot,
+            points,
+        }
+    }
+}
+
+/// Uniform block of the G-buffer and shading kernels (`shaders/common/view_frame.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct FrameUniform {
+    /// Frame width in pixels.
+    pub width: u32,
+    /// Frame height in pixels.
+    pub height: u32,
+    /// Index of this truth estimate (seeds its quadrature rotation).
+    pub truth_frame: u32,
+    /// Number of point lights on.
+    pub light_count: u32,
+    /// Camera position, w: 1 for parallel rays.
+    pub position: [f32; 4],
+    /// Camera right axis, w: half extent x (tan of the half angle for a pinhole).
+    pub right: [f32; 4],
+    /// Camera up axis, w: half extent y.
+    pub up: [f32; 4],
+    /// Camera front axis, w: the smallest n·v the shading uses.
+    pub front: [f32; 4],
+    /// World to clip space (column-major).
+    pub view_projection: [[f32; 4]; 4],
+    /// The object's material: (F0, metallic), (albedo, roughness), (lod, 0, 0, 0).
+    pub object: [[f32; 4]; 3],
+    /// The floor's material, as `object`.
+    pub floor: [[f32; 4]; 3],
+    /// The sphere: (centre, radius).
+    pub sphere: [f32; 4],
+    /// (floor height, half extent, smallest α of the point lights, 0).
+    pub floor_plane: [f32; 4],
+}
+
+fn pack(m: &ShadeMaterial) -> [[f32; 4]; 3] {
+    [
+        m.f0.extend(m.metallic).into(),
+        m.albedo.extend(m.roughness).into(),
+        [m.lod, 0.0, 0.0, 0.0],
+    ]
+}
+
+/// The material packed by [`FrameUniform`].
+pub fn unpack(m: &[[f32; 4]; 3]) -> ShadeMaterial {
+    ShadeMaterial {
+        f0: Vec3::from_slice(&m[0][..3]),
+        metallic: m[0][3],
+        albedo: Vec3::from_slice(&m[1][..3]),
+        roughness: m[1][3],
+        lod: m[2][0],
+    }
+}
+
+impl FrameUniform {
+    /// The block of a `width` × `height` frame seen by `camera`.
+    pub fn new(
+        camera: &CameraFrame,
+        (width, height): (u32, u32),
+        object: &ShadeMaterial,
+        floor: &ShadeMaterial,
+        light_count: u32,
+        truth_frame: u32,
+    ) -> FrameUniform {
+        let vp: Mat4 = camera.view_projection();
+        FrameUniform {
+            width,
+            height,
+            truth_frame,
+            light_count,
+            position: camera
+                .position
+                .extend(if camera.orthographic { 1.0 } else { 0.0 })
+                .into(),
+            right: camera.right.extend(camera.half_x).into(),
+            up: camera.up.extend(camera.half_y).into(),
+            front: camera.front.extend(MIN_N_DOT_V).into(),
+            view_projection: vp.to_cols_array_2d(),
+            object: pack(object),
+            floor: pack(floor),
+            sphere: Vec3::from(OBJECT_CENTRE).extend(FIT_HALF_EXTENT).into(),
+            floor_plane: [FLOOR_Y, FLOOR_HALF_EXTENT, MIN_DIRECT_ALPHA, 0.0],
+        }
+    }
+
+    /// The camera basis and projection back.
+    pub fn camera(&self) -> CameraFrame {
+        CameraFrame {
+            position: Vec3::from_slice(&self.position[..3]),
+            right: Vec3::from_slice(&self.right[..3]),
+            up: Vec3::from_slice(&self.up[..3]),
+            front: Vec3::from_slice(&self.front[..3]),
+            half_x: self.right[3],
+            half_y: self.up[3],
+            orthographic: self.position[3] > 0.5,
+        }
+    }
+}
+
+/// The point lights as the kernels read them: (position, 0), (colour, 0) each.
+pub fn light_table(lights: &[PointLight]) -> Vec<[f32; 4]> {
+    lights
+        .iter()
+        .flat_map(|l| {
+            [
+                [l.position[0], l.position[1], l.position[2], 0.0],
+                [l.colour[0], l.colour[1], l.colour[2], 0.0],
+            ]
+        })
+        .collect()
+}
+
+/// Uniform block of the present pass (`shaders/view_present.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct PresentUniform {
+    /// Frame width in pixels.
+    pub width: u32,
+    /// Frame height in pixels.
+    pub height: u32,
+    /// [`Mode`].
+    pub mode: u32,
+    /// 1 when the target stores sRGB itself (the pass then writes linear values).
+    pub target_is_srgb: u32,
+    /// Linear exposure scale.
+    pub exposure: f32,
+    /// log10 of the heat map's ends (`HEAT_LOG10_RANGE`).
+    pub heat_lo: f32,
+    /// See `heat_lo`.
+    pub heat_hi: f32,
+    /// Entries of the heat map's colour table.
+    pub heat_entries: u32,
+}
+
+impl PresentUniform {
+    /// The block for a frame.
+    pub fn new(
+        (width, height): (u32, u32),
+        mode: Mode,
+        exposure: f32,
+        target_is_srgb: bool,
+    ) -> Self {
+        PresentUniform {
+            width,
+            height,
+            mode: mode as u32,
+            target_is_srgb: target_is_srgb as u32,
+            exposure,
+            heat_lo: HEAT_LOG10_RANGE[0],
+            heat_hi: HEAT_LOG10_RANGE[1],
+            heat_entries: HEAT_TABLE_ENTRIES,
+        }
+    }
+}
+
+/// Entries of the heat map's colour table (matplotlib's inferno, from `colorous`),
+/// interpolated linearly between entries by the present pass.
+pub const HEAT_TABLE_ENTRIES: u32 = 256;
+
+/// The heat map's colour table: 8-bit sRGB inferno at t = i/(N − 1), as 0–1 floats.
+pub fn heat_table() -> Vec<[f32; 4]> {
+    (0..HEAT_TABLE_ENTRIES)
+        .map(|i| {
+            let c = colorous::INFERNO.eval_continuous(i as f64 / (HEAT_TABLE_ENTRIES - 1) as f64);
+            [
+                c.r as f32 / 255.0,
+                c.g as f32 / 255.0,
+                c.b as f32 / 255.0,
+                1.0,
+            ]
+        })
+        .collect()
+}

@@ -1,0 +1,93 @@
+//! Reading the viewer's frames back: the HDR buffers (for tests) and an offscreen picture.
+
+use image::RgbaImage;
+
+use crate::gpu::compute::map_read;
+use crate::view::frame::{FrameUniform, HdrFrame, PresentUniform};
+use crate::Result;
+
+use super::pipelines::buffer;
+use super::{gpu_error, GpuRenderer};
+
+impl GpuRenderer {
+    /// The last frame's split-sum (radiance, surface id) and truth accumulation
+    /// (radiance × points, points) per pixel.
+    pub fn read_hdr(&self) -> Result<HdrFrame> {
+        let t = self
+            .targets
+            .as_ref()
+            .ok_or_else(|| gpu_error("viewer readback", "nothing rendered"))?;
+        let read = |src: &wgpu::Buffer| -> Result<Vec<[f32; 4]>> {
+            let staging = buffer(
+                &self.device,
+                "view readback",
+                src.size(),
+                wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            );
+            let mut encoder = self.device.create_command_encoder(&Default::default());
+            encoder.copy_buffer_to_buffer(src, 0, &staging, 0, src.size());
+            self.queue.submit([encoder.finish()]);
+            let bytes = map_read(&self.device, &staging)?;
+            Ok(bytemuck::pod_collect_to_vec(&bytes))
+        };
+        Ok((read(&t.shaded)?, read(&t.accum)?))
+    }
+
+    /// Renders into a new `Rgba8Unorm` texture and reads the picture back.
+    pub fn render_image(
+        &mut self,
+        frame: &FrameUniform,
+        present: &PresentUniform,
+        geometry_changed: bool,
+        points: Option<&[[f32; 4]]>,
+        hud: Option<&RgbaImage>,
+    ) -> Result<RgbaImage> {
+        let (w, h) = (frame.width, frame.height);
+        let texture = self.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("view offscreen"),
+            size: wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba8Unorm,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let view = texture.create_view(&Default::default());
+        let target = (&view, wgpu::TextureFormat::Rgba8Unorm);
+        self.render(frame, present, geometry_changed, points, hud, target)?;
+        let row = 4 * w;
+        let padded = row.next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+        let staging = buffer(
+            &self.device,
+            "view picture",
+            padded as u64 * h as u64,
+            wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        );
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        encoder.copy_texture_to_buffer(
+            texture.as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &staging,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(padded),
+                    rows_per_image: Some(h),
+                },
+            },
+            texture.size(),
+        );
+        self.queue.submit([encoder.finish()]);
+        let bytes = map_read(&self.device, &staging)?;
+        let mut pixels = Vec::with_capacity((row * h) as usize);
+        for r in bytes.chunks_exact(padded as usize) {
+            pixels.extend_from_slice(&r[..row as usize]);
+        }
+        RgbaImage::from_raw(w, h, pixels)
+            .ok_or_else(|| gpu_error("viewer readback", "short picture"))
+    }
+}

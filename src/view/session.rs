@@ -1,0 +1,377 @@
+//! [`Viewer`]: the viewer's state, light, models and renderer, one frame at a time. The
+//! window ([`crate::view::window`]) and offscreen renders drive the same object, so a
+//! screenshot shows exactly what the window would.
+//!
+//! The truth accumulates one estimate per frame while nothing that is seen changes (the
+//! frame's uniform block, the model, the light); any change restarts it. Each estimate
+//! uses [`Viewer::points_per_estimate`] quadrature points per lobe, rotated per pixel and
+//! estimate, so k estimates of n points converge like one of k·n.
+
+use std::time::Instant;
+
+use image::RgbaImage;
+
+use crate::plan::scene::disk_points;
+use crate::view::cpu::{present, shade_split_sum, shade_truth};
+use crate::view::frame::{
+    heat_table, light_table, FrameUniform, HdrFrame, Mode, PresentUniform, ViewLight,
+};
+use crate::view::gpu::{GpuRenderer, MAX_TRUTH_POINTS};
+use crate::view::hud;
+use crate::view::model::{Model, Shape};
+use crate::view::raster::{rasterize, scene_vertices, GBuffer, Vertex};
+use crate::view::scene::{floor_material, FLOOR_ROUGHNESS, POINT_LIGHTS};
+use crate::view::state::{Action, Change, ViewState, KEYS};
+use crate::{Error, Result};
+
+/// Quadrature points per lobe of one truth estimate unless the caller sets another count.
+pub const DEFAULT_POINTS_PER_ESTIMATE: u32 = 64;
+/// Keys the HUD lists on one line.
+const KEYS_PER_LINE: usize = 5;
+/// Seconds between refreshes of the HUD's frame time.
+const HUD_REFRESH_SECONDS: f32 = 0.25;
+/// Seconds a message stays in the HUD.
+const MESSAGE_SECONDS: f32 = 8.0;
+
+/// The CPU renderer's buffers.
+#[derive(Default)]
+pub struct CpuFrame {
+    vertices: Vec<Vertex>,
+    sphere: bool,
+    gbuffer: Option<GBuffer>,
+    shaded: Vec<[f32; 4]>,
+    accum: Vec<[f32; 4]>,
+}
+
+/// Which renderer draws the frames.
+pub enum Renderer {
+    /// The wgpu renderer.
+    Gpu(Box<GpuRenderer>),
+    /// The CPU twin.
+    Cpu(CpuFrame),
+}
+
+/// The viewer.
+pub struct Viewer {
+    /// What the user has set.
+    pub state: ViewState,
+    /// The baked light shown.
+    pub light: ViewLight,
+    /// The models on keys.
+    pub models: Vec<Model>,
+    /// Quadrature points per lobe of each truth estimate (1 ..= 256).
+    pub points_per_estimate: u32,
+    renderer: Renderer,
+    truth_frame: u32,
+    truth_samples: u64,
+    last_frame: Option<FrameUniform>,
+    scene_dirty: bool,
+    messages: Vec<(String, Instant)>,
+    frame_seconds: f32,
+    /// The frame time the HUD shows, refreshed a few times a second (redrawing the HUD
+    /// every frame would cost more than the frame).
+    shown_frame_seconds: (f32, Instant),
+    last_hud: Option<Vec<String>>,
+    backend: String,
+}
+
+impl Viewer {
+    /// A viewer of `light` on `models` (at least one) drawn by `renderer`, described as
+    /// `backend` in the HUD.
+    pub fn new(
+        light: ViewLight,
+        models: Vec<Model>,
+        renderer: Renderer,
+        backend: impl Into<String>,
+    ) -> Result<Viewer> {
+        if models.is_empty() {
+            return Err(Error::InvalidOption {
+                option: "models",
+                message: "the viewer needs a model".into(),
+            });
+        }
+        let mut v = Viewer {
+            state: ViewState::default(),
+            light,
+            models,
+            points_per_estimate: DEFAULT_POINTS_PER_ESTIMATE,
+            renderer,
+            truth_frame: 0,
+            truth_samples: 0,
+            last_frame: None,
+            scene_dirty: true,
+            messages: Vec::new(),
+            frame_seconds: 0.0,
+            shown_frame_seconds: (0.0, Instant::now()),
+            last_hud: None,
+            backend: backend.into(),
+        };
+        if let Renderer::Gpu(g) = &mut v.renderer {
+            g.set_light(&v.light)?;
+        }
+        v.upload_model()?;
+        Ok(v)
+    }
+
+    fn upload_model(&mut self) -> Result<()> {
+        let model = &self.models[self.state.model.min(self.models.len() - 1)];
+        match &mut self.renderer {
+            Renderer::Gpu(g) => g.set_model(model)?,
+            Renderer::Cpu(c) => {
+                c.vertices = scene_vertices(model);
+                c.sphere = matches!(model.shape, Shape::Sphere);
+            }
+        }
+        self.scene_dirty = true;
+        Ok(())
+    }
+
+    /// Shows `light` from now on.
+    pub fn set_light(&mut self, light: ViewLight) -> Result<()> {
+        if let Renderer::Gpu(g) = &mut self.renderer {
+            g.set_light(&light)?;
+        }
+        self.light = light;
+        self.scene_dirty = true;
+        Ok(())
+    }
+
+    /// Applies a user's action.
+    pub fn apply(&mut self, action: Action) -> Result<Change> {
+        let model = self.state.model;
+        let change = self.state.apply(action, self.models.len());
+        if self.state.model != model {
+            self.upload_model()?;
+        }
+        Ok(change)
+    }
+
+    /// A line in the HUD for a while (and the caller prints it on stderr).
+    pub fn message(&mut self, text: impl Into<String>) {
+        self.messages.push((text.into(), Instant::now()));
+    }
+
+    /// Seconds the last frame took.
+    pub fn frame_seconds(&self) -> f32 {
+        self.frame_seconds
+    }
+
+    /// Quadrature points per pixel and lobe accumulated so far.
+    pub fn truth_samples(&self) -> u64 {
+        self.truth_samples
+    }
+
+    /// The uniform block of a `size` frame of the current state (truth index 0).
+    pub fn frame_uniform(&self, size: (u32, u32)) -> FrameUniform {
+        let s = &self.state;
+        let object = s
+            .base_material()
+            .shade(s.roughness, self.light.lod(s.roughness));
+        let floor = floor_material().shade(FLOOR_ROUGHNESS, self.light.lod(FLOOR_ROUGHNESS));
+        let lights = if s.lights {
+            POINT_LIGHTS.len() as u32
+        } else {
+            0
+        };
+        FrameUniform::new(
+            &s.camera.frame(size.0, size.1),
+            size,
+            &object,
+            &floor,
+            lights,
+            0,
+        )
+    }
+
+    /// The present pass's block for a `size` frame.
+    pub fn present_uniform(&self, size: (u32, u32), target_is_srgb: bool) -> PresentUniform {
+        let exposure = self.light.exposure * 2f32.powf(self.state.exposure_ev);
+        PresentUniform::new(size, self.state.mode, exposure, target_is_srgb)
+    }
+
+    /// The HUD's lines (none with the HUD off). Line 1 is the material's.
+    pub fn hud_lines(&mut self) -> Vec<String> {
+        self.messages
+            .retain(|(_, t)| t.elapsed().as_secs_f32() < MESSAGE_SECONDS);
+        let s = &self.state;
+        if !s.hud {
+            return Vec::new();
+        }
+        let m = s.base_material();
+        let kind = if m.metallic { "metal" } else { "dielectric" };
+        let view = match s.mode {
+            Mode::SplitSum => "split-sum (G: ground truth, H: heat map)".to_string(),
+            Mode::Truth => format!("ground truth, {} samples a pixel", self.truth_samples),
+            Mode::Heat => format!(
+                "heat map |split-sum − truth| / truth, 0.1 % … 100 %, {} samples",
+                self.truth_samples
+            ),
+        };
+        let mut lines = vec![
+            format!("splitsum view · {}", self.light.name),
+            format!(
+                "material {} {} ({kind}) · roughness {:.2}",
+                s.material + 1,
+                m.name,
+                s.roughness
+            ),
+            format!(
+                "model {} · exposure {:+.1} EV · lights {}",
+                self.models[s.model].name,
+                s.exposure_ev,
+                if s.lights { "on" } else { "off" }
+            ),
+            format!("view: {view}"),
+            format!(
+                "frame {:.1} ms · {}",
+                1e3 * self.shown_frame_seconds.0,
+                self.backend
+            ),
+        ];
+        lines.extend(self.messages.iter().map(|(m, _)| m.clone()));
+        // The keys' short forms, a few to a line.
+        let shorts: Vec<&str> = KEYS.iter().map(|k| k.3).collect();
+        lines.extend(shorts.chunks(KEYS_PER_LINE).map(|c| c.join(" · ")));
+        lines
+    }
+
+    /// The frame's uniform for this call and whether the G-buffer must be redrawn (and the
+    /// truth restarted).
+    fn next_frame(&mut self, size: (u32, u32)) -> (FrameUniform, bool) {
+        let mut frame = self.frame_uniform(size);
+        let changed = self.scene_dirty || self.last_frame != Some(frame);
+        if changed {
+            self.truth_frame = 0;
+            self.truth_samples = 0;
+            self.last_frame = Some(frame);
+            self.scene_dirty = false;
+        }
+        frame.truth_frame = self.truth_frame;
+        (frame, changed)
+    }
+
+    fn truth_points(&self) -> Option<Vec<[f32; 4]>> {
+        (self.state.mode != Mode::SplitSum)
+            .then(|| disk_points(self.points_per_estimate.clamp(1, MAX_TRUTH_POINTS)))
+    }
+
+    /// Counts this frame's truth estimate (before the HUD is drawn, so it counts it).
+    fn count_estimate(&mut self, points: &Option<Vec<[f32; 4]>>) {
+        if let Some(p) = points {
+            self.truth_samples += p.len() as u64;
+        }
+    }
+
+    fn finish_frame(&mut self, points: &Option<Vec<[f32; 4]>>, started: Instant) {
+        if points.is_some() {
+            self.truth_frame += 1;
+        }
+        self.frame_seconds = started.elapsed().as_secs_f32();
+        if self.shown_frame_seconds.1.elapsed().as_secs_f32() > HUD_REFRESH_SECONDS {
+            self.shown_frame_seconds = (self.frame_seconds, Instant::now());
+        }
+    }
+
+    /// The HUD image when its lines changed since the last frame.
+    fn hud_image(&mut self, size: (u32, u32)) -> Result<Option<RgbaImage>> {
+        let lines = self.hud_lines();
+        if self.last_hud.as_ref() == Some(&lines) {
+            return Ok(None);
+        }
+        let img = hud::draw(&lines, size.0, size.1).map_err(|message| Error::Encode {
+            path: "HUD".into(),
+            format: "text",
+            message,
+        })?;
+        self.last_hud = Some(lines);
+        Ok(Some(img))
+    }
+
+    /// Renders one frame into `target` (a window's surface texture) on the GPU renderer.
+    pub fn render_to(
+        &mut self,
+        size: (u32, u32),
+        target: (&wgpu::TextureView, wgpu::TextureFormat),
+    ) -> Result<()> {
+        let target_is_srgb = target.1.is_srgb();
+        let started = Instant::now();
+        let (frame, changed) = self.next_frame(size);
+        if changed {
+            self.last_hud = None;
+        }
+        let points = self.truth_points();
+        self.count_estimate(&points);
+        let present = self.present_uniform(size, target_is_srgb);
+        let hud = self.hud_image(size)?;
+        let Renderer::Gpu(g) = &mut self.renderer else {
+            return Err(Error::Gpu {
+                stage: "viewer window".into(),
+                message: "a window needs the GPU renderer".into(),
+            });
+        };
+        g.render(
+            &frame,
+            &present,
+            changed,
+            points.as_deref(),
+            hud.as_ref(),
+            target,
+        )?;
+        g.wait()?;
+        self.finish_frame(&points, started);
+        Ok(())
+    }
+
+    /// Renders one frame of `size` and returns the picture (8-bit sRGB).
+    pub fn render_image(&mut self, size: (u32, u32)) -> Result<RgbaImage> {
+        let started = Instant::now();
+        let (frame, changed) = self.next_frame(size);
+        let points = self.truth_points();
+        self.count_estimate(&points);
+        let present_block = self.present_uniform(size, false);
+        self.last_hud = None;
+        let hud = self.hud_image(size)?;
+        let image = match &mut self.renderer {
+            Renderer::Gpu(g) => g.render_image(
+                &frame,
+                &present_block,
+                changed,
+                points.as_deref(),
+                hud.as_ref(),
+            )?,
+            Renderer::Cpu(c) => {
+                if changed {
+                    let g = rasterize(&frame, &c.vertices, c.sphere);
+                    c.shaded =
+                        shade_split_sum(&frame, &self.light, &light_table(&POINT_LIGHTS), &g);
+                    c.accum = vec![[0.0; 4]; c.shaded.len()];
+                    c.gbuffer = Some(g);
+                }
+                if let (Some(p), Some(g)) = (&points, &c.gbuffer) {
+                    let lights = light_table(&POINT_LIGHTS);
+                    shade_truth(&frame, &self.light, p, &lights, g, &mut c.accum);
+                }
+                let blank;
+                let hud = match &hud {
+                    Some(h) => h,
+                    None => {
+                        blank = RgbaImage::new(size.0, size.1);
+                        &blank
+                    }
+                };
+                present(&present_block, &heat_table(), &c.shaded, &c.accum, hud)
+            }
+        };
+        self.finish_frame(&points, started);
+        Ok(image)
+    }
+
+    /// The last frame's split-sum (radiance, surface id) and truth accumulation (radiance
+    /// × points, points) per pixel, before exposure and tone mapping.
+    pub fn hdr(&self) -> Result<HdrFrame> {
+        match &self.renderer {
+            Renderer::Gpu(g) => g.read_hdr(),
+            Renderer::Cpu(c) => Ok((c.shaded.clone(), c.accum.clone())),
+        }
+    }
+}

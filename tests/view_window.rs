@@ -1,0 +1,255 @@
+//! `splitsum view` in a real window: under Xvfb (a virtual X server) on the GPU adapter
+//! (lavapipe in CI), keys sent with xdotool through XTEST as a keyboard would, the window
+//! captured with xwd and converted by ImageMagick. Needs `Xvfb`, `xdotool`, `xwd` and
+//! `convert` (`.ci/run` installs them); without them the test says so and passes, unless
+//! `SPLITSUM_REQUIRE_WINDOW=1` (set by `.ci/run`), where it fails.
+//!
+//! Checked: the window opens and shows the bundled HDRI baked (its title names it); after
+//! the keys 2 (copper), R (rougher), 8 (the sphere), G (ground truth) the HUD's material
+//! line and the object are what the same keys give offscreen (`--keys "2 r+ m2 g"`), and
+//! differ from before the keys; a 1 × 1 window, an unmapped and remapped one do not stop
+//! it; Escape ends it with exit code 0.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+use common::{output_dir, splitsum};
+use image::RgbImage;
+
+const SIZE: (u32, u32) = (640, 360);
+
+fn have(tool: &str) -> bool {
+    Command::new("sh")
+        .args(["-c", &format!("command -v {tool}")])
+        .stdout(Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success())
+}
+
+/// Kills a child process when dropped (Xvfb, or the viewer if the test fails).
+struct Reaped(Child);
+
+impl Drop for Reaped {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+/// A free display number and Xvfb on it.
+fn start_xvfb() -> (String, Reaped) {
+    let n = (90..140)
+        .find(|n| {
+            !Path::new(&format!("/tmp/.X11-unix/X{n}")).exists()
+                && !Path::new(&format!("/tmp/.X{n}-lock")).exists()
+        })
+        .expect("a free X display number");
+    let display = format!(":{n}");
+    let child = Command::new("Xvfb")
+        .args([&display, "-screen", "0", "1024x768x24", "-nolisten", "tcp"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("Xvfb starts");
+    let started = Instant::now();
+    while !Path::new(&format!("/tmp/.X11-unix/X{n}")).exists() {
+        assert!(
+            started.elapsed() < Duration::from_secs(20),
+            "Xvfb did not start"
+        );
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    (display, Reaped(child))
+}
+
+fn xdotool(display: &str, args: &[&str]) -> String {
+    let out = Command::new("xdotool")
+        .args(args)
+        .env("DISPLAY", display)
+        .output()
+        .unwrap();
+    String::from_utf8_lossy(&out.stdout).trim().to_string()
+}
+
+/// The window whose title contains `title`, waiting up to `seconds`.
+fn wait_for_window(display: &str, title: &str, viewer: &mut Child, seconds: u64) -> String {
+    let started = Instant::now();
+    loop {
+        let ids = xdotool(display, &["search", "--name", title]);
+        if let Some(id) = ids.lines().next() {
+            return id.to_string();
+        }
+        if let Ok(Some(status)) = viewer.try_wait() {
+            panic!("the viewer exited before showing '{title}': {status}");
+        }
+        assert!(
+            started.elapsed() < Duration::from_secs(seconds),
+            "no window titled '{title}'"
+        );
+        std::thread::sleep(Duration::from_millis(250));
+    }
+}
+
+/// The window's picture (xwd, converted to PNG by ImageMagick).
+fn capture(display: &str, window: &str, path: &Path) -> RgbImage {
+    let status = Command::new("sh")
+        .args([
+            "-c",
+            &format!(
+                "xwd -silent -id {window} | convert xwd:- png:'{}'",
+                path.display()
+            ),
+        ])
+        .env("DISPLAY", display)
+        .status()
+        .unwrap();
+    assert!(status.success(), "xwd | convert failed");
+    image::open(path).unwrap().to_rgb8()
+}
+
+/// The same view offscreen, with `keys`.
+fn offscreen(dir: &Path, name: &str, keys: &str, frames: u32) -> RgbImage {
+    let path: PathBuf = dir.join(name);
+    let out = splitsum()
+        .args([
+            "view",
+            "--size",
+            &format!("{}x{}", SIZE.0, SIZE.1),
+            "--keys",
+            keys,
+        ])
+        .args(["--frames", &frames.to_string(), "--screenshot"])
+        .arg(&path)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    image::open(&path).unwrap().to_rgb8()
+}
+
+/// Mean absolute difference per channel over a box, 8-bit steps.
+fn box_difference(a: &RgbImage, b: &RgbImage, (x, y, w, h): (u32, u32, u32, u32)) -> f64 {
+    let mut sum = 0.0;
+    for yy in y..y + h {
+        for xx in x..x + w {
+            let (p, q) = (a.get_pixel(xx, yy).0, b.get_pixel(xx, yy).0);
+            sum += (0..3).map(|c| p[c].abs_diff(q[c]) as f64).sum::<f64>();
+        }
+    }
+    sum / (3 * w * h) as f64
+}
+
+#[test]
+fn keys_change_the_window() {
+    let required = std::env::var("SPLITSUM_REQUIRE_WINDOW").is_ok_and(|v| v == "1");
+    let missing: Vec<&str> = ["Xvfb", "xdotool", "xwd", "convert"]
+        .into_iter()
+        .filter(|t| !have(t))
+        .collect();
+    if !missing.is_empty() {
+        assert!(
+            !required,
+            "SPLITSUM_REQUIRE_WINDOW=1 but {missing:?} missing"
+        );
+        eprintln!("skipping the window test: {missing:?} not installed");
+        return;
+    }
+    let dir = output_dir("view_window");
+    let (display, _xvfb) = start_xvfb();
+    let mut viewer = Reaped(
+        splitsum()
+            .args(["view", "--size", &format!("{}x{}", SIZE.0, SIZE.1)])
+            .env("DISPLAY", &display)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap(),
+    );
+    // The title names the HDRI once its bake is shown.
+    let window = wait_for_window(&display, "venice_sunset", &mut viewer.0, 300);
+    std::thread::sleep(Duration::from_secs(2));
+    let before = capture(&display, &window, &dir.join("before.png"));
+    assert_eq!(before.dimensions(), SIZE);
+
+    xdotool(&display, &["windowfocus", "--sync", &window]);
+    xdotool(&display, &["key", "--delay", "100", "2", "r", "8", "g"]);
+    std::thread::sleep(Duration::from_secs(6));
+    let after = capture(&display, &window, &dir.join("after.png"));
+
+    let expected_before = offscreen(&dir, "expected_before.png", "", 1);
+    let expected_after = offscreen(&dir, "expected_after.png", "2 r+ m2 g", 4);
+    let material_line = splitsum::view::hud::line_box(1, SIZE.0);
+    // The HUD's material line: as offscreen with the same keys (a few steps of rounding
+    // between the two present passes), and changed by the keys.
+    let line_after = box_difference(&after, &expected_after, material_line);
+    let line_before = box_difference(&before, &expected_before, material_line);
+    let line_changed = box_difference(&before, &after, material_line);
+    assert!(
+        line_after < 1.0 && line_before < 1.0,
+        "material line differs from offscreen: {line_after:.2}, {line_before:.2}"
+    );
+    assert!(
+        line_changed > 3.0,
+        "the material line did not change: {line_changed:.2}"
+    );
+    // The object at the frame's centre: the copper sphere (its truth is noisy, so the mean
+    // over a box, within a few steps), not Spot.
+    let centre = (SIZE.0 / 2 - 20, SIZE.1 / 2 - 20, 40, 40);
+    let object_after = box_difference(&after, &expected_after, centre);
+    let object_changed = box_difference(&before, &after, centre);
+    println!(
+        "material line: {line_before:.2} / {line_after:.2} from offscreen, {line_changed:.2} changed; object {object_after:.2} from offscreen, {object_changed:.2} changed"
+    );
+    assert!(
+        object_after < 4.0,
+        "the sphere differs from offscreen: {object_after:.2}"
+    );
+    assert!(
+        object_changed > 8.0,
+        "the object did not change: {object_changed:.2}"
+    );
+
+    // A tiny, an unmapped and a remapped window do not stop the view.
+    xdotool(&display, &["windowsize", &window, "1", "1"]);
+    std::thread::sleep(Duration::from_millis(500));
+    xdotool(&display, &["windowunmap", "--sync", &window]);
+    std::thread::sleep(Duration::from_millis(500));
+    xdotool(&display, &["windowmap", "--sync", &window]);
+    xdotool(
+        &display,
+        &[
+            "windowsize",
+            &window,
+            &SIZE.0.to_string(),
+            &SIZE.1.to_string(),
+        ],
+    );
+    std::thread::sleep(Duration::from_millis(500));
+    assert!(viewer.0.try_wait().unwrap().is_none(), "the viewer stopped");
+
+    xdotool(&display, &["windowfocus", "--sync", &window]);
+    xdotool(&display, &["key", "Escape"]);
+    let started = Instant::now();
+    let status = loop {
+        if let Some(s) = viewer.0.try_wait().unwrap() {
+            break s;
+        }
+        assert!(
+            started.elapsed() < Duration::from_secs(30),
+            "Escape did not end the viewer"
+        );
+        std::thread::sleep(Duration::from_millis(100));
+    };
+    let mut stderr = String::new();
+    if let Some(mut e) = viewer.0.stderr.take() {
+        use std::io::Read;
+        let _ = e.read_to_string(&mut stderr);
+    }
+    assert!(status.success(), "exit {status}: {stderr}");
+}
