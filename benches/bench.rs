@@ -1,6 +1,6 @@
 //! `cargo bench`: peak memory, bake and cubemap timings, and the BRDF LUT's timings and
 //! accuracy on both backends, printed as tables. `cargo bench --bench bench -- memory`
-//! (or bake, cubemap, specular, lut, preview, bc6h) runs only those sections.
+//! (or bake, cubemap, specular, lut, preview, bc6h, view) runs only those sections.
 //!
 //! CPU seconds come from /proc/self/stat (user + system, all threads), wall seconds from a
 //! monotonic clock. GPU times are measured around the whole kernel call (upload, dispatch,
@@ -10,6 +10,8 @@
 mod bc6h;
 #[path = "../tests/common/mod.rs"]
 mod common;
+#[path = "sections/view.rs"]
+mod view;
 
 use std::time::Instant;
 
@@ -466,6 +468,9 @@ fn main() {
     }
     if run("bc6h") {
         bc6h::benchmarks();
+    }
+    if run("view") {
+        view::benchmarks();
     }
 }
 

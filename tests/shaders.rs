@@ -218,8 +218,16 @@ fn viewer_shaders_validate_and_match_rust() {
     use splitsum::view::frame::{FrameUniform, PresentUniform};
     let present = splitsum::view::gpu::present_source();
     for (name, source, entries) in [
-        ("view_gbuffer", VIEW_GBUFFER, &["vs_main", "fs_mesh", "fs_sphere"][..]),
-        ("view_present", present.as_str(), &["vs_main", "fs_main"][..]),
+        (
+            "view_gbuffer",
+            VIEW_GBUFFER,
+            &["vs_main", "fs_mesh", "fs_sphere"][..],
+        ),
+        (
+            "view_present",
+            present.as_str(),
+            &["vs_main", "fs_main"][..],
+        ),
     ] {
         let module = parse(name, source);
         Validator::new(ValidationFlags::all(), Capabilities::empty())
@@ -258,6 +266,15 @@ fn viewer_shaders_validate_and_match_rust() {
         present.as_str(),
         "PresentParams",
         PresentUniform,
-        [width, height, mode, target_is_srgb, exposure, heat_lo, heat_hi, heat_entries]
+        [
+            width,
+            height,
+            mode,
+            target_is_srgb,
+            exposure,
+            heat_lo,
+            heat_hi,
+            heat_entries
+        ]
     );
 }
