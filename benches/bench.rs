@@ -515,7 +515,11 @@ fn preview_benchmarks() {
                 p = Some(
                     render_preview(
                         backend.as_ref(),
-                        &splitsum::stages::preview::BakedLight::of(&baked, &lut),
+                        &splitsum::stages::preview::BakedLight::of(
+                            "venice_sunset_1k.hdr",
+                            &baked,
+                            &lut,
+                        ),
                         &opts,
                     )
                     .unwrap(),

@@ -78,7 +78,7 @@ fn preview(
 ) -> Preview {
     render_preview(
         backend,
-        &splitsum::stages::preview::BakedLight::of(bake, lut),
+        &splitsum::stages::preview::BakedLight::of("test", bake, lut),
         &opts,
     )
     .unwrap()

@@ -108,7 +108,12 @@ fn split_sum_equals_the_previews() {
         truth_samples: 0,
         ..Default::default()
     };
-    let preview = render_preview(&CpuBackend, &BakedLight::of(&baked, &lut), &opts).unwrap();
+    let preview = render_preview(
+        &CpuBackend,
+        &BakedLight::of("venice_sunset_1k.hdr", &baked, &lut),
+        &opts,
+    )
+    .unwrap();
     assert_eq!(preview.exposure, light.exposure);
     let scene = Scene { cell: CELL };
     for (name, renderer) in renderers() {
@@ -165,7 +170,12 @@ fn truth_matches_the_previews() {
         truth_samples: 2048,
         ..Default::default()
     };
-    let preview = render_preview(&backend, &BakedLight::of(&baked, &lut), &opts).unwrap();
+    let preview = render_preview(
+        &backend,
+        &BakedLight::of("venice_sunset_1k.hdr", &baked, &lut),
+        &opts,
+    )
+    .unwrap();
     let renderer = GpuRenderer::new(backend.ctx.device.clone(), backend.ctx.queue.clone()).unwrap();
     let mut viewer = sphere_viewer(&light, Renderer::Gpu(Box::new(renderer)));
     viewer.state.mode = Mode::Truth;

@@ -261,14 +261,15 @@ impl Baker {
         self.with_fallback(|baker| write_cubemap_with(path, cube, opts, baker.backend.as_ref()))
     }
 
-    /// The preview of `baked` (generic orientation) with `lut` (the default model's
-    /// table; computed when `None`).
+    /// The preview of `baked` (generic orientation; `name` in its caption) with `lut` (the
+    /// default model's table; computed when `None`).
     pub fn preview(
         &mut self,
+        name: &str,
         baked: &BakedEnvironment,
         lut: Option<&BrdfLut>,
         opts: &PreviewOptions,
     ) -> Result<Preview> {
-        self.with_fallback(|baker| preview_baked(baker.backend.as_ref(), baked, lut, opts))
+        self.with_fallback(|baker| preview_baked(baker.backend.as_ref(), name, baked, lut, opts))
     }
 }

@@ -99,7 +99,8 @@ pub fn bake(
         Some(p) => Some(timed_stage(Stage::Preview, progress, &mut timings, || {
             // The preview shades with the default model's table.
             let split_sum_lut = luts.iter().find(|l| l.model == LutModel::default());
-            preview_baked(backend, &baked, split_sum_lut, p)
+            let name = input.file_name().map(|n| n.to_string_lossy()).unwrap_or_default();
+            preview_baked(backend, &name, &baked, split_sum_lut, p)
         })?),
     };
 

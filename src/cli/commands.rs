@@ -223,7 +223,18 @@ pub fn preview(args: PreviewArgs) -> anyhow::Result<()> {
     } else {
         "rendering split-sum".to_string()
     });
-    let preview = baker.preview(&baked, lut.as_ref(), &popts)?;
+    // The caption names the environment: a bake folder's input as its manifest records it.
+    let source = match args.input.is_dir() {
+        true => splitsum::Manifest::read(&args.input)
+            .map(|m| PathBuf::from(m.input))
+            .unwrap_or_else(|_| args.input.clone()),
+        false => args.input.clone(),
+    };
+    let name = source.file_name().map_or_else(
+        || source.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    );
+    let preview = baker.preview(&name, &baked, lut.as_ref(), &popts)?;
     spinner.finish_and_clear();
     warn(baker.take_warnings());
     write_atomic(&output, &preview.png)?;

@@ -15,7 +15,7 @@ pub const HIDE_GPU_ENV: &str = "SPLITSUM_NO_GPU";
 /// (`--backend auto` must then finish on the CPU, `--backend gpu` fail cleanly).
 pub const LOSE_DEVICE_ENV: &str = "SPLITSUM_LOSE_DEVICE_AT";
 
-/// Kernels refused on wgpu's OpenGL backend (found by `splitsum verify` on Mesa llvmpipe
+/// Kernels refused on wgpu's OpenGL backend (`splitsum verify` shows it on Mesa llvmpipe
 /// through EGL: they validate and run, but the cube faces they write through per-mip
 /// 2D-array storage views come back wrong). The LUT, a plain 2D storage texture, runs.
 /// With `--backend auto` the refusal sends these kernels to the CPU backend.

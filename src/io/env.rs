@@ -11,7 +11,7 @@
 //! which defaults to false (ThinEngine); its `.env` decode (`rgbdDecode`, no defines of its
 //! own) and encode (`EnvironmentTextureTools`) follow the engine, so a default engine's
 //! `.env` files are power-2.2 RGBD (measured in Babylon 9.35: with the sRGB curve instead,
-//! venice_sunset's level 0 came out 1.2 % brighter than the cube it encodes). A texel
+//! venice_sunset's level 0 shows 1.2 % brighter than the cube it encodes). A texel
 //! decodes as (rgb)^2.2 / a, so the format holds radiance up to 255 (D = 1/255); brighter
 //! texels are clipped there.
 

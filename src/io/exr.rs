@@ -197,7 +197,7 @@ fn read_error(
 }
 
 /// Pixel storage of a whole decode that allocates a band of rows only when one of its
-/// pixels arrives: a small file claiming a large size (found by the `exr` fuzz target,
+/// pixels arrives: a small file claiming a large size (the `exr` fuzz target's find,
 /// `tests/fuzz_regressions/exr-huge-claimed-size.exr`) allocates nothing before its
 /// blocks are actually read.
 struct LazyBands {

@@ -293,7 +293,7 @@ pub fn decode(bytes: &[u8]) -> std::result::Result<Ktx1, String> {
     for m in 0..levels {
         let face_bytes = r.u32("a level's imageSize")? as usize;
         // The claimed size sizes the allocation: it must fit in what the file still holds
-        // (found by fuzzing: an imageSize of 2 GB in a 6 kB file).
+        // (a fuzzing find: an imageSize of 2 GB in a 6 kB file).
         let claimed = face_bytes.saturating_mul(faces as usize);
         if claimed > r.bytes.len() - r.pos {
             return Err(format!(

@@ -241,7 +241,7 @@ pub fn encode(tex: &EncodedTexture, zstd_level: Option<i32>) -> std::io::Result<
 }
 
 /// Refuses DFDs the `ktx2` crate (0.5) would panic on instead of erroring: a basic block
-/// whose texelBlockDimension byte is 255 (found by fuzzing, tests/fuzz_regressions.rs).
+/// whose texelBlockDimension byte is 255 (a fuzzing find, kept in tests/fuzz_regressions.rs).
 fn precheck_ktx2_dfd(bytes: &[u8]) -> std::result::Result<(), String> {
     let word = |at: usize| -> Option<u32> {
         Some(u32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?))

@@ -128,7 +128,8 @@ pub enum LevelMethod {
 }
 
 /// Largest exact-sum cost (output texels × source texels) per level before importance
-/// sampling is used instead (~2e8 weighted sums: ~0.6 CPU-s on this machine).
+/// sampling is used instead (~2e8 weighted sums, about 0.6 CPU-s on the CPU backend;
+/// docs/accuracy.md has the timings).
 pub const EXACT_BUDGET: u64 = 200_000_000;
 
 /// Source texels per GGX α in the exact sum: the source mip's texel angle (π/2)/n is at
@@ -137,7 +138,7 @@ pub const EXACT_TEXELS_PER_ALPHA: f32 = 16.0;
 
 /// Largest source mip edge of an exact sum. 6·64² texels × 32 bytes = 768 KiB of storage
 /// buffer: Mesa's lavapipe (22.3) silently reads zeros past the first 2 MiB of a storage
-/// binding (found by `tests/specular.rs`), whatever limit it reports.
+/// binding, whatever limit it reports (`tests/specular.rs` fails otherwise).
 pub const EXACT_MAX_SOURCE: u32 = 64;
 
 /// Picks the method for output mip `m` (at roughness `r`) of an `env_size` chain: the exact sum over the

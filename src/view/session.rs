@@ -222,11 +222,10 @@ impl Viewer {
                 if s.lights { "on" } else { "off" }
             ),
             format!("view: {view}"),
-            format!(
-                "frame {:.1} ms · {}",
-                1e3 * self.shown_frame_seconds.0,
-                self.backend
-            ),
+            match self.shown_frame_seconds.0 {
+                t if t > 0.0 => format!("frame {:.1} ms · {}", 1e3 * t, self.backend),
+                _ => format!("frame – · {}", self.backend),
+            },
         ];
         lines.extend(self.messages.iter().map(|(m, _)| m.clone()));
         // The keys' short forms, a few to a line.

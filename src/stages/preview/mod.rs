@@ -29,7 +29,7 @@ use crate::plan::scene::{
 };
 use crate::plan::sources::{split_hot_texels, SampledSource};
 use crate::stages::light::BakedEnvironment;
-use crate::stages::preview::picture::{auto_exposure, compose, luminance, Comparison};
+use crate::stages::preview::picture::{auto_exposure, compose, luminance, Caption, Comparison};
 use crate::{Error, Result};
 
 /// The roughness of each column of the preview's spheres.
@@ -38,6 +38,8 @@ pub const PREVIEW_ROUGHNESS: [f32; 5] = ROUGHNESS;
 /// The baked light a preview renders with, in the generic orientation.
 #[derive(Clone, Copy, Debug)]
 pub struct BakedLight<'a> {
+    /// What the picture's caption calls the environment (its file name).
+    pub name: &'a str,
     /// The prefiltered specular chain (level 0 is the environment).
     pub specular: &'a Cubemap,
     /// Its layout: how many levels and which roughness each holds (the lod mapping).
@@ -267,7 +269,12 @@ pub fn render_preview(
         format: "PNG",
         message,
     };
-    let img = compose(&scene, &split_sum, comparison, exposure).map_err(encode_error)?;
+    let caption = Caption {
+        name: light.name,
+        exposure_ev: exposure.log2(),
+        truth_samples: opts.truth_samples,
+    };
+    let img = compose(&scene, &split_sum, comparison, exposure, &caption).map_err(encode_error)?;
     let mut png = std::io::Cursor::new(Vec::new());
     img.write_to(&mut png, image::ImageFormat::Png)
         .map_err(|e| encode_error(e.to_string()))?;
@@ -285,9 +292,10 @@ pub fn render_preview(
 }
 
 impl<'a> BakedLight<'a> {
-    /// What the preview reads of `baked`, with `lut`.
-    pub fn of(baked: &'a BakedEnvironment, lut: &'a BrdfLut) -> Self {
+    /// What the preview reads of `baked` (called `name` in the caption), with `lut`.
+    pub fn of(name: &'a str, baked: &'a BakedEnvironment, lut: &'a BrdfLut) -> Self {
         BakedLight {
+            name,
             specular: &baked.specular,
             chain: baked.chain,
             irradiance: &baked.irradiance,
@@ -300,6 +308,7 @@ impl<'a> BakedLight<'a> {
 /// [`DEFAULT_LUT_SIZE`]² LUT computed on `backend`.
 pub fn preview_baked(
     backend: &dyn Backend,
+    name: &str,
     baked: &BakedEnvironment,
     lut: Option<&BrdfLut>,
     opts: &PreviewOptions,
@@ -312,5 +321,5 @@ pub fn preview_baked(
             &own
         }
     };
-    render_preview(backend, &BakedLight::of(baked, lut), opts)
+    render_preview(backend, &BakedLight::of(name, baked, lut), opts)
 }

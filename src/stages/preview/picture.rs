@@ -107,6 +107,21 @@ const PAGE: Rgb<u8> = Rgb([24, 24, 24]);
 /// Label colour.
 const INK: Rgb<u8> = Rgb([230, 230, 230]);
 
+/// Lines of the caption under the panels.
+const CAPTION_LINES: f32 = 2.0;
+
+/// What the caption under the panels says: the environment, the exposure, the truth's
+/// samples.
+#[derive(Clone, Copy, Debug)]
+pub struct Caption<'a> {
+    /// The environment's name (its file name).
+    pub name: &'a str,
+    /// The exposure in stops.
+    pub exposure_ev: f32,
+    /// Points per lobe and pixel of the truth (0: no truth).
+    pub truth_samples: u32,
+}
+
 /// Where everything goes in the picture, in pixels.
 #[derive(Clone, Copy, Debug)]
 struct Layout {
@@ -135,7 +150,8 @@ impl Layout {
         } else {
             left + scene.width() + gap
         };
-        let height = top + scene.height() + gap;
+        // Below the panels: the caption, two lines.
+        let height = top + scene.height() + gap + (font * CAPTION_LINES * 1.5) as u32;
         Layout {
             cell: c,
             font,
@@ -213,6 +229,7 @@ pub fn compose(
     split_sum: &[[f32; 3]],
     comparison: Option<Comparison>,
     exposure: f32,
+    caption: &Caption,
 ) -> Result<RgbImage, String> {
     let layout = Layout::new(scene, comparison.is_some());
     let mut img = RgbImage::from_pixel(layout.width, layout.height, PAGE);
@@ -260,6 +277,26 @@ pub fn compose(
     }
     if comparison.is_some() {
         draw_colour_bar(&mut img, &font, scene, &layout);
+    }
+    let mut lines = vec![format!(
+        "{} · exposure {:+.1} EV · columns: roughness{}",
+        caption.name,
+        caption.exposure_ev,
+        if comparison.is_some() {
+            format!(" · ground truth: {} samples a pixel and lobe", caption.truth_samples)
+        } else {
+            String::new()
+        }
+    )];
+    if comparison.is_some() {
+        lines.push(
+            "The heat map measures the split-sum approximation itself (its v = n and separable-product assumptions), not a fault of the bake."
+                .to_string(),
+        );
+    }
+    let y0 = (layout.top + scene.height() + layout.gap) as f32 + f;
+    for (k, line) in lines.iter().enumerate() {
+        draw_text(&mut img, &font, f * 0.85, layout.left as f32, y0 + k as f32 * f * 1.4, line);
     }
     Ok(img)
 }

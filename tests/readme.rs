@@ -1,0 +1,227 @@
+//! The README and the documents say what the code does, in the present tense:
+//! - the README stays a user's document (at most 400 lines);
+//! - no README, document or comment speaks of the past or of one machine, or cites a file
+//!   a reader of the repository does not have;
+//! - each engine recipe in the README calls only what the engine's check calls (so the
+//!   recipes cannot drift from code that runs in the engine);
+//! - the viewer's key table lists every key the viewer has.
+
+use std::path::{Path, PathBuf};
+
+const README_MAX_LINES: usize = 400;
+
+/// Phrases that speak of the past, of one machine, or of files outside the repository.
+const FORBIDDEN: &[&str] = &[
+    "DESIGN.md",
+    "ENGINES.md",
+    "issue tracker",
+    "the issue's",
+    "this machine",
+    "vCPU",
+    "two-core",
+    "currently",
+    "not done yet",
+    "came out",
+    "(found by",
+    "measured worse here",
+    "used to",
+    "no longer",
+    "previously",
+];
+
+fn read(path: &Path) -> String {
+    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+fn files_under(dir: &str, ext: &[&str], out: &mut Vec<PathBuf>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            files_under(path.to_str().unwrap(), ext, out);
+        } else if path
+            .extension()
+            .is_some_and(|e| ext.iter().any(|x| e == *x))
+        {
+            out.push(path);
+        }
+    }
+}
+
+#[test]
+fn readme_is_short() {
+    let lines = read(Path::new("README.md")).lines().count();
+    assert!(
+        lines <= README_MAX_LINES,
+        "README.md has {lines} lines (at most {README_MAX_LINES})"
+    );
+}
+
+#[test]
+fn no_past_no_machine_no_outside_files() {
+    let mut files = vec![PathBuf::from("README.md"), PathBuf::from("CONTRIBUTING.md")];
+    files_under("docs", &["md"], &mut files);
+    files_under("src", &["rs"], &mut files);
+    files_under("shaders", &["wgsl"], &mut files);
+    files.push(PathBuf::from("fuzz/README.md"));
+    let mut found = Vec::new();
+    for path in &files {
+        for (n, line) in read(path).lines().enumerate() {
+            for phrase in FORBIDDEN {
+                if line.contains(phrase) {
+                    found.push(format!(
+                        "{}:{}: '{phrase}': {}",
+                        path.display(),
+                        n + 1,
+                        line.trim()
+                    ));
+                }
+            }
+        }
+    }
+    assert!(found.is_empty(), "{}", found.join("\n"));
+}
+
+/// The code blocks (js or rust) under the README heading that starts with `heading`, up to
+/// the next heading of the same or a higher level.
+fn recipe(readme: &str, heading: &str) -> String {
+    let start = readme
+        .find(&format!("\n### {heading}"))
+        .unwrap_or_else(|| panic!("no README heading '### {heading}'"));
+    let rest = &readme[start + 1..];
+    let end = rest[4..].find("\n##").map_or(rest.len(), |e| e + 4);
+    let section = &rest[..end];
+    let mut code = String::new();
+    let mut inside = false;
+    for line in section.lines() {
+        if let Some(lang) = line.strip_prefix("```") {
+            inside = !inside && matches!(lang, "js" | "rust");
+            continue;
+        }
+        if inside {
+            // Comments are prose and strings are data, not calls.
+            let line = line.split("//").next().unwrap_or("");
+            let line = strip_strings(line);
+            code.push_str(&line);
+            code.push('\n');
+        }
+    }
+    assert!(!code.trim().is_empty(), "no code under '{heading}'");
+    code
+}
+
+/// `line` with the contents of its string literals removed.
+fn strip_strings(line: &str) -> String {
+    let mut out = String::new();
+    let mut quote = None;
+    for c in line.chars() {
+        match quote {
+            Some(q) if c == q => {
+                quote = None;
+                out.push(c);
+            }
+            Some(_) => {}
+            None => {
+                if matches!(c, '"' | '\'' | '`') {
+                    quote = Some(c);
+                }
+                out.push(c);
+            }
+        }
+    }
+    out
+}
+
+/// The names a snippet calls or constructs: `name(`, `.name`, `Name {`, `Name::`.
+fn called_names(code: &str) -> Vec<String> {
+    let chars: Vec<char> = code.chars().collect();
+    let mut names = Vec::new();
+    let mut i = 0;
+    while i < chars.len() {
+        if chars[i].is_alphabetic() || chars[i] == '_' {
+            let start = i;
+            while i < chars.len() && (chars[i].is_alphanumeric() || chars[i] == '_') {
+                i += 1;
+            }
+            let name: String = chars[start..i].iter().collect();
+            let before = start.checked_sub(1).map(|k| chars[k]);
+            let after: String = chars[i..].iter().take(3).collect();
+            let after = after.trim_start();
+            let is_call = after.starts_with('(')
+                || before == Some('.')
+                || after.starts_with("::")
+                || (name.starts_with(char::is_uppercase) && after.starts_with('{'));
+            if is_call {
+                names.push(name);
+            }
+        } else {
+            i += 1;
+        }
+    }
+    names.sort();
+    names.dedup();
+    names
+}
+
+/// Names of the language and the platform that a check need not call to vouch for them.
+const PLATFORM: &[&str] = &[
+    "fetch",
+    "arrayBuffer",
+    "json",
+    "Uint8Array",
+    "then",
+    "default",
+    "spawn",
+    "load",
+    "Some",
+    "texture",
+];
+
+#[test]
+fn engine_recipes_call_what_the_checks_call() {
+    let readme = read(Path::new("README.md"));
+    let checks: &[(&str, &[&str])] = &[
+        ("Bevy", &["engines/bevy/src/main.rs"]),
+        (
+            "three.js",
+            &["engines/three/check.js", "js/splitsum-three.js"],
+        ),
+        ("Filament", &["engines/filament/check.js"]),
+        ("Babylon.js", &["engines/babylon/check.js"]),
+        // The glTF check loads the cubes through the viewer's own KTX2 decoder, which is
+        // libktx's `new ktxTexture(bytes).glUpload()`; the recipe calls libktx directly.
+        ("glTF Sample Viewer", &["engines/gltf/check.js"]),
+    ];
+    let libktx = ["ktxTexture", "glUpload", "libktx"];
+    let mut missing = Vec::new();
+    for (heading, files) in checks {
+        let code: String = files.iter().map(|f| read(Path::new(f))).collect();
+        for name in called_names(&recipe(&readme, heading)) {
+            if PLATFORM.contains(&name.as_str()) || libktx.contains(&name.as_str()) {
+                continue;
+            }
+            if !code.contains(&name) {
+                missing.push(format!("{heading}: '{name}' is not in {files:?}"));
+            }
+        }
+    }
+    assert!(missing.is_empty(), "{}", missing.join("\n"));
+}
+
+#[test]
+fn the_key_table_lists_every_key() {
+    let readme = read(Path::new("README.md"));
+    for (key, token, _, _) in splitsum::VIEW_KEYS {
+        let first = key.split([' ', ',', '/']).next().unwrap_or(key);
+        assert!(readme.contains(first), "README's key table lacks '{key}'");
+        for t in token
+            .split(['/', '…'])
+            .map(str::trim)
+            .filter(|t| !t.is_empty())
+        {
+            assert!(
+                readme.contains(&format!("`{t}`")),
+                "README's key table lacks the token '{t}'"
+            );
+        }
+    }
+}
