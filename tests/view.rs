@@ -355,3 +355,22 @@ fn command_line() {
     );
     assert!(!std::path::Path::new("y.png").exists());
 }
+
+/// What the window does with a dropped file that is not an image: the light's loader
+/// refuses it with one line naming the file (the window shows that line in the HUD and on
+/// stderr and keeps the previous light).
+#[test]
+fn a_dropped_file_that_is_not_an_image_is_one_clear_line() {
+    use splitsum::view::{load_light, LightSource};
+    let dir = output_dir("view_drop");
+    let notes = dir.join("notes.txt");
+    std::fs::write(&notes, "not an image").unwrap();
+    let err = load_light(
+        &LightSource::File(notes),
+        splitsum::BackendChoice::Cpu,
+        &mut |_| {},
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("notes.txt") && err.lines().count() == 1, "{err}");
+}

@@ -19,7 +19,7 @@ pub enum PixelFormat {
     /// Unsigned floats: R and G with 6-bit mantissas, B with 5, 5-bit exponents, 32 bits.
     Rg11b10f,
     /// BC6H unsigned float (BPTC): 4×4 texels in 16 bytes, half-float endpoints; encoded
-    /// by a backend ([`crate::plan::bc6h`]), decoded here.
+    /// by a backend (`plan::bc6h`), decoded here.
     Bc6h,
 }
 

@@ -58,7 +58,7 @@ impl Bc6hQuality {
     }
 
     /// The encoder's settings for a level of edge `n`: the preset's, but never below
-    /// `Basic` for levels of [`THOROUGH_MAX_EDGE`]² and less. Those hold the rough lobes
+    /// `Basic` for levels of `THOROUGH_MAX_EDGE`² (64²) and less. Those hold the rough lobes
     /// a shader reads at r ≥ 0.5 and are 6 % of a default chain's blocks, so searching
     /// every mode there costs little: on a default bake of studio_small_03, `Fast` on
     /// every level puts the lookup error at r = 0.5 0.52 points above rgb9e5's, this 0.44.

@@ -84,7 +84,7 @@ pub enum Action {
     ToggleLights,
     /// HUD on or off.
     ToggleHud,
-    /// A walk of `forward`, `sideways` for [`TOKEN_STEP_SECONDS`] (the `w a s d` tokens).
+    /// A walk of `forward`, `sideways` for a tenth of a second (the `w a s d` tokens).
     Walk(f32, f32),
     /// Save a screenshot.
     Screenshot,
