@@ -372,5 +372,8 @@ fn a_dropped_file_that_is_not_an_image_is_one_clear_line() {
     )
     .unwrap_err()
     .to_string();
-    assert!(err.contains("notes.txt") && err.lines().count() == 1, "{err}");
+    assert!(
+        err.contains("notes.txt") && err.lines().count() == 1,
+        "{err}"
+    );
 }
