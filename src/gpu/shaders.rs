@@ -68,6 +68,7 @@ pub const PREVIEW_TRUTH: &str = kernel_source!(
 
 /// `shaders/view_split_sum.wgsl` with brdf, cubemap, cube_sample, material, split_sum,
 /// view_frame, view_surface.
+#[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub const VIEW_SPLIT_SUM: &str = kernel_source!(
     "view_split_sum.wgsl",
     [
@@ -83,6 +84,7 @@ pub const VIEW_SPLIT_SUM: &str = kernel_source!(
 
 /// `shaders/view_truth.wgsl` with brdf, sampling, cubemap, cube_sample, material, truth,
 /// view_frame, view_surface.
+#[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub const VIEW_TRUTH: &str = kernel_source!(
     "view_truth.wgsl",
     [
@@ -99,6 +101,7 @@ pub const VIEW_TRUTH: &str = kernel_source!(
 
 /// `shaders/view_gbuffer.wgsl` (vertex and fragment stages, so without the workgroup
 /// overrides) with view_frame.
+#[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub const VIEW_GBUFFER: &str = concat!(
     include_str!("../../shaders/common/view_frame.wgsl"),
     "\n",
@@ -107,6 +110,7 @@ pub const VIEW_GBUFFER: &str = concat!(
 
 /// `shaders/view_present.wgsl` (vertex and fragment stages), without the constants the
 /// viewer writes before it (`view::gpu::present_source`).
+#[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub const VIEW_PRESENT_BODY: &str = include_str!("../../shaders/view_present.wgsl");
 
 #[cfg(any(test, feature = "internals"))]

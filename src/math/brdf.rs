@@ -19,6 +19,7 @@ pub fn k_ibl(roughness: f32) -> f32 {
 /// Schlick-GGX k for analytic lights: k = (r + 1)²/8 (Karis 2013, "Specular G": the
 /// remapping that keeps point-lit rough surfaces from going too bright; the viewer's point
 /// lights).
+#[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub fn k_direct(roughness: f32) -> f32 {
     (roughness + 1.0) * (roughness + 1.0) / 8.0
 }

@@ -38,6 +38,7 @@ pub fn fresnel3(f0: Vec3, v_dot_h: f32) -> Vec3 {
 /// `n_dot_v` is n·v clamped away from 0 by the caller. Mirror of `point_light` in
 /// `shaders/common/material.wgsl`, argument for argument.
 #[allow(clippy::too_many_arguments)]
+#[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub fn point_light(
     p: Vec3,
     n: Vec3,
@@ -69,4 +70,5 @@ pub fn point_light(
 /// The smallest α the point lights use: a point light on a mirror is a single pixel of
 /// infinite radiance, so r = 0 is lit as α = 1e-3 (r ≈ 0.03), a highlight a few pixels
 /// wide.
+#[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub const MIN_DIRECT_ALPHA: f32 = 1e-3;
