@@ -71,7 +71,7 @@ pub fn render_split_sum(scene: &SceneUniform, inputs: &SplitSumInputs) -> Vec<[f
         .flat_map_iter(|y| {
             (0..scene.width).map(move |x| match pixel_geometry(scene, x, y) {
                 PixelGeometry::Background { dir } => {
-                    sample_cube_lod(inputs.specular, dir.into(), 0.0)
+                    sample_cube_lod(inputs.light.specular, dir.into(), 0.0)
                 }
                 PixelGeometry::Sphere {
                     n,
@@ -80,7 +80,7 @@ pub fn render_split_sum(scene: &SceneUniform, inputs: &SplitSumInputs) -> Vec<[f
                     column,
                 } => {
                     let m = preview_material(inputs.columns, inputs.materials, material, column);
-                    split_sum_shade(&inputs.light(), n, v, n.dot(v).max(MIN_N_DOT_V), &m).into()
+                    split_sum_shade(&inputs.light, n, v, n.dot(v).max(MIN_N_DOT_V), &m).into()
                 }
             })
         })

@@ -169,7 +169,7 @@ pub fn render_truth(scene: &SceneUniform, inputs: &TruthInputs) -> Vec<[f32; 3]>
         .into_par_iter()
         .flat_map_iter(|y| {
             (0..scene.width).map(move |x| match pixel_geometry(scene, x, y) {
-                PixelGeometry::Background { dir } => sample_cube_lod(inputs.env, dir.into(), 0.0),
+                PixelGeometry::Background { dir } => sample_cube_lod(inputs.light.env, dir.into(), 0.0),
                 PixelGeometry::Sphere {
                     n,
                     v,
@@ -179,7 +179,7 @@ pub fn render_truth(scene: &SceneUniform, inputs: &TruthInputs) -> Vec<[f32; 3]>
                     let m = preview_material(inputs.columns, inputs.materials, material, column);
                     let shift = pixel_shift(y * scene.width + x);
                     let n_dot_v = n.dot(v).max(MIN_N_DOT_V);
-                    truth_shade(&inputs.light(), n, v, n_dot_v, &m, shift).into()
+                    truth_shade(&inputs.light, n, v, n_dot_v, &m, shift).into()
                 }
             })
         })

@@ -89,7 +89,7 @@ pub fn preview_split_sum(
         shaders::PREVIEW_SPLIT_SUM,
         WORKGROUP,
     )?;
-    let (spec, irr, lut) = (inputs.specular, inputs.irradiance, inputs.lut);
+    let (spec, irr, lut) = (inputs.light.specular, inputs.light.irradiance, inputs.light.lut);
     let params = SplitSumUniform {
         specular_size: spec.size,
         specular_levels: spec.levels.len() as u32,
@@ -151,22 +151,22 @@ pub fn preview_truth(
 ) -> Result<Vec<[f32; 3]>> {
     let kernel = ComputeKernel::new(device, "preview_truth", shaders::PREVIEW_TRUTH, WORKGROUP)?;
     let params = TruthUniform {
-        env_size: inputs.env.size,
-        hot_count: inputs.hot.len() as u32,
-        point_count: inputs.points.len() as u32,
+        env_size: inputs.light.env.size,
+        hot_count: inputs.light.hot.len() as u32,
+        point_count: inputs.light.points.len() as u32,
         _pad: 0,
     };
     let (env_tex, cold_tex, buffers) = with_error_scope(device, "preview_truth upload", || {
         (
-            upload_cube(device, queue, inputs.env, 1),
-            upload_cube(device, queue, inputs.cold, 1),
+            upload_cube(device, queue, inputs.light.env, 1),
+            upload_cube(device, queue, inputs.light.cold, 1),
             [
                 uniform_buffer(device, "preview scene", scene),
                 uniform_buffer(device, "preview truth params", &params),
-                storage_buffer(device, "preview hot texels", inputs.hot),
+                storage_buffer(device, "preview hot texels", inputs.light.hot),
                 storage_buffer(device, "preview columns", inputs.columns),
                 storage_buffer(device, "preview materials", inputs.materials),
-                storage_buffer(device, "preview points", inputs.points),
+                storage_buffer(device, "preview points", inputs.light.points),
             ],
         )
     })?;

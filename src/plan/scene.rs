@@ -266,33 +266,15 @@ pub struct SplitSumLight<'a> {
     pub lut: &'a BrdfLut,
 }
 
-/// What the truth render reads.
+/// What the truth render reads: the environment and the kernels' tables.
 #[derive(Clone, Copy, Debug)]
 pub struct TruthInputs<'a> {
-    /// The environment (level 0 read; the split-sum chain's level 0).
-    pub env: &'a Cubemap,
-    /// The environment without its hot texels (level 0 read).
-    pub cold: &'a Cubemap,
-    /// The hot texels, summed exactly.
-    pub hot: &'a [SourceTexel],
+    /// The environment the truth integrates.
+    pub light: TruthLight<'a>,
     /// Per roughness column: (roughness, lod, 0, 0); the lod is unused here.
     pub columns: &'a [[f32; 4]],
     /// Per material: (F0, metallic), (albedo, 0).
     pub materials: &'a [[f32; 4]],
-    /// The quasi-Monte Carlo points ([`disk_points`]).
-    pub points: &'a [[f32; 4]],
-}
-
-impl<'a> TruthInputs<'a> {
-    /// The environment part.
-    pub fn light(&self) -> TruthLight<'a> {
-        TruthLight {
-            env: self.env,
-            cold: self.cold,
-            hot: self.hot,
-            points: self.points,
-        }
-    }
 }
 
 /// The N points of the truth's quadrature: Hammersley (i/N, φ-radical-inverse) as
@@ -308,30 +290,15 @@ pub fn disk_points(samples: u32) -> Vec<[f32; 4]> {
         .collect()
 }
 
-/// What the split-sum render reads.
+/// What the split-sum render reads: the baked light and the kernels' tables.
 #[derive(Clone, Copy, Debug)]
 pub struct SplitSumInputs<'a> {
-    /// The prefiltered specular chain (level 0: the environment), generic orientation.
-    pub specular: &'a Cubemap,
-    /// The irradiance cube (E/π).
-    pub irradiance: &'a Cubemap,
-    /// The split-sum LUT (scale A, bias B).
-    pub lut: &'a BrdfLut,
+    /// The baked light.
+    pub light: SplitSumLight<'a>,
     /// Per roughness column: (roughness, the chain's lod for it, 0, 0).
     pub columns: &'a [[f32; 4]],
     /// Per material: (F0, metallic), (albedo, 0) (`scene::material_table`).
     pub materials: &'a [[f32; 4]],
-}
-
-impl<'a> SplitSumInputs<'a> {
-    /// The baked-light part.
-    pub fn light(&self) -> SplitSumLight<'a> {
-        SplitSumLight {
-            specular: self.specular,
-            irradiance: self.irradiance,
-            lut: self.lut,
-        }
-    }
 }
 
 #[cfg(test)]

@@ -15,7 +15,7 @@ use crate::environment::sample::sample_cube_lod;
 use crate::math::color::linear_to_srgb;
 use crate::plan::material::{point_light, ShadeMaterial};
 use crate::stages::preview::picture::{luminance, pbr_neutral, HEAT_BACKGROUND};
-use crate::view::frame::{unpack, FrameUniform, Mode, PresentUniform, Surface, ViewLight};
+use crate::view::frame::{unpack_material, FrameUniform, Mode, PresentUniform, Surface, ViewLight};
 use crate::view::raster::GBuffer;
 
 /// The point lights on, shading point `p` (`direct_lights` in view_frame.wgsl).
@@ -45,8 +45,8 @@ fn direct_lights(
         .sum()
 }
 
-/// A G-buffer pixel: (surface, position, normal).
-fn surface(g: &GBuffer, k: usize) -> (Surface, Vec3, Vec3) {
+/// A G-buffer pixel: (surface, position, normal) (`load_surface` in view_surface.wgsl).
+fn load_surface(g: &GBuffer, k: usize) -> (Surface, Vec3, Vec3) {
     let p = g.position[k];
     (
         Surface::from_id(p[3]),
@@ -57,8 +57,8 @@ fn surface(g: &GBuffer, k: usize) -> (Surface, Vec3, Vec3) {
 
 fn surface_material(frame: &FrameUniform, s: Surface) -> ShadeMaterial {
     match s {
-        Surface::Object => unpack(&frame.object),
-        _ => unpack(&frame.floor),
+        Surface::Object => unpack_material(&frame.object),
+        _ => unpack_material(&frame.floor),
     }
 }
 
@@ -76,7 +76,7 @@ pub fn shade_split_sum(
         .map(|k| {
             let (x, y) = ((k as u32) % frame.width, (k as u32) / frame.width);
             let (_, dir) = camera.pixel_ray(x, y, frame.width, frame.height);
-            let (s, p, n) = surface(g, k);
+            let (s, p, n) = load_surface(g, k);
             let c = if s == Surface::Background {
                 Vec3::from(sample_cube_lod(&light.specular, dir.into(), 0.0))
             } else {
@@ -107,7 +107,7 @@ pub fn shade_truth(
     accum.par_iter_mut().enumerate().for_each(|(k, a)| {
         let (x, y) = ((k as u32) % frame.width, (k as u32) / frame.width);
         let (_, dir) = camera.pixel_ray(x, y, frame.width, frame.height);
-        let (s, p, n) = surface(g, k);
+        let (s, p, n) = load_surface(g, k);
         let c = if s == Surface::Background {
             Vec3::from(sample_cube_lod(&light.env, dir.into(), 0.0))
         } else {

@@ -196,7 +196,7 @@ fn pack(m: &ShadeMaterial) -> [[f32; 4]; 3] {
 }
 
 /// The material packed by [`FrameUniform`].
-pub fn unpack(m: &[[f32; 4]; 3]) -> ShadeMaterial {
+pub fn unpack_material(m: &[[f32; 4]; 3]) -> ShadeMaterial {
     ShadeMaterial {
         f0: Vec3::from_slice(&m[0][..3]),
         metallic: m[0][3],

@@ -6,7 +6,7 @@
 use ab_glyph::{Font, FontRef, PxScale, ScaleFont};
 use image::{Rgba, RgbaImage};
 
-use crate::stages::preview::picture::FONT;
+use crate::stages::preview::picture::{draw_glyphs, text_width, FONT};
 
 /// Text size in pixels.
 pub const TEXT_PX: f32 = 15.0;
@@ -26,12 +26,6 @@ pub fn line_box(k: u32, width: u32) -> (u32, u32, u32, u32) {
     (x, y, width.saturating_sub(x + 2 * MARGIN_PX), LINE_PX)
 }
 
-/// Width of `text` in pixels.
-fn text_width(font: &FontRef, text: &str) -> f32 {
-    let f = font.as_scaled(PxScale::from(TEXT_PX));
-    text.chars().map(|ch| f.h_advance(f.glyph_id(ch))).sum()
-}
-
 /// The HUD of `lines` over a `width` × `height` frame (transparent where it draws nothing).
 /// Fails only if the bundled font does not parse.
 pub fn draw(lines: &[String], width: u32, height: u32) -> Result<RgbaImage, String> {
@@ -42,7 +36,7 @@ pub fn draw(lines: &[String], width: u32, height: u32) -> Result<RgbaImage, Stri
     let font = FontRef::try_from_slice(FONT).map_err(|e| format!("the HUD font: {e}"))?;
     let text_w = lines
         .iter()
-        .map(|l| text_width(&font, l))
+        .map(|l| text_width(&font, TEXT_PX, l))
         .fold(0.0, f32::max);
     let panel_w = (text_w.ceil() as u32 + 2 * MARGIN_PX).min(width.saturating_sub(MARGIN_PX));
     let panel_h =
@@ -52,26 +46,17 @@ pub fn draw(lines: &[String], width: u32, height: u32) -> Result<RgbaImage, Stri
             img.put_pixel(x, y, PANEL);
         }
     }
-    let scaled = font.as_scaled(PxScale::from(TEXT_PX));
+    let ascent = font.as_scaled(PxScale::from(TEXT_PX)).ascent();
     for (k, line) in lines.iter().enumerate() {
         let (x, y, _, _) = line_box(k as u32, width);
-        let baseline = y as f32 + scaled.ascent();
-        let mut pen = x as f32;
-        for ch in line.chars() {
-            let id = scaled.glyph_id(ch);
-            let glyph =
-                id.with_scale_and_position(PxScale::from(TEXT_PX), ab_glyph::point(pen, baseline));
-            pen += scaled.h_advance(id);
-            let Some(outline) = font.outline_glyph(glyph) else {
-                continue;
-            };
-            let bounds = outline.px_bounds();
-            outline.draw(|gx, gy, coverage| {
-                let (px, py) = (
-                    bounds.min.x as i64 + gx as i64,
-                    bounds.min.y as i64 + gy as i64,
-                );
-                if px < 0 || py < 0 || px >= width as i64 || py >= height as i64 {
+        draw_glyphs(
+            &font,
+            TEXT_PX,
+            x as f32,
+            y as f32 + ascent,
+            line,
+            |px, py, coverage| {
+                if px < 0 || py < 0 || px >= width as i32 || py >= height as i32 {
                     return;
                 }
                 let p = img.get_pixel_mut(px as u32, py as u32);
@@ -85,8 +70,8 @@ pub fn draw(lines: &[String], width: u32, height: u32) -> Result<RgbaImage, Stri
                     *channel = (mixed / alpha.max(1e-6)).round().clamp(0.0, 255.0) as u8;
                 }
                 p.0[3] = (alpha * 255.0).round() as u8;
-            });
-        }
+            },
+        );
     }
     Ok(img)
 }

@@ -25,7 +25,7 @@ use crate::plan::chain::SpecularChain;
 use crate::plan::lut::{BrdfLut, DEFAULT_LUT_SIZE};
 use crate::plan::scene::{
     disk_points, material_table, pixel_geometry, PixelGeometry, Scene, SceneUniform,
-    SplitSumInputs, TruthInputs, DEFAULT_CELL, DEFAULT_TRUTH_SAMPLES, MATERIALS, ROUGHNESS,
+    SplitSumInputs, SplitSumLight, TruthInputs, TruthLight, DEFAULT_CELL, DEFAULT_TRUTH_SAMPLES, MATERIALS, ROUGHNESS,
 };
 use crate::plan::sources::{split_hot_texels, SampledSource};
 use crate::stages::light::BakedEnvironment;
@@ -222,9 +222,11 @@ pub fn render_preview(
     let split_sum = backend.preview_split_sum(
         &uniform,
         &SplitSumInputs {
-            specular: light.specular,
-            irradiance: light.irradiance,
-            lut: light.lut,
+            light: SplitSumLight {
+                specular: light.specular,
+                irradiance: light.irradiance,
+                lut: light.lut,
+            },
             columns: &columns,
             materials: &materials,
         },
@@ -240,12 +242,14 @@ pub fn render_preview(
         backend.preview_truth(
             &uniform,
             &TruthInputs {
-                env: &env,
-                cold: &split.rest,
-                hot: &split.hot,
+                light: TruthLight {
+                    env: &env,
+                    cold: &split.rest,
+                    hot: &split.hot,
+                    points: &points,
+                },
                 columns: &columns,
                 materials: &materials,
-                points: &points,
             },
         )?
     };

@@ -171,13 +171,21 @@ impl Layout {
 }
 
 /// Width in pixels of `text` at `size`.
-fn text_width(font: &FontRef, size: f32, text: &str) -> f32 {
+pub fn text_width(font: &FontRef, size: f32, text: &str) -> f32 {
     let f = font.as_scaled(PxScale::from(size));
     text.chars().map(|ch| f.h_advance(f.glyph_id(ch))).sum()
 }
 
-/// Draws `text` with its baseline at `y`, starting at `x`, blending by coverage.
-fn draw_text(img: &mut RgbImage, font: &FontRef, size: f32, x: f32, y: f32, text: &str) {
+/// Rasterises `text` at `size` with its baseline at `y`, starting at `x`: calls `plot`
+/// with each covered pixel (which may lie outside any image) and its coverage in [0, 1].
+pub fn draw_glyphs(
+    font: &FontRef,
+    size: f32,
+    x: f32,
+    y: f32,
+    text: &str,
+    mut plot: impl FnMut(i32, i32, f32),
+) {
     let scaled = font.as_scaled(PxScale::from(size));
     let mut pen = x;
     for ch in text.chars() {
@@ -189,20 +197,27 @@ fn draw_text(img: &mut RgbImage, font: &FontRef, size: f32, x: f32, y: f32, text
         };
         let bounds = outline.px_bounds();
         outline.draw(|gx, gy, coverage| {
-            let (px, py) = (
+            plot(
                 bounds.min.x as i32 + gx as i32,
                 bounds.min.y as i32 + gy as i32,
+                coverage,
             );
-            if px < 0 || py < 0 || px >= img.width() as i32 || py >= img.height() as i32 {
-                return;
-            }
-            let p = img.get_pixel_mut(px as u32, py as u32);
-            for c in 0..3 {
-                p.0[c] =
-                    (p.0[c] as f32 + (INK.0[c] as f32 - p.0[c] as f32) * coverage).round() as u8;
-            }
         });
     }
+}
+
+/// Draws `text` with its baseline at `y`, starting at `x`, blending by coverage.
+fn draw_text(img: &mut RgbImage, font: &FontRef, size: f32, x: f32, y: f32, text: &str) {
+    let (w, h) = (img.width() as i32, img.height() as i32);
+    draw_glyphs(font, size, x, y, text, |px, py, coverage| {
+        if px < 0 || py < 0 || px >= w || py >= h {
+            return;
+        }
+        let p = img.get_pixel_mut(px as u32, py as u32);
+        for c in 0..3 {
+            p.0[c] = (p.0[c] as f32 + (INK.0[c] as f32 - p.0[c] as f32) * coverage).round() as u8;
+        }
+    });
 }
 
 /// Draws `text` centred on `cx`.
