@@ -39,8 +39,10 @@ impl Drop for Reaped {
     }
 }
 
-/// A free display number and Xvfb on it.
-fn start_xvfb() -> (String, Reaped) {
+/// A free display number and Xvfb on it, answering requests. `-noreset`: without it the
+/// server resets each time its last client leaves (every `xdotool` call before the viewer
+/// connects), and a client that connects during a reset is dropped.
+fn start_xvfb(log: &Path) -> (String, Reaped) {
     let n = (90..140)
         .find(|n| {
             !Path::new(&format!("/tmp/.X11-unix/X{n}")).exists()
@@ -49,16 +51,27 @@ fn start_xvfb() -> (String, Reaped) {
         .expect("a free X display number");
     let display = format!(":{n}");
     let child = Command::new("Xvfb")
-        .args([&display, "-screen", "0", "1024x768x24", "-nolisten", "tcp"])
+        .args([
+            &display,
+            "-screen",
+            "0",
+            "1024x768x24",
+            "-nolisten",
+            "tcp",
+            "-noreset",
+        ])
         .stdout(Stdio::null())
-        .stderr(Stdio::null())
+        .stderr(std::fs::File::create(log).unwrap())
         .spawn()
         .expect("Xvfb starts");
     let started = Instant::now();
-    while !Path::new(&format!("/tmp/.X11-unix/X{n}")).exists() {
+    // The socket appears before the server has set up its screen and keyboard: wait until
+    // it answers a request.
+    while xdotool(&display, &["getdisplaygeometry"]).is_empty() {
         assert!(
             started.elapsed() < Duration::from_secs(20),
-            "Xvfb did not start"
+            "Xvfb did not start: {}",
+            std::fs::read_to_string(log).unwrap_or_default()
         );
         std::thread::sleep(Duration::from_millis(100));
     }
@@ -74,6 +87,16 @@ fn xdotool(display: &str, args: &[&str]) -> String {
     String::from_utf8_lossy(&out.stdout).trim().to_string()
 }
 
+/// What a finished child wrote to its (piped) standard error.
+fn stderr_of(child: &mut Child) -> String {
+    use std::io::Read;
+    let mut stderr = String::new();
+    if let Some(mut e) = child.stderr.take() {
+        let _ = e.read_to_string(&mut stderr);
+    }
+    stderr
+}
+
 /// The window whose title contains `title`, waiting up to `seconds`.
 fn wait_for_window(display: &str, title: &str, viewer: &mut Child, seconds: u64) -> String {
     let started = Instant::now();
@@ -83,7 +106,10 @@ fn wait_for_window(display: &str, title: &str, viewer: &mut Child, seconds: u64)
             return id.to_string();
         }
         if let Ok(Some(status)) = viewer.try_wait() {
-            panic!("the viewer exited before showing '{title}': {status}");
+            panic!(
+                "the viewer exited before showing '{title}': {status}: {}",
+                stderr_of(viewer)
+            );
         }
         assert!(
             started.elapsed() < Duration::from_secs(seconds),
@@ -161,12 +187,12 @@ fn keys_change_the_window() {
         return;
     }
     let dir = output_dir("view_window");
-    let (display, _xvfb) = start_xvfb();
+    let (display, _xvfb) = start_xvfb(&dir.join("xvfb.log"));
     let mut viewer = Reaped(
         splitsum()
             .args(["view", "--size", &format!("{}x{}", SIZE.0, SIZE.1)])
             .env("DISPLAY", &display)
-            .stdout(Stdio::piped())
+            .stdout(Stdio::null())
             .stderr(Stdio::piped())
             .spawn()
             .unwrap(),
@@ -231,7 +257,9 @@ fn keys_change_the_window() {
         ],
     );
     std::thread::sleep(Duration::from_millis(500));
-    assert!(viewer.0.try_wait().unwrap().is_none(), "the viewer stopped");
+    if let Some(status) = viewer.0.try_wait().unwrap() {
+        panic!("the viewer stopped: {status}: {}", stderr_of(&mut viewer.0));
+    }
 
     xdotool(&display, &["windowfocus", "--sync", &window]);
     xdotool(&display, &["key", "Escape"]);
@@ -246,10 +274,9 @@ fn keys_change_the_window() {
         );
         std::thread::sleep(Duration::from_millis(100));
     };
-    let mut stderr = String::new();
-    if let Some(mut e) = viewer.0.stderr.take() {
-        use std::io::Read;
-        let _ = e.read_to_string(&mut stderr);
-    }
-    assert!(status.success(), "exit {status}: {stderr}");
+    assert!(
+        status.success(),
+        "exit {status}: {}",
+        stderr_of(&mut viewer.0)
+    );
 }
