@@ -78,19 +78,7 @@ impl ComputeKernel {
         resources: &[wgpu::BindingResource<'_>],
         extent: [u32; 3],
     ) {
-        let entries: Vec<wgpu::BindGroupEntry<'_>> = resources
-            .iter()
-            .enumerate()
-            .map(|(i, r)| wgpu::BindGroupEntry {
-                binding: i as u32,
-                resource: r.clone(),
-            })
-            .collect();
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some(self.label),
-            layout: &self.layout,
-            entries: &entries,
-        });
+        let bind_group = bind_group(device, Some(self.label), &self.layout, resources);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some(self.label),
             timestamp_writes: None,
@@ -103,6 +91,28 @@ impl ComputeKernel {
             extent[2].div_ceil(self.workgroup[2]),
         );
     }
+}
+
+/// A bind group of `layout` with `resources` at bindings 0, 1, 2, ...
+pub fn bind_group(
+    device: &wgpu::Device,
+    label: Option<&str>,
+    layout: &wgpu::BindGroupLayout,
+    resources: &[wgpu::BindingResource<'_>],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry<'_>> = resources
+        .iter()
+        .enumerate()
+        .map(|(i, r)| wgpu::BindGroupEntry {
+            binding: i as u32,
+            resource: r.clone(),
+        })
+        .collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label,
+        layout,
+        entries: &entries,
+    })
 }
 
 /// Creates a buffer initialised with `contents`.
@@ -152,15 +162,13 @@ pub fn uniform_buffer<T: bytemuck::Pod>(
 }
 
 /// Reads every array layer of one mip level of an `Rgba32Float` texture back to the CPU,
-/// tightly packed: layer-major, then rows top to bottom, 4 floats per texel. wgpu pads
-/// each row of the copy to 256 bytes; the padding is removed here.
+/// tightly packed: layer-major, then rows top to bottom, 4 floats per texel.
 pub fn read_texture_level(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     texture: &wgpu::Texture,
     mip_level: u32,
 ) -> Result<Vec<f32>> {
-    const TEXEL_BYTES: u32 = 16;
     if texture.format() != wgpu::TextureFormat::Rgba32Float {
         return Err(Error::Gpu {
             stage: "readback".into(),
@@ -170,10 +178,33 @@ pub fn read_texture_level(
             ),
         });
     }
+    let bytes = read_texture_bytes(device, queue, texture, mip_level)?;
+    Ok(bytes
+        .chunks_exact(4)
+        .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+        .collect())
+}
+
+/// Reads every array layer of one mip level of a texture of an uncompressed format back
+/// to the CPU as bytes, tightly packed: layer-major, then rows top to bottom. wgpu pads
+/// each row of the copy to 256 bytes; the padding is removed here.
+pub fn read_texture_bytes(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+    mip_level: u32,
+) -> Result<Vec<u8>> {
+    let texel_bytes = texture
+        .format()
+        .block_copy_size(None)
+        .ok_or_else(|| Error::Gpu {
+            stage: "readback".into(),
+            message: format!("{:?} has no single copy size", texture.format()),
+        })?;
     let width = (texture.width() >> mip_level).max(1);
     let height = (texture.height() >> mip_level).max(1);
     let layers = texture.depth_or_array_layers();
-    let row_bytes = width * TEXEL_BYTES;
+    let row_bytes = width * texel_bytes;
     let padded_row = row_bytes.next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
     let size = padded_row as u64 * height as u64 * layers as u64;
     let staging = with_error_scope(device, "readback", || {
@@ -209,13 +240,9 @@ pub fn read_texture_level(
         staging
     })?;
     let bytes = map_read(device, &staging)?;
-    let mut out = Vec::with_capacity((width * height * layers * 4) as usize);
+    let mut out = Vec::with_capacity((row_bytes * height * layers) as usize);
     for row in bytes.chunks_exact(padded_row as usize) {
-        out.extend(
-            row[..row_bytes as usize]
-                .chunks_exact(4)
-                .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]])),
-        );
+        out.extend_from_slice(&row[..row_bytes as usize]);
     }
     Ok(out)
 }

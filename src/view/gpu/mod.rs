@@ -7,7 +7,7 @@
 use image::RgbaImage;
 
 use crate::gpu::compute::{
-    buffer_with_data, storage_buffer, uniform_buffer, with_error_scope, ComputeKernel,
+    bind_group, buffer_with_data, storage_buffer, uniform_buffer, with_error_scope, ComputeKernel,
 };
 use crate::gpu::prefilter::upload_cube;
 use crate::gpu::preview::{SplitSumUniform, TruthUniform};
@@ -366,20 +366,8 @@ impl GpuRenderer {
                 );
             }
             let mut encoder = device.create_command_encoder(&Default::default());
-            let bind = |pipeline: &wgpu::RenderPipeline, entries: &[wgpu::BindingResource]| {
-                let entries: Vec<wgpu::BindGroupEntry> = entries
-                    .iter()
-                    .enumerate()
-                    .map(|(i, r)| wgpu::BindGroupEntry {
-                        binding: i as u32,
-                        resource: r.clone(),
-                    })
-                    .collect();
-                device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: None,
-                    layout: &pipeline.get_bind_group_layout(0),
-                    entries: &entries,
-                })
+            let bind = |pipeline: &wgpu::RenderPipeline, resources: &[wgpu::BindingResource]| {
+                bind_group(device, None, &pipeline.get_bind_group_layout(0), resources)
             };
             if geometry_changed {
                 let clear = wgpu::Operations {

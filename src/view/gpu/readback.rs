@@ -2,7 +2,7 @@
 
 use image::RgbaImage;
 
-use crate::gpu::compute::map_read;
+use crate::gpu::compute::{map_read, read_texture_bytes};
 use crate::view::frame::{FrameUniform, HdrFrame, PresentUniform};
 use crate::Result;
 
@@ -60,33 +60,7 @@ impl GpuRenderer {
         let view = texture.create_view(&Default::default());
         let target = (&view, wgpu::TextureFormat::Rgba8Unorm);
         self.render(frame, present, geometry_changed, points, hud, target)?;
-        let row = 4 * w;
-        let padded = row.next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
-        let staging = buffer(
-            &self.device,
-            "view picture",
-            padded as u64 * h as u64,
-            wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-        );
-        let mut encoder = self.device.create_command_encoder(&Default::default());
-        encoder.copy_texture_to_buffer(
-            texture.as_image_copy(),
-            wgpu::TexelCopyBufferInfo {
-                buffer: &staging,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(padded),
-                    rows_per_image: Some(h),
-                },
-            },
-            texture.size(),
-        );
-        self.queue.submit([encoder.finish()]);
-        let bytes = map_read(&self.device, &staging)?;
-        let mut pixels = Vec::with_capacity((row * h) as usize);
-        for r in bytes.chunks_exact(padded as usize) {
-            pixels.extend_from_slice(&r[..row as usize]);
-        }
+        let pixels = read_texture_bytes(&self.device, &self.queue, &texture, 0)?;
         RgbaImage::from_raw(w, h, pixels)
             .ok_or_else(|| gpu_error("viewer readback", "short picture"))
     }
