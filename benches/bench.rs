@@ -119,7 +119,7 @@ fn lut_versus_cmgen() {
 /// Runs each command three times, interleaved, and prints each one's CPU seconds and its
 /// ratio to command `reference`; says so and stops if a command (cmgen, from Debian's
 /// `libfilament-tools`) is not installed.
-/// Interleaved runs of each process in [`compare_processes`]: this machine's CPU time varies
+/// Interleaved runs of each process in [`compare_processes`]: a shared machine's CPU time varies
 /// by ±10 % from run to run, so a ratio near a bar needs more than three.
 const RUNS: usize = 5;
 

@@ -71,11 +71,11 @@ fn ktx2_claiming_a_huge_uncompressed_level() {
     );
 }
 
-/// A 2 kB EXR whose header claims 16384×11000 (within the size limits): the whole decode
-/// used to allocate the 2.2 GB image before reading a block (a libFuzzer out-of-memory
-/// find). Bands are now allocated as blocks arrive (and this DWA file's chunks are checked
-/// before decoding), so the error comes with no allocation larger than 64 MiB (the
-/// largest any test in this binary may make).
+/// A 2 kB EXR whose header claims 16384×11000 (within the size limits): a decoder that
+/// allocates the whole image before reading a block asks for 2.2 GB (a libFuzzer
+/// out-of-memory find). Bands are allocated as blocks arrive (and this DWA file's chunks
+/// are checked before decoding), so the error comes with no allocation larger than 64 MiB
+/// (the largest any test in this binary may make).
 #[test]
 fn exr_claiming_a_huge_size_allocates_little() {
     let path = Path::new("tests/fuzz_regressions/exr-huge-claimed-size.exr");

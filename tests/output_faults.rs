@@ -11,7 +11,7 @@ const NO_TMPFS: i32 = 77;
 
 /// Runs `script` with `$DIR` a fresh 256 KiB tmpfs, `$KEEP` a normal folder that
 /// survives, `$SPLITSUM` the binary and `$INPUT` the bundled HDRI. Returns `$KEEP`, or
-/// None when this machine cannot mount a tmpfs.
+/// None where mounting a tmpfs is not permitted (no root, or a container that forbids it).
 fn in_tiny_tmpfs(name: &str, script: &str) -> Option<PathBuf> {
     let base = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
     let _ = std::fs::remove_dir_all(&base);

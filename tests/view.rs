@@ -29,7 +29,7 @@ use splitsum::{BakedEnvironment, BrdfLut};
 
 /// The preview's cell edge, and the viewer's frame.
 const CELL: u32 = 64;
-/// The roughness columns of the preview the check names: 0, 0.25, 0.5, 1.
+/// The preview's roughness columns compared here: 0, 0.25, 0.5, 1.
 const COLUMNS: [usize; 4] = [0, 1, 2, 4];
 
 /// The default bake of venice_sunset_1k and the default LUT, on `backend`.

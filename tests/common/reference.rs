@@ -69,7 +69,7 @@ pub fn adaptive(f: &mut dyn FnMut(f64) -> f64, a: f64, b: f64, tol: f64) -> f64 
 /// GGX D (α = r²), Smith/Schlick-GGX G (k = r²/2) and Schlick F, integrated as
 /// E_h[f (n·l) / pdf(l)] with pdf(l) = D (n·h) / (4 v·h), by nested adaptive
 /// Gauss-Kronrod over the GGX CDF variable u of θh and over φ ∈ [0, π]. The φ range is cut
-/// where n·l reaches 0 (found by bisection), and the u range at θh = (π/2 ∓ θv)/2, so the
+/// where n·l reaches 0 (located by bisection), and the u range at θh = (π/2 ∓ θv)/2, so the
 /// adaptive rule never straddles the horizon kink.
 pub fn reference_lut(n_dot_v: f64, roughness: f64) -> (f64, f64) {
     reference_integrals(
