@@ -179,29 +179,6 @@ fn default_bake_lookup_error() {
     }
 }
 
-/// `chain` stored in `format` and read back, as an engine samples the file.
-fn stored(chain: &splitsum::Cubemap, format: PixelFormat) -> splitsum::Cubemap {
-    let levels = if format.is_block() {
-        CpuBackend
-            .encode_bc6h(chain, Bc6hQuality::default())
-            .unwrap()
-            .iter()
-            .enumerate()
-            .map(|(m, b)| format.decode_faces(b, chain.level_size(m), 6))
-            .collect()
-    } else {
-        chain
-            .levels
-            .iter()
-            .map(|l| format.decode(&format.encode(l)))
-            .collect()
-    };
-    splitsum::Cubemap {
-        size: chain.size,
-        levels,
-    }
-}
-
 /// What a shader sees of a default bake stored in BC6H, against the same bake in rgb9e5,
 /// on every bundled HDRI: at r ≤ 0.8 (the levels of 16² and more) the lookup error within
 /// 0.5 percentage points of rgb9e5's. At r = 0.9 and 1 a lookup reads the 8² and 4² levels,
@@ -229,7 +206,14 @@ fn bc6h_lookups_against_rgb9e5() {
         let truth = truths(&e, &ROUGHNESS);
         let mapping = MipRoughness::Linear;
         let chain = fitted_chain(&CpuBackend, &e, (256, DEFAULT_MIN_MIP_SIZE, mapping));
-        let errors = |f| chain_lookup_errors(&stored(&chain, f), mapping, &ROUGHNESS, &truth);
+        let errors = |f| {
+            chain_lookup_errors(
+                &common::stored(&chain, f, Bc6hQuality::default()),
+                mapping,
+                &ROUGHNESS,
+                &truth,
+            )
+        };
         let (bc6h, rgb9e5) = (errors(PixelFormat::Bc6h), errors(PixelFormat::Rgb9e5));
         let show = |v: &[f64]| {
             v.iter()

@@ -3,28 +3,11 @@
 //! it), the sizes of the files and in video memory, the CPU seconds of a whole bake, and the
 //! encoder's throughput on each backend.
 
-use splitsum::backend::{Backend, CpuBackend};
+use splitsum::backend::CpuBackend;
 use splitsum::bake::{bake_environment, BakeOptions};
 use splitsum::io::PixelFormat;
 use splitsum::plan::bc6h::Bc6hQuality;
 use splitsum::Cubemap;
-
-/// `cube` stored in `format` and read back.
-fn stored(cube: &Cubemap, format: PixelFormat, quality: Bc6hQuality) -> Vec<Vec<[f32; 4]>> {
-    if format.is_block() {
-        let blocks = CpuBackend.encode_bc6h(cube, quality).unwrap();
-        blocks
-            .iter()
-            .enumerate()
-            .map(|(m, b)| format.decode_faces(b, cube.level_size(m), 6))
-            .collect()
-    } else {
-        cube.levels
-            .iter()
-            .map(|l| format.decode(&format.encode(l)))
-            .collect()
-    }
-}
 
 /// √(mean((ln(1 + a) − ln(1 + b))²)) over every channel of two levels.
 fn log_rmse(a: &[[f32; 4]], b: &[[f32; 4]]) -> f64 {
@@ -61,14 +44,14 @@ fn texel_errors() {
         println!("|---|---|---|---|---|---|---|---|");
         let mut columns = Vec::new();
         for q in Bc6hQuality::ALL {
-            columns.push(stored(&b.specular, PixelFormat::Bc6h, q));
+            columns.push(crate::common::stored(&b.specular, PixelFormat::Bc6h, q).levels);
         }
         for f in [
             PixelFormat::Rgb9e5,
             PixelFormat::Rg11b10f,
             PixelFormat::Rgba16f,
         ] {
-            columns.push(stored(&b.specular, f, Bc6hQuality::default()));
+            columns.push(crate::common::stored(&b.specular, f, Bc6hQuality::default()).levels);
         }
         for m in 0..b.specular.levels.len() {
             let cells: Vec<String> = columns
