@@ -258,6 +258,6 @@ pub fn run(opts: ViewOptions, progress: &mut dyn FnMut(String)) -> Result<()> {
         return screenshot_path(path, &img);
     }
     // A bad model is refused before a window opens.
-    opts.models()?;
-    window::run_window(opts)
+    let models = opts.models()?;
+    window::run_window(opts, models)
 }

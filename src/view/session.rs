@@ -33,14 +33,30 @@ const HUD_REFRESH_SECONDS: f32 = 0.25;
 /// Seconds a message stays in the HUD.
 const MESSAGE_SECONDS: f32 = 8.0;
 
-/// The CPU renderer's buffers.
-#[derive(Default)]
+/// The CPU renderer's buffers, and the tables its passes read (made once, as the GPU
+/// renderer uploads them once).
 pub struct CpuFrame {
     vertices: Vec<Vertex>,
     sphere: bool,
     gbuffer: Option<GBuffer>,
     shaded: Vec<[f32; 4]>,
     accum: Vec<[f32; 4]>,
+    lights: Vec<[f32; 4]>,
+    heat: Vec<[f32; 4]>,
+}
+
+impl Default for CpuFrame {
+    fn default() -> Self {
+        Self {
+            vertices: Vec::new(),
+            sphere: false,
+            gbuffer: None,
+            shaded: Vec::new(),
+            accum: Vec::new(),
+            lights: light_table(&POINT_LIGHTS),
+            heat: heat_table(),
+        }
+    }
 }
 
 /// Which renderer draws the frames.
@@ -341,14 +357,12 @@ impl Viewer {
             Renderer::Cpu(c) => {
                 if changed {
                     let g = rasterize(&frame, &c.vertices, c.sphere);
-                    c.shaded =
-                        shade_split_sum(&frame, &self.light, &light_table(&POINT_LIGHTS), &g);
+                    c.shaded = shade_split_sum(&frame, &self.light, &c.lights, &g);
                     c.accum = vec![[0.0; 4]; c.shaded.len()];
                     c.gbuffer = Some(g);
                 }
                 if let (Some(p), Some(g)) = (&points, &c.gbuffer) {
-                    let lights = light_table(&POINT_LIGHTS);
-                    shade_truth(&frame, &self.light, p, &lights, g, &mut c.accum);
+                    shade_truth(&frame, &self.light, p, &c.lights, g, &mut c.accum);
                 }
                 let blank;
                 let hud = match &hud {
@@ -358,7 +372,7 @@ impl Viewer {
                         &blank
                     }
                 };
-                present(&present_block, &heat_table(), &c.shaded, &c.accum, hud)
+                present(&present_block, &c.heat, &c.shaded, &c.accum, hud)
             }
         };
         self.finish_frame(&points, started);

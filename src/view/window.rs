@@ -20,6 +20,7 @@ use winit::window::{CursorGrabMode, Window, WindowId};
 use crate::gpu::context::GpuContext;
 use crate::view::frame::ViewLight;
 use crate::view::gpu::GpuRenderer;
+use crate::view::model::Model;
 use crate::view::session::{Renderer, Viewer, DEFAULT_POINTS_PER_ESTIMATE};
 use crate::view::state::{Action, Change};
 use crate::view::{load_light, screenshot_path, LightSource, ViewOptions};
@@ -65,6 +66,8 @@ struct Running {
 
 struct App {
     opts: ViewOptions,
+    /// The models, loaded before the window opens; moved into the viewer when it starts.
+    models: Vec<Model>,
     running: Option<Running>,
     error: Option<Error>,
     baking: Option<Receiver<Baking>>,
@@ -145,7 +148,7 @@ impl App {
         let renderer = GpuRenderer::new(context.device.clone(), context.queue.clone())?;
         let mut viewer = Viewer::new(
             ViewLight::blank(),
-            self.opts.models()?,
+            std::mem::take(&mut self.models),
             Renderer::Gpu(Box::new(renderer)),
             context.adapter_description(),
         )?;
@@ -454,8 +457,8 @@ pub fn display_available() -> bool {
     }
 }
 
-/// Opens the window and runs until Escape or the window closes.
-pub fn run_window(opts: ViewOptions) -> Result<()> {
+/// Opens the window on `models` and runs until Escape or the window closes.
+pub fn run_window(opts: ViewOptions, models: Vec<Model>) -> Result<()> {
     if !display_available() {
         return Err(Error::NoDisplay);
     }
@@ -465,6 +468,7 @@ pub fn run_window(opts: ViewOptions) -> Result<()> {
     event_loop.set_control_flow(ControlFlow::Poll);
     let mut app = App {
         opts,
+        models,
         running: None,
         error: None,
         baking: None,
