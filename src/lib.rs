@@ -86,8 +86,9 @@ internal_modules!(
     verify,
 );
 
-/// `splitsum view` (feature `view`): public but hidden with `internals`, crate-private
-/// otherwise; its front door is re-exported below.
+// `splitsum view` (feature `view`): public but hidden with `internals`, crate-private
+// otherwise; its front door is re-exported below. (A plain comment: an outer doc comment
+// here would be joined to the module's own and its links resolved from the crate root.)
 #[cfg(all(feature = "view", feature = "internals"))]
 #[doc(hidden)]
 pub mod view;

@@ -71,7 +71,7 @@ pub trait Backend {
     ) -> Result<Cubemap>;
 
     /// The prefiltered specular chain of `env` (which has every mip) in `chain`'s layout:
-    /// level m at roughness m/(M − 1), see [`crate::cpu::prefilter_specular`]. With the
+    /// level m at roughness m/(M − 1), see [`cpu::specular::prefilter_specular`]. With the
     /// bake's split source (`split`), exact levels sum the hot cells at source resolution.
     fn prefilter_specular(
         &self,
@@ -82,7 +82,7 @@ pub trait Backend {
     ) -> Result<Cubemap>;
 
     /// The prefiltered Charlie sheen chain of `env` (which has every mip) in `chain`'s
-    /// layout, see [`crate::cpu::prefilter_sheen`]; with the split source its exact sums
+    /// layout, see [`cpu::sheen::prefilter_sheen`]; with the split source its exact sums
     /// read the hot cells at source resolution.
     fn prefilter_sheen(
         &self,
@@ -92,7 +92,7 @@ pub trait Backend {
     ) -> Result<Cubemap>;
 
     /// The irradiance cube (E/π) of edge `size` from the split source, see
-    /// [`crate::cpu::irradiance`] and [`crate::environment::hot`].
+    /// [`cpu::irradiance::irradiance`] and [`crate::environment::hot`].
     fn irradiance(&self, source: &IrradianceSource, size: u32) -> Result<Cubemap>;
 
     /// The preview's split-sum panel (row-major linear RGB), see

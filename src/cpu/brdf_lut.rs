@@ -1,6 +1,6 @@
 //! CPU reference for `shaders/brdf_lut.wgsl`: the split-sum BRDF LUT by deterministic
 //! panel Gauss-Legendre quadrature in the GGX-sampled domain. The method and its derivation
-//! are in [`crate::lut`]; the functions here have the same names as the WGSL ones.
+//! are in [`crate::plan::lut`]; the functions here have the same names as the WGSL ones.
 
 use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
@@ -207,7 +207,7 @@ pub fn brdf_lut_texel(
 
 /// The whole LUT of `model` on the CPU with every texel integrated (rayon over rows), as
 /// the GPU kernel computes it; the CPU backend interpolates most texels instead
-/// ([`crate::cpu::lut_interpolation`]).
+/// ([`crate::backend::cpu::lut_interpolation`]).
 pub fn brdf_lut_exact(width: u32, height: u32, quad: &LutQuadrature, model: LutModel) -> BrdfLut {
     let mut data = vec![[0.0f32; 2]; (width * height) as usize];
     data.par_chunks_mut(width as usize)

@@ -122,7 +122,8 @@ pub fn clipped_cap_cosine(cos_theta: f32, sin2_sigma: f32) -> f32 {
 /// E(n)/π for unit `n` over every cold source texel and then every hot cell (see
 /// [`crate::environment::hot`]): (1/π) Σ n · moment for texels above the horizon, the
 /// clipped-cap estimate for texels straddling it. The mirror of the irradiance mode of
-/// `convolve_exact.wgsl`; [`irradiance`] computes the same sum faster with [`MomentRuns`].
+/// `convolve_exact.wgsl`; [`irradiance`](crate::backend::cpu::irradiance::irradiance) computes the same sum
+/// faster with [`MomentRuns`](crate::backend::cpu::irradiance::MomentRuns).
 pub fn irradiance_texel(source: &[MomentTexel], hot: &[MomentTexel], n: [f32; 3]) -> [f32; 4] {
     let mut e = [0.0f32; 3];
     for t in source.iter().chain(hot) {

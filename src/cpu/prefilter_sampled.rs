@@ -31,7 +31,7 @@ pub fn hot_texels_sum(hot: &[SourceTexel], n: [f32; 3], alpha: f32) -> [f32; 3] 
 }
 
 /// Prefiltered radiance around unit direction `n`: filtered importance sampling of
-/// `src.rest` with the `lobe` of [`ggx_lobe_samples`] (drawn from `samples` points) plus
+/// `src.rest` with the `lobe` of [`ggx_lobe_samples`](crate::plan::sources::ggx_lobe_samples) (drawn from `samples` points) plus
 /// the exact sum of `src.hot` at `roughness`, both over the sampled normaliser:
 /// (Σᵢ L(lᵢ)(n·lᵢ) + N·Σ_hot) / Σᵢ (n·lᵢ).
 pub fn prefilter_texel(

@@ -19,7 +19,7 @@
 //! - diffuse: N cosine-distributed l, each weighted kD(h) c.
 //!
 //! Both draw the same N Hammersley points mapped to the unit disk (a table built once,
-//! [`disk_points`]), rotated per pixel in azimuth and shifted in radius by a hash of the
+//! [`disk_points`](crate::plan::scene::disk_points)), rotated per pixel in azimuth and shifted in radius by a hash of the
 //! pixel index (Cranley-Patterson), so neighbouring pixels' quadrature errors are
 //! uncorrelated. Cold lookups are seamless bilinear reads of level 0 (no prefiltering, so
 //! no bias). At r = 0 the specular lobe is a mirror: F(n·v) L(reflect(−v, n)) from the

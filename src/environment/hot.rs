@@ -24,7 +24,7 @@ pub const MAX_HOT_TEXELS: usize = 512;
 /// Indices of the texels whose luminance exceeds [`HOT_FACTOR`] × `mean`, at most
 /// [`MAX_HOT_TEXELS`], most energetic first; `texels` yields (index, luminance, energy =
 /// luminance × Ω). Equal energies keep index order, so the choice is deterministic. Shared
-/// by the sampled levels' split ([`split_hot_texels`]) and the irradiance source's
+/// by the sampled levels' split ([`split_hot_texels`](crate::plan::sources::split_hot_texels)) and the irradiance source's
 /// ([`crate::environment::hot`]).
 pub fn hottest_texels(texels: impl Iterator<Item = (usize, f64, f64)>, mean: f64) -> Vec<usize> {
     let mut hot: Vec<(usize, f64)> = texels

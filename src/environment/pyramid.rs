@@ -117,7 +117,7 @@ impl RowDownsampler {
     }
 }
 
-/// Reduces an equirect by a number of halvings (a chain of [`RowDownsampler`]s) while its
+/// Reduces an equirect by a number of halvings (a chain of `RowDownsampler`s) while its
 /// rows are pushed, top to bottom: a reader can decode a large image row by row and keep
 /// only the level a conversion needs. The result is bit-identical to halving the whole
 /// image level by level.

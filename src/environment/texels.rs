@@ -31,7 +31,7 @@ pub struct SourceTexel {
 /// texel keeps its true direction. For texels that straddle the horizon, the texel's
 /// radiance is modelled as a uniform cap around its centroid whose spread matches the
 /// moment's length, and the clipped cosine integral is evaluated in closed form
-/// ([`clipped_cap_cosine`]).
+/// ([`clipped_cap_cosine`](crate::cpu::convolve_exact::clipped_cap_cosine)).
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 #[repr(C)]
 pub struct MomentTexel {

@@ -143,7 +143,7 @@ fn record_exact(
     );
 }
 
-/// The prefiltered chain of `env` (every mip present), as `cpu::prefilter_specular`.
+/// The prefiltered chain of `env` (every mip present), as `backend::cpu::specular::prefilter_specular`.
 pub fn prefilter_specular(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
@@ -224,7 +224,7 @@ pub fn prefilter_specular(
 }
 
 /// The prefiltered Charlie chain of `env` (every mip present), as
-/// `cpu::prefilter_sheen`: the same [`sheen_chain`], its exact sums on the GPU.
+/// `backend::cpu::sheen::prefilter_sheen`: the same [`sheen_chain`], its exact sums on the GPU.
 pub fn prefilter_sheen(
     device: &wgpu::Device,
     queue: &wgpu::Queue,

@@ -127,7 +127,7 @@ pub fn finish_sheen_level(integrated: Vec<[f32; 4]>, plan: SheenPlan, size: u32)
 /// The Charlie chain of `env` (every mip present) in `chain`'s layout, each level from the
 /// exact sum `integrate(source, n, r)` makes over `source` (the texels of
 /// [`sheen_source_mip`] and the hot cells, gathered once) on an `n`² cube at roughness `r`
-/// — [`prefilter_charlie_texel`] at every texel on the CPU, mode 2 of
+/// — [`prefilter_charlie_texel`](crate::cpu::convolve_exact::prefilter_charlie_texel) at every texel on the CPU, mode 2 of
 /// `convolve_exact.wgsl` on the GPU — then finished as [`sheen_level_plan`] says. Levels
 /// with the same integration and roughness (0 and 1) share one sum.
 pub fn sheen_chain<E>(

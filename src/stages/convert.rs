@@ -45,7 +45,7 @@ pub fn validate_cube_size(option: &'static str, size: u32) -> Result<()> {
 
 /// Converts `env` to a `size` cube rotated by `rotate_degrees`, with the full mip
 /// chain when `mips` is set. Equirects run on `backend`; cube inputs are resampled on the
-/// CPU (see `cpu::cube_resample`), or kept as they are when size and rotation allow.
+/// CPU (see [`cube_resample`]), or kept as they are when size and rotation allow.
 pub fn environment_to_cube(
     backend: &dyn Backend,
     env: &Environment,

@@ -15,7 +15,7 @@
 //! - orthographic: from position + ndc.x·hx·right + ndc.y·hy·up along front, hy the half
 //!   height of the view and hx = hy·W/H.
 //!
-//! The raster pass's view-projection matrix ([`Camera::view_projection`]) is built from the
+//! The raster pass's view-projection matrix ([`CameraFrame::view_projection`]) is built from the
 //! same numbers, so a rasterised triangle covers the pixels whose rays hit it.
 
 use glam::{Mat4, Vec3};

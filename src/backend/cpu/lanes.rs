@@ -8,10 +8,11 @@ use crate::math::brdf::alpha_from_roughness;
 /// Lanes of [`ExactSource`]: eight f32, one AVX register or two SSE ones.
 const LANES: usize = 8;
 
-/// The texels of an exact sum as a structure of arrays in lanes of [`LANES`] (the last
+/// The texels of an exact sum as a structure of arrays in lanes of `LANES` (the last
 /// lane group padded with texels of zero solid angle), so that the sum over them runs
 /// branch-free and vectorises: [`ExactSource::prefilter`] computes
-/// [`prefilter_exact_texel`] several times faster. The GPU kernel and the reference keep
+/// [`prefilter_exact_texel`](crate::cpu::convolve_exact::prefilter_exact_texel) several
+/// times faster. The GPU kernel and the reference keep
 /// the texel-by-texel loop.
 pub struct ExactSource {
     /// Direction x, y, z and solid angle Ω, per lane group.
@@ -123,8 +124,8 @@ impl LanePower {
     }
 }
 
-/// [`prefilter_charlie_texel`] over the lane-packed texels of `source`: the same sum in
-/// [`ExactSource::lobe_sum`]'s branch-free form, the power taken as [`LanePower`] says
+/// [`prefilter_charlie_texel`](crate::cpu::convolve_exact::prefilter_charlie_texel) over the lane-packed texels of `source`: the same sum in
+/// [`ExactSource::lobe_sum`]'s branch-free form, the power taken as `LanePower` says
 /// (the CPU backend's sum; the reference and the GPU kernel keep the texel-by-texel loop
 /// and `pow`).
 pub fn prefilter_charlie_lanes(source: &ExactSource, n: [f32; 3], roughness: f32) -> [f32; 4] {

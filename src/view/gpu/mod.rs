@@ -2,7 +2,7 @@
 //! the split-sum and truth kernels (`view_split_sum.wgsl`, `view_truth.wgsl`) and the
 //! present pass (`view_present.wgsl`) into a window's surface or an offscreen texture.
 //! CPU twin: [`crate::view::cpu`] with [`crate::view::raster`]. Pipelines and buffers:
-//! [`pipelines`]; reading frames back: [`readback`].
+//! `pipelines`; reading frames back: `readback`.
 
 use image::RgbaImage;
 
