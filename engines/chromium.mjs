@@ -7,6 +7,7 @@ import { mkdtempSync, rmSync, existsSync, readFileSync, writeFileSync } from 'no
 import { createServer } from 'node:http';
 import { extname, join, normalize } from 'node:path';
 import { tmpdir } from 'node:os';
+import { runRecipe } from './recipe.mjs';
 
 export async function launchChromium(puppeteer, executablePath) {
   const profile = mkdtempSync(join(tmpdir(), 'splitsum-chromium-'));
@@ -88,15 +89,35 @@ export function requireTools(tools) {
 // and hands the result to judge(result, { bad, note }): bad(ok, text) prints an ok or FAIL
 // line that fails the check, note(ok, text) an ok or info line that does not. Then the
 // console must be clean; writes results.json with `bars` and exits (1 on a failure).
-export async function runEngineCheck({ puppeteer, chromium, root, page: pagePath, out, cases, config, judge, bars }) {
+// `recipe` (optional): the README's recipe for the engine, run first as written
+// (recipe.mjs: { heading, head, prelude, epilogue, files, splitsum } and judge(result,
+// { bad, note }) as above), its page's console held to the same rule.
+export async function runEngineCheck({ puppeteer, chromium, root, page: pagePath, out, cases, config, judge, bars, recipe }) {
   const server = await serveFiles(root);
   const { browser, close } = await launchChromium(puppeteer, chromium);
-  let consoleProblems = [];
+  let recipeProblems = [];
+  let pageProblems = [];
   let failed = false;
   const results = {};
+  const lineFor = (name) => ({
+    bad: (ok, text) => {
+      console.log(`${ok ? 'ok  ' : 'FAIL'} ${name}: ${text}`);
+      if (!ok) failed = true;
+    },
+    note: (ok, text) => console.log(`${ok ? 'ok  ' : 'info'} ${name}: ${text}`),
+    name,
+  });
   try {
+    if (recipe) {
+      const { result, problems } = await runRecipe({
+        browser, watchConsole, root, port: server.port, dir: join(out, 'recipe'), ...recipe,
+      });
+      results.readmeRecipe = result;
+      recipeProblems = problems.map((p) => `README recipe: ${p}`);
+      recipe.judge(result, lineFor('README recipe'));
+    }
     const page = await browser.newPage();
-    consoleProblems = watchConsole(page);
+    pageProblems = watchConsole(page);
     await page.goto(`http://127.0.0.1:${server.port}${pagePath}`);
     await page.waitForFunction('window.checkReady === true', { timeout: 120000 });
     for (const c of cases) {
@@ -105,17 +126,13 @@ export async function runEngineCheck({ puppeteer, chromium, root, page: pagePath
       for (const [name, url] of Object.entries(images)) {
         writeFileSync(join(out, `${c}_${name}.png`), Buffer.from(url.split(',')[1], 'base64'));
       }
-      const bad = (ok, text) => {
-        console.log(`${ok ? 'ok  ' : 'FAIL'} ${c}: ${text}`);
-        if (!ok) failed = true;
-      };
-      const note = (ok, text) => console.log(`${ok ? 'ok  ' : 'info'} ${c}: ${text}`);
-      judge(r, { bad, note, name: c });
+      judge(r, lineFor(c));
     }
   } finally {
     await close();
     server.close();
   }
+  const consoleProblems = [...recipeProblems, ...pageProblems];
   if (consoleProblems.length > 0) {
     failed = true;
     console.log('FAIL console:\n  ' + consoleProblems.join('\n  '));

@@ -339,3 +339,26 @@ export async function locateSun(look, fov, size) {
   const { px, ray } = await look(best.d, fov, size);
   return ray(brightCentroid(px, size));
 }
+
+// What a README recipe's page reports (engines/recipe.mjs): from a white sphere rendered as
+// above with the recipe's environment (`lit`) and without it (`unlit`), the mean luminance
+// over the middle of the sphere in each, and over the four corners (the sky) of `lit`.
+export function recipeReport(lit, unlit, size) {
+  const c = (size - 1) / 2;
+  const middle = (x, y) => Math.hypot(x - c, y - c) < size / 6;
+  const corner = (x, y) => Math.min(x, size - 1 - x) < size / 10 && Math.min(y, size - 1 - y) < size / 10;
+  const mean = (px, inside) => {
+    let sum = 0;
+    let n = 0;
+    for (let y = 0; y < size; y++) {
+      for (let x = 0; x < size; x++) {
+        if (inside(x, y)) {
+          sum += luminance(px, 4 * (y * size + x));
+          n += 1;
+        }
+      }
+    }
+    return sum / n;
+  };
+  return { sphere: mean(lit, middle), sphereUnlit: mean(unlit, middle), sky: mean(lit, corner) };
+}

@@ -17,6 +17,7 @@ import { join, resolve, dirname } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import puppeteer from 'puppeteer-core';
 import { requireTools, runEngineCheck } from '../chromium.mjs';
+import { judgeRecipe } from '../recipe.mjs';
 import { exactPanorama } from '../panorama.mjs';
 
 const here = dirname(fileURLToPath(import.meta.url));
@@ -44,10 +45,51 @@ const exact = Object.fromEntries(HDRIS.map((h) => [h, exactPanorama({
   splitsum, root, input: `tests/data/${h}.hdr`, name: h, dir: 'target/engines/babylon/exact', size: 256,
 })]));
 
+// The README's Babylon.js recipe as written, given what it takes as given (an engine and a
+// scene with a camera), then a white PBR sphere rendered with and without the environment
+// it set (8-bit canvas values, decoded).
+const recipe = {
+  splitsum,
+  heading: 'Babylon.js',
+  head: '<script src="/engines/babylon/node_modules/babylonjs/babylon.js"></script>',
+  prelude: `import * as measure from '/engines/measure.js';
+const size = 64;
+const canvas = document.createElement('canvas');
+canvas.width = canvas.height = size;
+document.body.appendChild(canvas);
+const engine = new BABYLON.Engine(canvas, false, { preserveDrawingBuffer: true });
+const scene = new BABYLON.Scene(engine);
+const camera = new BABYLON.FreeCamera('camera', new BABYLON.Vector3(0, 0, -measure.SPHERE_DISTANCE), scene);
+camera.setTarget(BABYLON.Vector3.Zero());
+camera.fov = (measure.SPHERE_FOV * Math.PI) / 180;`,
+  epilogue: `{
+  const sphere = BABYLON.MeshBuilder.CreateSphere('sphere', { diameter: 2, segments: 64 }, scene);
+  const material = new BABYLON.PBRMaterial('white', scene);
+  material.albedoColor = new BABYLON.Color3(1, 1, 1);
+  material.metallic = 0;
+  material.roughness = 0.5;
+  sphere.material = material;
+  const render = async () => {
+    await scene.whenReadyAsync();
+    scene.render();
+    const bytes = await engine.readPixels(0, 0, size, size);
+    return Float32Array.from(bytes, (b, i) => (i % 4 === 3 ? 1 : (b / 255) ** 2.2));
+  };
+  const lit = await render();
+  const environment = scene.environmentTexture;
+  scene.environmentTexture = null;
+  const unlit = await render();
+  scene.environmentTexture = environment;
+  window.recipeResult = measure.recipeReport(lit, unlit, size);
+}`,
+  judge: judgeRecipe,
+};
+
 await runEngineCheck({
   puppeteer,
   chromium,
   root,
+  recipe,
   page: '/engines/babylon/check.html',
   out,
   cases: HDRIS,

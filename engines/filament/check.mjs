@@ -17,6 +17,7 @@ import { join, resolve, dirname } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import puppeteer from 'puppeteer-core';
 import { requireTools, runEngineCheck } from '../chromium.mjs';
+import { judgeRecipe } from '../recipe.mjs';
 import { exactPanorama } from '../panorama.mjs';
 
 const here = dirname(fileURLToPath(import.meta.url));
@@ -63,10 +64,66 @@ for (const h of HDRIS) {
   );
 }
 
+// The README's Filament recipe as written, given what it takes as given (an engine and a
+// scene), then a white gltfio sphere rendered with and without the IndirectLight it set
+// (the camera's default exposure, LINEAR tone mapping, 8-bit canvas values decoded).
+const recipe = {
+  splitsum,
+  heading: 'Filament',
+  head: '<script src="/engines/filament/node_modules/filament/filament.js"></script>',
+  prelude: `import * as measure from '/engines/measure.js';
+import { sphereGlb } from '/engines/sphere.js';
+const size = 64;
+const canvas = document.createElement('canvas');
+canvas.width = canvas.height = size;
+document.body.appendChild(canvas);
+await new Promise((ok) => Filament.init([], ok));
+const engine = Filament.Engine.create(canvas, { preserveDrawingBuffer: true });
+const scene = engine.createScene();`,
+  epilogue: `{
+  const renderer = engine.createRenderer();
+  const swapChain = engine.createSwapChain();
+  const camera = engine.createCamera(Filament.EntityManager.get().create());
+  camera.setProjectionFov(measure.SPHERE_FOV, 1, 0.05, 50, Filament.Camera$Fov.VERTICAL);
+  camera.lookAt([0, 0, measure.SPHERE_DISTANCE], [0, 0, 0], [0, 1, 0]);
+  const view = engine.createView();
+  view.setCamera(camera);
+  view.setScene(scene);
+  view.setViewport([0, 0, size, size]);
+  view.setColorGrading(Filament.ColorGrading.Builder().toneMapping(Filament.ColorGrading$ToneMapping.LINEAR).build(engine));
+  const asset = engine.createAssetLoader().createAsset(sphereGlb(0, 0.5));
+  await new Promise((ok) => asset.loadResources(ok, null, null, 1));
+  scene.addEntities(asset.getEntities());
+  const gl = engine.context;
+  const render = async () => {
+    for (let drawn = 0, tries = 0; drawn < 2; tries++) {
+      if (tries > 200) throw new Error('Filament skipped every frame');
+      if (renderer.beginFrame(swapChain)) {
+        renderer.renderView(view);
+        renderer.endFrame();
+        drawn++;
+      }
+      engine.execute();
+      await new Promise((ok) => setTimeout(ok, 0));
+    }
+    const bytes = new Uint8Array(size * size * 4);
+    gl.bindFramebuffer(gl.READ_FRAMEBUFFER, null);
+    gl.readPixels(0, 0, size, size, gl.RGBA, gl.UNSIGNED_BYTE, bytes);
+    return Float32Array.from(bytes, (b, i) => (i % 4 === 3 ? 1 : (b / 255) ** 2.2));
+  };
+  const lit = await render();
+  scene.setIndirectLight(null);
+  const unlit = await render();
+  window.recipeResult = measure.recipeReport(lit, unlit, size);
+}`,
+  judge: judgeRecipe,
+};
+
 await runEngineCheck({
   puppeteer,
   chromium,
   root,
+  recipe,
   page: '/engines/filament/check.html',
   out,
   cases: HDRIS,

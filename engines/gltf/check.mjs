@@ -40,10 +40,63 @@ run('bake', ...HDRIS.map((h) => `tests/data/${h}.hdr`), '--target', 'gltf', '-q'
 // The negative control: the same bake turned a quarter about +Y.
 run('bake', ...HDRIS.map((h) => `tests/data/${h}.hdr`), '--target', 'gltf', '--rotate', '90', '-q', '-o', 'target/engines/gltf/control');
 
+// The README's recipe for this file set as written, given what it takes as given (a WebGL2
+// context `gl`); then each cube it returns is read back level by level, face by face (one
+// texel each, as float through EXT_color_buffer_float): the chains hold the five levels the
+// viewer's u_MipCount names, the diffuse cube at least one, every texel finite and not
+// negative, some bright, and no GL error.
+const recipe = {
+  splitsum,
+  heading: 'glTF Sample Viewer',
+  head: '<script src="/engines/gltf/node_modules/@khronosgroup/gltf-viewer/dist/libs/libktx.js"></script>',
+  prelude: `const canvas = document.createElement('canvas');
+document.body.appendChild(canvas);
+const gl = canvas.getContext('webgl2');`,
+  epilogue: `{
+  gl.getExtension('EXT_color_buffer_float');
+  const framebuffer = gl.createFramebuffer();
+  const report = { glError: 0 };
+  for (const [name, texture] of Object.entries({ ggx, lambertian, charlie })) {
+    gl.bindTexture(gl.TEXTURE_CUBE_MAP, texture);
+    // libktx uploads level by level (a mutable texture): a level is there when each face
+    // of it makes a complete framebuffer.
+    const texels = [];
+    let levels = 0;
+    gl.bindFramebuffer(gl.FRAMEBUFFER, framebuffer);
+    for (let m = 0; m < 16; m++) {
+      const faces = [];
+      for (let f = 0; f < 6; f++) {
+        gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_CUBE_MAP_POSITIVE_X + f, texture, m);
+        if (gl.checkFramebufferStatus(gl.FRAMEBUFFER) !== gl.FRAMEBUFFER_COMPLETE) break;
+        const px = new Float32Array(4);
+        gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.FLOAT, px);
+        faces.push(...px.slice(0, 3));
+      }
+      if (faces.length < 18) break;
+      texels.push(...faces);
+      levels += 1;
+    }
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    report[name] = { levels, texels: texels.length, finite: texels.every((v) => Number.isFinite(v) && v >= 0), max: Math.max(...texels) };
+  }
+  report.glError = gl.getError();
+  window.recipeResult = report;
+}`,
+  judge: (r, { bad }) => {
+    for (const [name, least] of [['ggx', 5], ['charlie', 5], ['lambertian', 1]]) {
+      const c = r[name];
+      bad((name === 'lambertian' ? c.levels >= least : c.levels === least) && c.finite && c.max > 1e-3,
+        `the README's code, as written, uploads ${name} as a cube, levels: ${c.levels} (${least === 5 ? 'u_MipCount 5' : 'at least 1'}), ${c.texels} texels read back, ${c.finite ? 'all finite and ≥ 0' : 'NOT all finite and ≥ 0'}, largest ${c.max.toFixed(3)}`);
+    }
+    bad(r.glError === 0, `GL errors after the upload and reads: ${r.glError === 0 ? "none" : r.glError}`);
+  },
+};
+
 await runEngineCheck({
   puppeteer,
   chromium,
   root,
+  recipe,
   page: '/engines/gltf/check.html',
   out,
   cases: HDRIS,

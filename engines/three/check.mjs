@@ -17,6 +17,7 @@ import { join, resolve, dirname } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import puppeteer from 'puppeteer-core';
 import { requireTools, runEngineCheck } from '../chromium.mjs';
+import { judgeRecipe } from '../recipe.mjs';
 
 const here = dirname(fileURLToPath(import.meta.url));
 const root = resolve(here, '../..');
@@ -51,10 +52,53 @@ for (const h of HDRIS) {
   );
 }
 
+// The README's three.js recipe as written, given what it takes as given (a renderer and a
+// scene), then a white sphere rendered with and without the environment it set.
+const recipe = {
+  splitsum,
+  heading: 'three.js',
+  head: `<script type="importmap">
+{ "imports": {
+    "three": "/engines/three/node_modules/three/build/three.module.js",
+    "three/addons/": "/engines/three/node_modules/three/examples/jsm/"
+} }
+</script>`,
+  files: [['js/splitsum-three.js', 'splitsum-three.js']],
+  prelude: `import * as THREE from 'three';
+import * as measure from '/engines/measure.js';
+const renderer = new THREE.WebGLRenderer({ antialias: false });
+renderer.toneMapping = THREE.NoToneMapping;
+const scene = new THREE.Scene();`,
+  epilogue: `{
+  const size = 64;
+  scene.add(new THREE.Mesh(new THREE.SphereGeometry(1, 64, 32), new THREE.MeshStandardMaterial({ color: 0xffffff, roughness: 0.5 })));
+  const camera = new THREE.PerspectiveCamera(measure.SPHERE_FOV, 1, 0.1, 100);
+  camera.position.set(0, 0, measure.SPHERE_DISTANCE);
+  camera.lookAt(0, 0, 0);
+  const target = new THREE.WebGLRenderTarget(size, size, { type: THREE.FloatType });
+  const render = () => {
+    renderer.setRenderTarget(target);
+    renderer.render(scene, camera);
+    const px = new Float32Array(size * size * 4);
+    renderer.readRenderTargetPixels(target, 0, 0, size, size, px);
+    renderer.setRenderTarget(null);
+    return px;
+  };
+  const lit = render();
+  const environment = scene.environment;
+  scene.environment = null;
+  const unlit = render();
+  scene.environment = environment;
+  window.recipeResult = measure.recipeReport(lit, unlit, size);
+}`,
+  judge: judgeRecipe,
+};
+
 await runEngineCheck({
   puppeteer,
   chromium,
   root,
+  recipe,
   page: '/engines/three/check.html',
   out,
   cases: [...HDRIS, ...HDRIS.map((h) => `${h}_bc6h`)],
