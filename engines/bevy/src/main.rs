@@ -16,6 +16,11 @@
 //! Bevy's default exposure (EV100 9.7) and `intensity = brightness = 1 / exposure`
 //! (≈ 998, the README's advice) give radiance on screen as in the HDRI.
 //!
+//! The README's Bevy recipe runs as written (`build.rs` copies it into the check): its
+//! shell lines bake the bundled venice_sunset HDRI as `sky.hdr`, its `setup` spawns its
+//! camera, and that camera, given an image target, the rough sphere's view and layer, is
+//! held to the rough sphere's bars.
+//!
 //! Run from the repository root after `cargo build --release`:
 //! `cargo run --manifest-path engines/bevy/Cargo.toml` (SPLITSUM names another binary;
 //! SPLITSUM_TARGET=generic bakes without the target, the negative control: the check then
@@ -40,6 +45,19 @@ use bevy::prelude::*;
 use bevy::render::render_resource::TextureFormat;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
 use bevy::window::ExitCondition;
+
+/// The README's Bevy recipe (`build.rs`).
+mod readme_recipe {
+    include!(concat!(env!("OUT_DIR"), "/readme_recipe.rs"));
+}
+
+/// The HDRI the README's recipe bakes (as `sky.hdr`), and the label of its shot.
+const RECIPE_HDRI: &str = "venice_sunset_1k";
+const RECIPE_LABEL: &str = "readme_recipe";
+
+/// Marks the check's own cameras (the one the README's recipe spawns has none).
+#[derive(Component)]
+struct CheckCamera;
 
 /// The bars: sun within 1°, skybox mean |Δ ln(1 + L)| ≤ 0.01, the rough sphere
 /// within 2 % of E/π in mean with correlation ≥ 0.99.
@@ -322,7 +340,9 @@ fn bake_everything(splitsum: &Path, bakes: &Path) {
 fn main() -> AppExit {
     let root = root();
     let out = root.join("target/engines/bevy");
-    let bakes = out.join("bakes");
+    // The asset folder: the README's recipe writes `assets/sky/` in `out`, the check's
+    // bakes go beside it.
+    let bakes = out.join("assets");
     let splitsum = std::env::var_os("SPLITSUM")
         .map(PathBuf::from)
         .unwrap_or_else(|| root.join("target/release/splitsum"));
@@ -333,6 +353,7 @@ fn main() -> AppExit {
     );
     std::fs::create_dir_all(&out).unwrap();
     bake_everything(&splitsum, &bakes);
+    run_recipe_commands(&splitsum, &out);
     let equirects: HashMap<&'static str, Equirect> = HDRIS
         .iter()
         .map(|&h| (h, Equirect::load(&root.join(format!("tests/data/{h}.hdr")))))
@@ -366,7 +387,9 @@ fn main() -> AppExit {
         suns,
     })
     .add_systems(Startup, setup)
+    .add_systems(PostStartup, aim_recipe_camera)
     .add_systems(Update, capture);
+    readme_recipe::add(&mut app);
     app.run()
 }
 
@@ -448,6 +471,7 @@ fn setup(
                     ),
                 };
                 let mut camera = commands.spawn((
+                    CheckCamera,
                     Camera3d::default(),
                     Camera {
                         order: shots.len() as isize,
@@ -499,6 +523,89 @@ fn setup(
     }
     check.shots = shots;
     check.assets = handles;
+}
+
+/// Runs the README recipe's shell lines in `out` on the bundled venice_sunset HDRI, copied
+/// there as `sky.hdr`, with `splitsum` the binary under test.
+fn run_recipe_commands(splitsum: &Path, out: &Path) {
+    std::fs::copy(
+        root().join(format!("tests/data/{RECIPE_HDRI}.hdr")),
+        out.join("sky.hdr"),
+    )
+    .unwrap();
+    for command in readme_recipe::COMMANDS {
+        let mut words = command.split_whitespace();
+        assert_eq!(
+            words.next(),
+            Some("splitsum"),
+            "the README's Bevy line '{command}' does not run splitsum"
+        );
+        run(Command::new(splitsum).current_dir(out).args(words));
+    }
+}
+
+/// Gives the camera the README's recipe spawned an image target, the rough sphere's view of
+/// the recipe's HDRI and its render layer, and adds it to the shots; waits for the images
+/// it loads.
+fn aim_recipe_camera(
+    mut commands: Commands,
+    cameras: Query<(Entity, &EnvironmentMapLight, &Skybox), (With<Camera3d>, Without<CheckCamera>)>,
+    mut images: ResMut<Assets<Image>>,
+    mut check: ResMut<Check>,
+) {
+    let found: Vec<_> = cameras.iter().collect();
+    assert_eq!(
+        found.len(),
+        1,
+        "the README's recipe spawns {} cameras with an EnvironmentMapLight and a Skybox, not one",
+        found.len()
+    );
+    let (entity, light, skybox) = found[0];
+    let geometry = view_geometry();
+    let sun = check.suns[RECIPE_HDRI];
+    let axis = Vec3::Y.cross(sun).normalize();
+    let view_dir = Quat::from_axis_angle(axis, 40f32.to_radians()) * sun;
+    let transform = Transform::from_translation(view_dir * geometry.sphere_distance)
+        .looking_at(Vec3::ZERO, Vec3::Y);
+    let size = geometry.size;
+    let target = images.add(Image::new_target_texture(
+        size,
+        size,
+        TextureFormat::Rgba32Float,
+        None,
+    ));
+    commands.entity(entity).insert((
+        Camera {
+            order: check.shots.len() as isize,
+            clear_color: ClearColorConfig::Custom(Color::NONE),
+            ..default()
+        },
+        RenderTarget::Image(target.clone().into()),
+        Projection::Perspective(PerspectiveProjection {
+            fov: geometry.sphere_fov,
+            ..default()
+        }),
+        transform,
+        Hdr,
+        Tonemapping::None,
+        Msaa::Off,
+        RenderLayers::layer(2),
+    ));
+    let mut loads = vec![
+        light.diffuse_map.id().untyped(),
+        light.specular_map.id().untyped(),
+    ];
+    loads.extend(skybox.image.as_ref().map(|i| i.id().untyped()));
+    check.assets.extend(loads);
+    check.shots.push(Shot {
+        hdri: RECIPE_HDRI,
+        format: RECIPE_LABEL,
+        view: View::Rough,
+        size,
+        transform,
+        fov: geometry.sphere_fov,
+        target,
+    });
 }
 
 /// Frames between capture rounds once everything has loaded; a shot counts as final when
