@@ -223,7 +223,9 @@ fn engine_checks_run_the_readme_recipes() {
         recipe(&readme, heading);
         let code = read(Path::new(check));
         if !code.contains(&format!("heading: '{heading}'")) || !code.contains("  recipe,\n") {
-            missing.push(format!("{check} does not run the README's '{heading}' recipe"));
+            missing.push(format!(
+                "{check} does not run the README's '{heading}' recipe"
+            ));
         }
     }
     // Bevy's check compiles the README's Rust block into itself.
