@@ -189,15 +189,10 @@ fn readme_wgsl_shades_as_the_preview() {
         return;
     };
     let dir = common::output_dir("generic_recipe");
-    let out = common::splitsum()
-        .args(["bake", "tests/data/venice_sunset_1k.hdr", "-q", "-o"])
-        .arg(&dir)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    common::run_ok(
+        common::splitsum()
+            .args(["bake", "tests/data/venice_sunset_1k.hdr", "-q", "-o"])
+            .arg(&dir),
     );
     let bake_dir = dir.join("venice_sunset_1k");
     let (baked, lut) = splitsum::read_bake_dir(&bake_dir).unwrap();

@@ -8,7 +8,7 @@
 
 mod common;
 
-use common::{gpu, output_dir, splitsum, test_equirect};
+use common::{gpu, output_dir, run_ok, splitsum, test_equirect};
 use glam::Vec3;
 use splitsum::backend::{Backend, CpuBackend, GpuBackend};
 use splitsum::bake::{bake_environment, BakeOptions};
@@ -289,24 +289,19 @@ fn gpu_and_cpu_frames_agree() {
 fn command_line() {
     let dir = output_dir("view_cli");
     let png = dir.join("view.png");
-    let out = splitsum()
-        .args([
-            "view",
-            "--backend",
-            "cpu",
-            "--size",
-            "96x64",
-            "--keys",
-            "2 m2 hud",
-            "--screenshot",
-        ])
-        .arg(&png)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    run_ok(
+        splitsum()
+            .args([
+                "view",
+                "--backend",
+                "cpu",
+                "--size",
+                "96x64",
+                "--keys",
+                "2 m2 hud",
+                "--screenshot",
+            ])
+            .arg(&png),
     );
     let img = image::open(&png).unwrap().to_rgb8();
     assert_eq!(img.dimensions(), (96, 64));

@@ -16,7 +16,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
-use common::{output_dir, splitsum};
+use common::{output_dir, run_ok, splitsum};
 use image::RgbImage;
 
 const SIZE: (u32, u32) = (640, 360);
@@ -139,22 +139,17 @@ fn capture(display: &str, window: &str, path: &Path) -> RgbImage {
 /// The same view offscreen, with `keys`.
 fn offscreen(dir: &Path, name: &str, keys: &str, frames: u32) -> RgbImage {
     let path: PathBuf = dir.join(name);
-    let out = splitsum()
-        .args([
-            "view",
-            "--size",
-            &format!("{}x{}", SIZE.0, SIZE.1),
-            "--keys",
-            keys,
-        ])
-        .args(["--frames", &frames.to_string(), "--screenshot"])
-        .arg(&path)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    run_ok(
+        splitsum()
+            .args([
+                "view",
+                "--size",
+                &format!("{}x{}", SIZE.0, SIZE.1),
+                "--keys",
+                keys,
+            ])
+            .args(["--frames", &frames.to_string(), "--screenshot"])
+            .arg(&path),
     );
     image::open(&path).unwrap().to_rgb8()
 }

@@ -10,6 +10,7 @@
 // radiance to agree, so a non-linear output would fail the check rather than skew it.
 import * as measure from '/engines/measure.js';
 import { sphereGlb } from '/engines/sphere.js';
+import { drawFrames } from '/engines/filament/frames.js';
 
 const { SIZE, MIRROR_SIZE, SPHERE_DISTANCE, SPHERE_FOV, SKY_FOV, add, scale, degrees, pinhole, pixelRay } = measure;
 // Filament's default intensity of a Skybox and an IndirectLight (FIndirectLight::
@@ -60,27 +61,14 @@ function setExposure(exposure) {
 }
 
 // Renders the scene `size`² through `cam` with radiance scaled by `e` and returns linear radiance
-// (RGBA float; alpha 0 where a channel saturates), reading Filament's 8-bit sRGB output. Filament's web build is
-// single-threaded: `engine.execute()` runs a frame's commands, and `beginFrame` skips
-// frames until the GPU fences of earlier ones signal, which WebGL lets happen only between
-// tasks, so the loop yields to the event loop between frames.
+// (RGBA float; alpha 0 where a channel saturates), reading Filament's 8-bit sRGB output
+// after two frames (frames.js).
 async function renderAt(cam, size, e) {
   view.setViewport([0, 0, size, size]);
   camera.setProjectionFov(cam.fov, 1, 0.05, 50, Filament.Camera$Fov.VERTICAL);
   camera.lookAt(cam.eye, add(cam.eye, cam.forward), cam.up);
   setExposure(e / INTENSITY);
-  // Two frames drawn: the first may still use textures whose uploads it issues.
-  let drawn = 0;
-  for (let tries = 0; drawn < 2; tries++) {
-    if (tries > 200) throw new Error('Filament skipped every frame');
-    if (renderer.beginFrame(swapChain)) {
-      renderer.renderView(view);
-      renderer.endFrame();
-      drawn++;
-    }
-    engine.execute();
-    if (drawn < 2) await new Promise((ok) => setTimeout(ok, 0));
-  }
+  await drawFrames(engine, renderer, swapChain, view);
   const bytes = new Uint8Array(size * size * 4);
   const previous = gl.getParameter(gl.READ_FRAMEBUFFER_BINDING);
   gl.bindFramebuffer(gl.READ_FRAMEBUFFER, null);

@@ -73,6 +73,7 @@ const recipe = {
   head: '<script src="/engines/filament/node_modules/filament/filament.js"></script>',
   prelude: `import * as measure from '/engines/measure.js';
 import { sphereGlb } from '/engines/sphere.js';
+import { drawFrames } from '/engines/filament/frames.js';
 const size = 64;
 const canvas = document.createElement('canvas');
 canvas.width = canvas.height = size;
@@ -96,16 +97,7 @@ const scene = engine.createScene();`,
   scene.addEntities(asset.getEntities());
   const gl = engine.context;
   const render = async () => {
-    for (let drawn = 0, tries = 0; drawn < 2; tries++) {
-      if (tries > 200) throw new Error('Filament skipped every frame');
-      if (renderer.beginFrame(swapChain)) {
-        renderer.renderView(view);
-        renderer.endFrame();
-        drawn++;
-      }
-      engine.execute();
-      await new Promise((ok) => setTimeout(ok, 0));
-    }
+    await drawFrames(engine, renderer, swapChain, view);
     const bytes = new Uint8Array(size * size * 4);
     gl.bindFramebuffer(gl.READ_FRAMEBUFFER, null);
     gl.readPixels(0, 0, size, size, gl.RGBA, gl.UNSIGNED_BYTE, bytes);
