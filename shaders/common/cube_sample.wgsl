@@ -1,22 +1,9 @@
-// Seamless bilinear and trilinear lookups of a cube mip chain stored as a 2D array texture
-// (layers = faces). Mirror of src/cpu/cube_sample.rs (same function names). Mip sizes
-// come from the level-0 size, not textureDimensions (lavapipe answers it wrongly when the
-// level differs across lanes).
-
-// Texel (x, y) of `face` at mip m; one texel off the face is fetched from the neighbour.
-fn fetch_cube_texel(src: texture_2d_array<f32>, size0: u32, m: u32, face: u32, x: i32, y: i32) -> vec3<f32> {
-    let n = i32(max(size0 >> m, 1u));
-    var f = face;
-    var xi = x;
-    var yi = y;
-    if (x < 0 || y < 0 || x >= n || y >= n) {
-        let c = cube_face_coords(cube_texel_direction(face, x, y, u32(n)));
-        f = u32(c.x);
-        xi = clamp(i32(floor((c.y + 1.0) * 0.5 * f32(n))), 0, n - 1);
-        yi = clamp(i32(floor((c.z + 1.0) * 0.5 * f32(n))), 0, n - 1);
-    }
-    return textureLoad(src, vec2<i32>(xi, yi), i32(f), i32(m)).rgb;
-}
+// Seamless bilinear and trilinear lookups of a cube mip chain stored as a 2D array texture.
+// Mirror of src/environment/sample.rs (same function names). Mip sizes come from the
+// level-0 size, not textureDimensions (lavapipe answers it wrongly when the level differs
+// across lanes). The texel fetch, `fetch_cube_texel(src, size0, m, face, x, y)` for x, y
+// from -1 to n, comes from the file included before this one: cube_fetch.wgsl for a plain
+// chain (layers = faces, levels = mips), cube_fetch_bordered.wgsl for a bordered one.
 
 // Bilinear lookup of mip m at face coordinates (s, t) in [-1, 1]^2 of `face`.
 fn sample_face_bilinear(src: texture_2d_array<f32>, size0: u32, m: u32, face: u32, s: f32, t: f32) -> vec3<f32> {

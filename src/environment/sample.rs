@@ -122,7 +122,9 @@ pub fn sample_cube_lod(cube: &Cubemap, d: [f32; 3], lod: f32) -> [f32; 3] {
 /// bilinear tap leaves its face: [`BorderedCube::sample_lod`] returns exactly what
 /// [`sample_cube_lod`] returns for the same cube, bit for bit, without the per-tap edge
 /// path that the lobe tails' reads of small mips take nearly every time. The prefilter's
-/// sampled levels read it; the GPU samples the plain chain.
+/// sampled levels read it on the CPU, and the viewer's GPU kernels read its levels as a
+/// texture (`shaders/common/cube_fetch_bordered.wgsl`); the bake's GPU kernels sample the
+/// plain chain.
 #[derive(Clone, Debug)]
 pub struct BorderedCube {
     /// Edge of level 0 (without the border).
@@ -160,6 +162,24 @@ impl BorderedCube {
             size: cube.size,
             levels,
         }
+    }
+
+    /// Edge of level 0, without the border.
+    #[cfg_attr(not(feature = "view"), allow(dead_code))]
+    pub fn size(&self) -> u32 {
+        self.size
+    }
+
+    /// Level `m`: six faces of (n + 2)² texels, layout as in the struct's documentation.
+    #[cfg_attr(not(feature = "view"), allow(dead_code))]
+    pub fn level(&self, m: usize) -> &[[f32; 4]] {
+        &self.levels[m]
+    }
+
+    /// Number of levels.
+    #[cfg_attr(not(feature = "view"), allow(dead_code))]
+    pub fn level_count(&self) -> usize {
+        self.levels.len()
     }
 
     /// [`sample_face_bilinear`] on the bordered level `m`.

@@ -22,13 +22,14 @@ pub const EQUIRECT_TO_CUBE: &str = kernel_source!("equirect_to_cube.wgsl", ["cub
 /// `shaders/cube_downsample.wgsl` with cubemap.
 pub const CUBE_DOWNSAMPLE: &str = kernel_source!("cube_downsample.wgsl", ["cubemap.wgsl"]);
 
-/// `shaders/prefilter_sampled.wgsl` with brdf, sampling, cubemap, cube_sample.
+/// `shaders/prefilter_sampled.wgsl` with brdf, sampling, cubemap, cube_fetch, cube_sample.
 pub const PREFILTER_SAMPLED: &str = kernel_source!(
     "prefilter_sampled.wgsl",
     [
         "brdf.wgsl",
         "sampling.wgsl",
         "cubemap.wgsl",
+        "cube_fetch.wgsl",
         "cube_sample.wgsl"
     ]
 );
@@ -37,13 +38,14 @@ pub const PREFILTER_SAMPLED: &str = kernel_source!(
 pub const CONVOLVE_EXACT: &str =
     kernel_source!("convolve_exact.wgsl", ["brdf.wgsl", "cubemap.wgsl"]);
 
-/// `shaders/preview_split_sum.wgsl` with brdf, cubemap, cube_sample, material,
+/// `shaders/preview_split_sum.wgsl` with brdf, cubemap, cube_fetch, cube_sample, material,
 /// split_sum, preview_scene.
 pub const PREVIEW_SPLIT_SUM: &str = kernel_source!(
     "preview_split_sum.wgsl",
     [
         "brdf.wgsl",
         "cubemap.wgsl",
+        "cube_fetch.wgsl",
         "cube_sample.wgsl",
         "material.wgsl",
         "split_sum.wgsl",
@@ -51,14 +53,15 @@ pub const PREVIEW_SPLIT_SUM: &str = kernel_source!(
     ]
 );
 
-/// `shaders/preview_truth.wgsl` with brdf, sampling, cubemap, cube_sample, material,
-/// truth, preview_scene.
+/// `shaders/preview_truth.wgsl` with brdf, sampling, cubemap, cube_fetch, cube_sample,
+/// material, truth, preview_scene.
 pub const PREVIEW_TRUTH: &str = kernel_source!(
     "preview_truth.wgsl",
     [
         "brdf.wgsl",
         "sampling.wgsl",
         "cubemap.wgsl",
+        "cube_fetch.wgsl",
         "cube_sample.wgsl",
         "material.wgsl",
         "truth.wgsl",
@@ -66,14 +69,15 @@ pub const PREVIEW_TRUTH: &str = kernel_source!(
     ]
 );
 
-/// `shaders/view_split_sum.wgsl` with brdf, cubemap, cube_sample, material, split_sum,
-/// view_frame, view_surface.
+/// `shaders/view_split_sum.wgsl` with brdf, cubemap, cube_fetch_bordered, cube_sample,
+/// material, split_sum, view_frame, view_surface.
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub const VIEW_SPLIT_SUM: &str = kernel_source!(
     "view_split_sum.wgsl",
     [
         "brdf.wgsl",
         "cubemap.wgsl",
+        "cube_fetch_bordered.wgsl",
         "cube_sample.wgsl",
         "material.wgsl",
         "split_sum.wgsl",
@@ -82,8 +86,8 @@ pub const VIEW_SPLIT_SUM: &str = kernel_source!(
     ]
 );
 
-/// `shaders/view_truth.wgsl` with brdf, sampling, cubemap, cube_sample, material, truth,
-/// view_frame, view_surface.
+/// `shaders/view_truth.wgsl` with brdf, sampling, cubemap, cube_fetch_bordered,
+/// cube_sample, material, truth, view_frame, view_surface.
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub const VIEW_TRUTH: &str = kernel_source!(
     "view_truth.wgsl",
@@ -91,6 +95,7 @@ pub const VIEW_TRUTH: &str = kernel_source!(
         "brdf.wgsl",
         "sampling.wgsl",
         "cubemap.wgsl",
+        "cube_fetch_bordered.wgsl",
         "cube_sample.wgsl",
         "material.wgsl",
         "truth.wgsl",

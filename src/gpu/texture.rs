@@ -1,6 +1,7 @@
 //! Texture helpers shared by the kernels: uploads, cube textures with per-mip array views,
 //! and reading a whole cubemap back.
 
+use crate::environment::sample::BorderedCube;
 use crate::environment::Cubemap;
 use crate::gpu::compute::{read_texture_level, with_error_scope};
 use crate::Result;
@@ -98,6 +99,74 @@ pub fn create_storage_texture_2d(
         format: wgpu::TextureFormat::Rgba32Float,
         usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
         view_formats: &[],
+    })
+}
+
+/// The first `levels` levels of `cube` with their borders ([`BorderedCube`]) as an
+/// `Rgba32Float` 2D array texture of one mip, viewed as an array: level m's faces are
+/// layers 6m … 6m + 5, each (n + 2)² at the top left of a layer of level 0's (n₀ + 2)², as
+/// `shaders/common/cube_fetch_bordered.wgsl` reads it.
+#[cfg_attr(not(feature = "view"), allow(dead_code))]
+pub fn upload_bordered_cube(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    label: &str,
+    cube: &Cubemap,
+    levels: usize,
+) -> wgpu::TextureView {
+    let bordered = if levels < cube.levels.len() {
+        BorderedCube::new(&Cubemap {
+            size: cube.size,
+            levels: cube.levels[..levels].to_vec(),
+        })
+    } else {
+        BorderedCube::new(cube)
+    };
+    let edge = bordered.size() + 2;
+    let levels = bordered.level_count() as u32;
+    let texture = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width: edge,
+            height: edge,
+            depth_or_array_layers: 6 * levels,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba32Float,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    for m in 0..levels {
+        let p = cube.level_size(m as usize) + 2;
+        queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &texture,
+                mip_level: 0,
+                origin: wgpu::Origin3d {
+                    x: 0,
+                    y: 0,
+                    z: 6 * m,
+                },
+                aspect: wgpu::TextureAspect::All,
+            },
+            bytemuck::cast_slice(bordered.level(m as usize)),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(p * 16),
+                rows_per_image: Some(p),
+            },
+            wgpu::Extent3d {
+                width: p,
+                height: p,
+                depth_or_array_layers: 6,
+            },
+        );
+    }
+    texture.create_view(&wgpu::TextureViewDescriptor {
+        dimension: Some(wgpu::TextureViewDimension::D2Array),
+        ..Default::default()
     })
 }
 

@@ -9,10 +9,9 @@ use image::RgbaImage;
 use crate::gpu::compute::{
     bind_group, buffer_with_data, storage_buffer, uniform_buffer, with_error_scope, ComputeKernel,
 };
-use crate::gpu::prefilter::upload_cube;
 use crate::gpu::preview::{SplitSumUniform, TruthUniform};
 use crate::gpu::shaders;
-use crate::gpu::texture::{cube_array_view, upload_rgb_texture};
+use crate::gpu::texture::{upload_bordered_cube, upload_rgb_texture};
 use crate::view::frame::{heat_table, light_table, FrameUniform, PresentUniform, ViewLight};
 use crate::view::model::{Model, Shape};
 use crate::view::raster::{scene_vertices, sphere_box_vertices, Vertex};
@@ -232,16 +231,24 @@ impl GpuRenderer {
                 _pad2: 0,
             };
             LightTextures {
-                specular: cube_array_view(&upload_cube(
+                specular: upload_bordered_cube(
                     device,
                     queue,
+                    "view specular",
                     spec,
-                    spec.levels.len() as u32,
-                )),
-                irradiance: cube_array_view(&upload_cube(device, queue, &light.irradiance, 1)),
+                    spec.levels.len(),
+                ),
+                // The kernels read level 0 of these.
+                irradiance: upload_bordered_cube(
+                    device,
+                    queue,
+                    "view irradiance",
+                    &light.irradiance,
+                    1,
+                ),
                 lut: lut.create_view(&Default::default()),
-                env: cube_array_view(&upload_cube(device, queue, &light.env, 1)),
-                cold: cube_array_view(&upload_cube(device, queue, &light.cold, 1)),
+                env: upload_bordered_cube(device, queue, "view environment", &light.env, 1),
+                cold: upload_bordered_cube(device, queue, "view cold texels", &light.cold, 1),
                 hot: storage_buffer(device, "view hot texels", &light.hot),
                 split_sum: uniform_buffer(device, "view split-sum", &split_sum),
                 truth_env_size: light.env.size,
