@@ -19,6 +19,9 @@ struct SplitSumParams {
 }
 
 // Bilinear LUT lookup at uv = (n.v, r), clamp-to-edge, texel centres at (i + 0.5) / W.
+// The LUT texture holds each texel's (A, B) in .xy and its right neighbour's (clamped to
+// the last column) in .zw (gpu::texture::upload_lut_pairs), so the four taps a, b, c, d of
+// the CPU twin are two loads.
 fn sample_lut(n_dot_v: f32, roughness: f32) -> vec2<f32> {
     let w = light.lut_width;
     let h = light.lut_height;
@@ -30,12 +33,13 @@ fn sample_lut(n_dot_v: f32, roughness: f32) -> vec2<f32> {
     let fy = y - y0;
     let i0 = u32(x0);
     let j0 = u32(y0);
-    let i1 = min(i0 + 1u, w - 1u);
     let j1 = min(j0 + 1u, h - 1u);
-    let a = textureLoad(lut, vec2<u32>(i0, j0), 0).xy;
-    let b = textureLoad(lut, vec2<u32>(i1, j0), 0).xy;
-    let c = textureLoad(lut, vec2<u32>(i0, j1), 0).xy;
-    let d = textureLoad(lut, vec2<u32>(i1, j1), 0).xy;
+    let row0 = textureLoad(lut, vec2<u32>(i0, j0), 0);
+    let row1 = textureLoad(lut, vec2<u32>(i0, j1), 0);
+    let a = row0.xy;
+    let b = row0.zw;
+    let c = row1.xy;
+    let d = row1.zw;
     return (a * (1.0 - fx) + b * fx) * (1.0 - fy) + (c * (1.0 - fx) + d * fx) * fy;
 }
 

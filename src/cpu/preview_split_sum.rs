@@ -27,7 +27,9 @@ use crate::plan::scene::{
 };
 
 /// Bilinear lookup of the LUT at uv = (n·v, r) with clamp-to-edge addressing and texel
-/// centres at ((i + ½)/W, (j + ½)/H), as a GPU sampler reads it.
+/// centres at ((i + ½)/W, (j + ½)/H), as a GPU sampler reads it. The WGSL reads the same
+/// four taps with two loads of a texture holding each texel beside its right neighbour
+/// (`gpu::texture::upload_lut_pairs`).
 pub fn sample_lut(lut: &BrdfLut, n_dot_v: f32, roughness: f32) -> [f32; 2] {
     let (w, h) = (lut.width, lut.height);
     let x = (n_dot_v * w as f32 - 0.5).clamp(0.0, (w - 1) as f32);

@@ -10,7 +10,7 @@ use crate::gpu::compute::{
 };
 use crate::gpu::prefilter::upload_cube;
 use crate::gpu::shaders;
-use crate::gpu::texture::{create_storage_texture_2d, cube_array_view, upload_rgb_texture};
+use crate::gpu::texture::{create_storage_texture_2d, cube_array_view, upload_lut_pairs};
 use crate::plan::scene::SceneUniform;
 use crate::Result;
 
@@ -100,15 +100,7 @@ pub fn preview_split_sum(
         _pad1: 0,
         _pad2: 0,
     };
-    let lut_rgb: Vec<[f32; 3]> = lut.data.iter().map(|&[a, b]| [a, b, 0.0]).collect();
-    let lut_tex = upload_rgb_texture(
-        device,
-        queue,
-        "preview lut",
-        lut.width,
-        lut.height,
-        &lut_rgb,
-    )?;
+    let lut_tex = upload_lut_pairs(device, queue, "preview lut", lut)?;
     let (spec_tex, irr_tex, buffers) =
         with_error_scope(device, "preview_split_sum upload", || {
             (

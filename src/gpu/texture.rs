@@ -3,6 +3,7 @@
 
 use crate::environment::sample::BorderedCube;
 use crate::environment::Cubemap;
+use crate::plan::lut::BrdfLut;
 use crate::gpu::compute::{read_texture_level, with_error_scope};
 use crate::Result;
 
@@ -16,7 +17,42 @@ pub fn upload_rgb_texture(
     height: u32,
     data: &[[f32; 3]],
 ) -> Result<wgpu::Texture> {
-    with_error_scope(device, "uploading the environment", || {
+    let rgba: Vec<[f32; 4]> = data.iter().map(|t| [t[0], t[1], t[2], 1.0]).collect();
+    upload_rgba_texture(device, queue, label, width, height, &rgba)
+}
+
+/// The split-sum LUT as `shaders/common/split_sum.wgsl` reads it: an `Rgba32Float` texture
+/// whose texel (i, j) holds (A, B) of texel (i, j) and of its right neighbour (i + 1, j),
+/// clamped to the last column, so that a bilinear lookup's four taps are two loads of the
+/// same values.
+pub fn upload_lut_pairs(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    label: &str,
+    lut: &BrdfLut,
+) -> Result<wgpu::Texture> {
+    let pairs: Vec<[f32; 4]> = (0..lut.height)
+        .flat_map(|j| {
+            (0..lut.width).map(move |i| {
+                let ([a, b], [c, d]) = (lut.get(i, j), lut.get((i + 1).min(lut.width - 1), j));
+                [a, b, c, d]
+            })
+        })
+        .collect();
+    upload_rgba_texture(device, queue, label, lut.width, lut.height, &pairs)
+}
+
+/// Uploads a `width`×`height` RGBA image as an `Rgba32Float` 2D texture, read with
+/// `textureLoad`.
+fn upload_rgba_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    label: &str,
+    width: u32,
+    height: u32,
+    rgba: &[[f32; 4]],
+) -> Result<wgpu::Texture> {
+    with_error_scope(device, &format!("uploading the {label} texture"), || {
         let size = wgpu::Extent3d {
             width,
             height,
@@ -32,7 +68,6 @@ pub fn upload_rgb_texture(
             usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
             view_formats: &[],
         });
-        let rgba: Vec<[f32; 4]> = data.iter().map(|t| [t[0], t[1], t[2], 1.0]).collect();
         queue.write_texture(
             wgpu::TexelCopyTextureInfo {
                 texture: &texture,
@@ -40,7 +75,7 @@ pub fn upload_rgb_texture(
                 origin: wgpu::Origin3d::ZERO,
                 aspect: wgpu::TextureAspect::All,
             },
-            bytemuck::cast_slice(&rgba),
+            bytemuck::cast_slice(rgba),
             wgpu::TexelCopyBufferLayout {
                 offset: 0,
                 bytes_per_row: Some(width * 16),

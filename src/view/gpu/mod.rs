@@ -11,7 +11,7 @@ use crate::gpu::compute::{
 };
 use crate::gpu::preview::{SplitSumUniform, TruthUniform};
 use crate::gpu::shaders;
-use crate::gpu::texture::{upload_bordered_cube, upload_rgb_texture};
+use crate::gpu::texture::{upload_bordered_cube, upload_lut_pairs};
 use crate::view::frame::{heat_table, light_table, FrameUniform, PresentUniform, ViewLight};
 use crate::view::model::{Model, Shape};
 use crate::view::raster::{scene_vertices, sphere_box_vertices, Vertex};
@@ -209,15 +209,7 @@ impl GpuRenderer {
     /// Uploads the baked light.
     pub fn set_light(&mut self, light: &ViewLight) -> Result<()> {
         let (device, queue) = (&self.device, &self.queue);
-        let lut_rgb: Vec<[f32; 3]> = light.lut.data.iter().map(|&[a, b]| [a, b, 0.0]).collect();
-        let lut = upload_rgb_texture(
-            device,
-            queue,
-            "view lut",
-            light.lut.width,
-            light.lut.height,
-            &lut_rgb,
-        )?;
+        let lut = upload_lut_pairs(device, queue, "view lut", &light.lut)?;
         let textures = with_error_scope(device, "uploading the viewer's light", || {
             let spec = &light.specular;
             let split_sum = SplitSumUniform {
