@@ -4,7 +4,7 @@
 // (ResourceLoader.loadEnvironment: its iblSampler, 256² to 16², r = m/4), and splitsum's
 // `--target gltf` files, loaded through the viewer's own KTX2 path (its libktx decoder, the
 // one it uses for KTX2 glTF textures) into the environment the viewer built, in place of
-// its run-time textures, as the viewer's former KTX2 environment loader did.
+// its run-time textures.
 //
 // The viewer renders to an 8-bit canvas: tone mapping "None" (exposure × radiance, then
 // pow(1/2.2)), each render's exposure lowered until nothing clips, decoded back with
