@@ -183,7 +183,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn face_selection_matches_the_design_example() {
+    fn face_selection_matches_the_conventions_example() {
         // (1, 0.5, 0) lands on +X at the column centre, a quarter of the way down.
         let (face, s, t) = cube_face_coords([1.0, 0.5, 0.0]);
         assert_eq!(face, 0);

@@ -119,7 +119,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn constants_match_the_design() {
+    fn constants_match_the_real_sh_basis() {
         let y = sh_basis([0.0, 1.0, 0.0]);
         assert!((y[0] - 0.282095).abs() < 1e-6);
         assert!((y[1] - 0.488603).abs() < 1e-6);

@@ -280,7 +280,7 @@ fn step(r: f32, delta: f32) -> f32 {
 mod tests {
     use super::*;
 
-    /// The example: copper, two steps rougher, the sphere, the ground truth.
+    /// The `--keys` example: copper, two steps rougher, the sphere, the ground truth.
     #[test]
     fn keys_parse_and_apply() {
         let actions = parse_keys("2 r+ r+ m2 g").unwrap();
