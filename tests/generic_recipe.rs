@@ -148,20 +148,13 @@ fn lut_texture(ctx: &splitsum::gpu::GpuContext, path: &std::path::Path) -> wgpu:
     let png = image::open(path).unwrap().to_rgba16();
     let (w, h) = png.dimensions();
     assert_eq!(w, h, "the LUT is square");
-    let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("recipe lut"),
-        size: wgpu::Extent3d {
-            width: w,
-            height: h,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba16Float,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-        view_formats: &[],
-    });
+    let texture = splitsum::gpu::texture::create_texture_2d(
+        &ctx.device,
+        "recipe lut",
+        (w, h, 1),
+        wgpu::TextureFormat::Rgba16Float,
+        wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+    );
     let halves: Vec<half::f16> = png
         .pixels()
         .flat_map(|p| p.0.map(|c| half::f16::from_f32(c as f32 / 65535.0)))

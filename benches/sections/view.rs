@@ -45,20 +45,13 @@ pub fn benchmarks() {
         )
         .unwrap();
         let format = wgpu::TextureFormat::Rgba8Unorm;
-        let target = ctx.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("bench target"),
-            size: wgpu::Extent3d {
-                width: size.0,
-                height: size.1,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
+        let target = splitsum::gpu::texture::create_texture_2d(
+            &ctx.device,
+            "bench target",
+            (size.0, size.1, 1),
             format,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-            view_formats: &[],
-        });
+            wgpu::TextureUsages::RENDER_ATTACHMENT,
+        );
         let view = target.create_view(&Default::default());
         let name = ctx.adapter_description();
         let moving = time(FRAMES, |i| {

@@ -10,6 +10,7 @@ use block_compression::{CompressionVariant, GpuBlockCompressor};
 
 use crate::environment::Cubemap;
 use crate::gpu::compute::{map_read, with_error_scope};
+use crate::gpu::texture::create_texture_2d;
 use crate::plan::bc6h::{encoder_input, face_bytes, padded_edge, Bc6hQuality};
 use crate::Result;
 
@@ -34,20 +35,13 @@ pub fn encode_bc6h(
             let n = cube.level_size(m);
             let p = padded_edge(n);
             let variant = CompressionVariant::BC6H(quality.settings(n));
-            let texture = device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("bc6h source"),
-                size: wgpu::Extent3d {
-                    width: p,
-                    height: p,
-                    depth_or_array_layers: 6,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::Rgba16Float,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-                view_formats: &[],
-            });
+            let texture = create_texture_2d(
+                device,
+                "bc6h source",
+                (p, p, 6),
+                wgpu::TextureFormat::Rgba16Float,
+                wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            );
             for face in 0..6u32 {
                 queue.write_texture(
                     wgpu::TexelCopyTextureInfo {

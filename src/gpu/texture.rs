@@ -7,6 +7,30 @@ use crate::plan::lut::BrdfLut;
 use crate::gpu::compute::{read_texture_level, with_error_scope};
 use crate::Result;
 
+/// A 2D texture (an array of `layers` when more than one) of one mip level.
+pub fn create_texture_2d(
+    device: &wgpu::Device,
+    label: &str,
+    (width, height, layers): (u32, u32, u32),
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: layers,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
+}
+
 /// Uploads a `width`×`height` RGB image as an `Rgba32Float` 2D texture (A = 1), read with
 /// `textureLoad`.
 pub fn upload_rgb_texture(
@@ -53,21 +77,13 @@ fn upload_rgba_texture(
     rgba: &[[f32; 4]],
 ) -> Result<wgpu::Texture> {
     with_error_scope(device, &format!("uploading the {label} texture"), || {
-        let size = wgpu::Extent3d {
-            width,
-            height,
-            depth_or_array_layers: 1,
-        };
-        let texture = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some(label),
-            size,
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba32Float,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        });
+        let texture = create_texture_2d(
+            device,
+            label,
+            (width, height, 1),
+            wgpu::TextureFormat::Rgba32Float,
+            wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        );
         queue.write_texture(
             wgpu::TexelCopyTextureInfo {
                 texture: &texture,
@@ -81,7 +97,7 @@ fn upload_rgba_texture(
                 bytes_per_row: Some(width * 16),
                 rows_per_image: Some(height),
             },
-            size,
+            texture.size(),
         );
         texture
     })
@@ -121,20 +137,13 @@ pub fn create_storage_texture_2d(
     width: u32,
     height: u32,
 ) -> wgpu::Texture {
-    device.create_texture(&wgpu::TextureDescriptor {
-        label: Some(label),
-        size: wgpu::Extent3d {
-            width,
-            height,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba32Float,
-        usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    })
+    create_texture_2d(
+        device,
+        label,
+        (width, height, 1),
+        wgpu::TextureFormat::Rgba32Float,
+        wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+    )
 }
 
 /// The first `levels` levels of `cube` with their borders ([`BorderedCube`]) as an
@@ -159,20 +168,13 @@ pub fn upload_bordered_cube(
     };
     let edge = bordered.size() + 2;
     let levels = bordered.level_count() as u32;
-    let texture = device.create_texture(&wgpu::TextureDescriptor {
-        label: Some(label),
-        size: wgpu::Extent3d {
-            width: edge,
-            height: edge,
-            depth_or_array_layers: 6 * levels,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba32Float,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-        view_formats: &[],
-    });
+    let texture = create_texture_2d(
+        device,
+        label,
+        (edge, edge, 6 * levels),
+        wgpu::TextureFormat::Rgba32Float,
+        wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+    );
     for m in 0..levels {
         let p = cube.level_size(m as usize) + 2;
         queue.write_texture(

@@ -11,7 +11,7 @@ use crate::gpu::compute::{
 };
 use crate::gpu::preview::{SplitSumUniform, TruthUniform};
 use crate::gpu::shaders;
-use crate::gpu::texture::{upload_bordered_cube, upload_lut_pairs};
+use crate::gpu::texture::{create_texture_2d, upload_bordered_cube, upload_lut_pairs};
 use crate::view::frame::{heat_table, light_table, FrameUniform, PresentUniform, ViewLight};
 use crate::view::model::{Model, Shape};
 use crate::view::raster::{scene_vertices, sphere_box_vertices, Vertex};
@@ -271,20 +271,7 @@ impl GpuRenderer {
         if self.targets.as_ref().map(|t| t.size) != Some(size) {
             let device = &self.device;
             let texture = |label: &str, format: wgpu::TextureFormat, usage: wgpu::TextureUsages| {
-                device.create_texture(&wgpu::TextureDescriptor {
-                    label: Some(label),
-                    size: wgpu::Extent3d {
-                        width: size.0,
-                        height: size.1,
-                        depth_or_array_layers: 1,
-                    },
-                    mip_level_count: 1,
-                    sample_count: 1,
-                    dimension: wgpu::TextureDimension::D2,
-                    format,
-                    usage,
-                    view_formats: &[],
-                })
+                create_texture_2d(device, label, (size.0, size.1, 1), format, usage)
             };
             let pixels = size.0 as u64 * size.1 as u64;
             let gusage =

@@ -3,6 +3,7 @@
 use image::RgbaImage;
 
 use crate::gpu::compute::{map_read, read_texture_bytes};
+use crate::gpu::texture::create_texture_2d;
 use crate::view::frame::{FrameUniform, HdrFrame, PresentUniform};
 use crate::Result;
 
@@ -43,20 +44,13 @@ impl GpuRenderer {
         hud: Option<&RgbaImage>,
     ) -> Result<RgbaImage> {
         let (w, h) = (frame.width, frame.height);
-        let texture = self.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("view offscreen"),
-            size: wgpu::Extent3d {
-                width: w,
-                height: h,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba8Unorm,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        let texture = create_texture_2d(
+            &self.device,
+            "view offscreen",
+            (w, h, 1),
+            wgpu::TextureFormat::Rgba8Unorm,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        );
         let view = texture.create_view(&Default::default());
         let target = (&view, wgpu::TextureFormat::Rgba8Unorm);
         self.render(frame, present, geometry_changed, points, hud, target)?;
