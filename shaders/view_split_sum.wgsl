@@ -18,16 +18,12 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if (id.x >= frame.width || id.y >= frame.height) {
         return;
     }
-    let ray = pixel_ray(frame, vec2<f32>(f32(id.x) + 0.5, f32(id.y) + 0.5));
-    let s = load_surface(id.xy);
+    let px = pixel_view(id.xy);
     var c: vec3<f32>;
-    if (s.id == 0u) {
-        c = sample_cube_lod(specular, light.specular_size, light.specular_levels, ray.dir, 0.0);
+    if (px.s.id == 0u) {
+        c = sample_cube_lod(specular, light.specular_size, light.specular_levels, px.dir, 0.0);
     } else {
-        let v = -ray.dir;
-        let n_dot_v = max(dot(s.n, v), frame.front.w);
-        let m = surface_material(s.id);
-        c = split_sum_shade(s.n, v, n_dot_v, m) + direct_lights(s.p, s.n, v, n_dot_v, m);
+        c = split_sum_shade(px.s.n, px.v, px.n_dot_v, px.m) + direct_lights(px);
     }
-    shaded[id.y * frame.width + id.x] = vec4<f32>(c, f32(s.id));
+    shaded[id.y * frame.width + id.x] = vec4<f32>(c, f32(px.s.id));
 }

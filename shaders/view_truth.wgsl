@@ -20,18 +20,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if (id.x >= frame.width || id.y >= frame.height) {
         return;
     }
-    let ray = pixel_ray(frame, vec2<f32>(f32(id.x) + 0.5, f32(id.y) + 0.5));
-    let s = load_surface(id.xy);
+    let px = pixel_view(id.xy);
     let pixel = id.y * frame.width + id.x;
     var c: vec3<f32>;
-    if (s.id == 0u) {
-        c = sample_cube_lod(env, truth.env_size, 1u, ray.dir, 0.0);
+    if (px.s.id == 0u) {
+        c = sample_cube_lod(env, truth.env_size, 1u, px.dir, 0.0);
     } else {
-        let v = -ray.dir;
-        let n_dot_v = max(dot(s.n, v), frame.front.w);
-        let m = surface_material(s.id);
         let shift = pixel_shift(pixel + frame.truth_frame * frame.width * frame.height);
-        c = truth_shade(s.n, v, n_dot_v, m, shift) + direct_lights(s.p, s.n, v, n_dot_v, m);
+        c = truth_shade(px.s.n, px.v, px.n_dot_v, px.m, shift) + direct_lights(px);
     }
     let w = f32(truth.point_count);
     let estimate = vec4<f32>(c * w, w);

@@ -15,11 +15,11 @@ fn unpack_material(m: array<vec4<f32>, 3>) -> ShadeMaterial {
 }
 
 // The point lights on (frame.light_count of the including kernel's `lights` table:
-// (position, 0), (colour, 0) each) shading the point p.
-fn direct_lights(p: vec3<f32>, n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, m: ShadeMaterial) -> vec3<f32> {
+// (position, 0), (colour, 0) each) shading the surface a pixel sees.
+fn direct_lights(px: PixelView) -> vec3<f32> {
     var sum = vec3<f32>(0.0);
     for (var i = 0u; i < frame.light_count; i++) {
-        sum += point_light(p, n, v, n_dot_v, m, lights[2u * i].xyz, lights[2u * i + 1u].xyz, frame.floor_plane.z);
+        sum += point_light(px.s.p, px.s.n, px.v, px.n_dot_v, px.m, lights[2u * i].xyz, lights[2u * i + 1u].xyz, frame.floor_plane.z);
     }
     return sum;
 }
@@ -45,4 +45,26 @@ fn surface_material(id: u32) -> ShadeMaterial {
         return unpack_material(frame.object);
     }
     return unpack_material(frame.floor);
+}
+
+// What a shading kernel sees at a pixel: its ray's direction, the G-buffer's surface
+// there, the view direction v = -dir, n.v clamped away from 0 by frame.front.w (silhouette
+// normals are perpendicular to v) and the surface's material (the floor's on background
+// pixels, which use only dir).
+struct PixelView {
+    dir: vec3<f32>,
+    s: Surface,
+    v: vec3<f32>,
+    n_dot_v: f32,
+    m: ShadeMaterial,
+}
+
+fn pixel_view(pixel: vec2<u32>) -> PixelView {
+    var px: PixelView;
+    px.dir = pixel_ray(frame, vec2<f32>(f32(pixel.x) + 0.5, f32(pixel.y) + 0.5)).dir;
+    px.s = load_surface(pixel);
+    px.v = -px.dir;
+    px.n_dot_v = max(dot(px.s.n, px.v), frame.front.w);
+    px.m = surface_material(px.s.id);
+    return px;
 }

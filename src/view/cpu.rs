@@ -15,34 +15,22 @@ use crate::environment::sample::sample_cube_lod;
 use crate::math::color::linear_to_srgb;
 use crate::plan::material::{point_light, ShadeMaterial};
 use crate::stages::preview::picture::{luminance, pbr_neutral, HEAT_BACKGROUND};
+use crate::view::camera::CameraFrame;
 use crate::view::frame::{unpack_material, FrameUniform, Mode, PresentUniform, Surface, ViewLight};
 use crate::view::raster::GBuffer;
 
-/// The point lights on, shading point `p` (`direct_lights` in view_frame.wgsl).
-fn direct_lights(
-    frame: &FrameUniform,
-    lights: &[[f32; 4]],
+/// What a shading pass sees at pixel `k` (`PixelView` in view_surface.wgsl): its ray's
+/// direction, the G-buffer's surface, position and normal there, the view direction
+/// v = −dir, n·v clamped away from 0 by `frame.front[3]` and the surface's material (the
+/// floor's on background pixels, which use only `dir`).
+struct PixelView {
+    dir: Vec3,
+    surface: Surface,
     p: Vec3,
     n: Vec3,
     v: Vec3,
     n_dot_v: f32,
-    m: &ShadeMaterial,
-) -> Vec3 {
-    (0..frame.light_count as usize)
-        .map(|i| {
-            let (pos, colour) = (lights[2 * i], lights[2 * i + 1]);
-            point_light(
-                p,
-                n,
-                v,
-                n_dot_v,
-                m,
-                Vec3::from_slice(&pos[..3]),
-                Vec3::from_slice(&colour[..3]),
-                frame.floor_plane[2],
-            )
-        })
-        .sum()
+    m: ShadeMaterial,
 }
 
 /// A G-buffer pixel: (surface, position, normal) (`load_surface` in view_surface.wgsl).
@@ -62,6 +50,43 @@ fn surface_material(frame: &FrameUniform, s: Surface) -> ShadeMaterial {
     }
 }
 
+/// `pixel_view` in view_surface.wgsl.
+fn pixel_view(frame: &FrameUniform, camera: &CameraFrame, g: &GBuffer, k: usize) -> PixelView {
+    let (x, y) = ((k as u32) % frame.width, (k as u32) / frame.width);
+    let (_, dir) = camera.pixel_ray(x, y, frame.width, frame.height);
+    let (surface, p, n) = load_surface(g, k);
+    let v = -dir;
+    PixelView {
+        dir,
+        surface,
+        p,
+        n,
+        v,
+        n_dot_v: n.dot(v).max(frame.front[3]),
+        m: surface_material(frame, surface),
+    }
+}
+
+/// The point lights on, shading the surface a pixel sees (`direct_lights` in
+/// view_surface.wgsl).
+fn direct_lights(frame: &FrameUniform, lights: &[[f32; 4]], px: &PixelView) -> Vec3 {
+    (0..frame.light_count as usize)
+        .map(|i| {
+            let (pos, colour) = (lights[2 * i], lights[2 * i + 1]);
+            point_light(
+                px.p,
+                px.n,
+                px.v,
+                px.n_dot_v,
+                &px.m,
+                Vec3::from_slice(&pos[..3]),
+                Vec3::from_slice(&colour[..3]),
+                frame.floor_plane[2],
+            )
+        })
+        .sum()
+}
+
 /// The split-sum pass: per pixel (radiance, surface id).
 pub fn shade_split_sum(
     frame: &FrameUniform,
@@ -74,19 +99,14 @@ pub fn shade_split_sum(
     (0..g.position.len())
         .into_par_iter()
         .map(|k| {
-            let (x, y) = ((k as u32) % frame.width, (k as u32) / frame.width);
-            let (_, dir) = camera.pixel_ray(x, y, frame.width, frame.height);
-            let (s, p, n) = load_surface(g, k);
-            let c = if s == Surface::Background {
-                Vec3::from(sample_cube_lod(&light.specular, dir.into(), 0.0))
+            let px = pixel_view(frame, &camera, g, k);
+            let c = if px.surface == Surface::Background {
+                Vec3::from(sample_cube_lod(&light.specular, px.dir.into(), 0.0))
             } else {
-                let v = -dir;
-                let n_dot_v = n.dot(v).max(frame.front[3]);
-                let m = surface_material(frame, s);
-                split_sum_shade(&split, n, v, n_dot_v, &m)
-                    + direct_lights(frame, lights, p, n, v, n_dot_v, &m)
+                split_sum_shade(&split, px.n, px.v, px.n_dot_v, &px.m)
+                    + direct_lights(frame, lights, &px)
             };
-            c.extend(s as u32 as f32).into()
+            c.extend(px.surface as u32 as f32).into()
         })
         .collect()
 }
@@ -105,23 +125,18 @@ pub fn shade_truth(
     let truth = light.truth(points);
     let weight = points.len() as f32;
     accum.par_iter_mut().enumerate().for_each(|(k, a)| {
-        let (x, y) = ((k as u32) % frame.width, (k as u32) / frame.width);
-        let (_, dir) = camera.pixel_ray(x, y, frame.width, frame.height);
-        let (s, p, n) = load_surface(g, k);
-        let c = if s == Surface::Background {
-            Vec3::from(sample_cube_lod(&light.env, dir.into(), 0.0))
+        let px = pixel_view(frame, &camera, g, k);
+        let c = if px.surface == Surface::Background {
+            Vec3::from(sample_cube_lod(&light.env, px.dir.into(), 0.0))
         } else {
-            let v = -dir;
-            let n_dot_v = n.dot(v).max(frame.front[3]);
-            let m = surface_material(frame, s);
             let seed = (k as u32).wrapping_add(
                 frame
                     .truth_frame
                     .wrapping_mul(frame.width)
                     .wrapping_mul(frame.height),
             );
-            truth_shade(&truth, n, v, n_dot_v, &m, pixel_shift(seed))
-                + direct_lights(frame, lights, p, n, v, n_dot_v, &m)
+            truth_shade(&truth, px.n, px.v, px.n_dot_v, &px.m, pixel_shift(seed))
+                + direct_lights(frame, lights, &px)
         };
         let estimate = [c.x * weight, c.y * weight, c.z * weight, weight];
         if frame.truth_frame == 0 {
