@@ -1,7 +1,8 @@
-// The viewer's split-sum shading: each object or floor pixel of the G-buffer shaded by
-// `split_sum_shade` (common/split_sum.wgsl, the preview's function) plus the point lights
-// on; background pixels read the chain's level 0. Writes (radiance, surface id) per pixel.
-// CPU mirror: src/view/cpu.rs.
+// The viewer's deferred split-sum shading: each pixel of the G-buffer shaded as
+// common/view_shade.wgsl says (surfaces by the preview's split-sum function plus the
+// point lights on, the background by the chain's level 0), for the heat map and the HDR
+// readback; the window's split-sum view draws the same in one pass (view_forward.wgsl).
+// Writes (radiance, surface id) per pixel. CPU mirror: src/view/cpu.rs.
 
 @group(0) @binding(0) var<uniform> frame: FrameParams;
 @group(0) @binding(1) var<uniform> light: SplitSumParams;
@@ -21,9 +22,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let px = pixel_view(id.xy);
     var c: vec3<f32>;
     if (px.s.id == 0u) {
-        c = sample_cube_lod(specular, light.specular_size, light.specular_levels, px.dir, 0.0);
+        c = background_radiance(px.dir);
     } else {
-        c = split_sum_shade(px.s.n, px.v, px.n_dot_v, px.m) + direct_lights(px);
+        c = surface_radiance(px);
     }
     shaded[id.y * frame.width + id.x] = vec4<f32>(c, f32(px.s.id));
 }

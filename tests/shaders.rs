@@ -217,7 +217,19 @@ fn viewer_shaders_validate_and_match_rust() {
     use splitsum::gpu::shaders::{VIEW_GBUFFER, VIEW_SPLIT_SUM, VIEW_TRUTH};
     use splitsum::view::frame::{FrameUniform, PresentUniform};
     let present = splitsum::view::gpu::present_source();
+    let forward = splitsum::view::gpu::forward_source();
     for (name, source, entries) in [
+        (
+            "view_forward",
+            forward.as_str(),
+            &[
+                "vs_main",
+                "fs_mesh",
+                "fs_sphere",
+                "vs_background",
+                "fs_background",
+            ][..],
+        ),
         (
             "view_gbuffer",
             VIEW_GBUFFER,
@@ -240,7 +252,7 @@ fn viewer_shaders_validate_and_match_rust() {
             );
         }
     }
-    for source in [VIEW_GBUFFER, VIEW_SPLIT_SUM, VIEW_TRUTH] {
+    for source in [VIEW_GBUFFER, VIEW_SPLIT_SUM, VIEW_TRUTH, forward.as_str()] {
         assert_layout!(
             source,
             "FrameParams",
@@ -262,19 +274,21 @@ fn viewer_shaders_validate_and_match_rust() {
             ]
         );
     }
-    assert_layout!(
-        present.as_str(),
-        "PresentParams",
-        PresentUniform,
-        [
-            width,
-            height,
-            mode,
-            target_is_srgb,
-            exposure,
-            heat_lo,
-            heat_hi,
-            heat_entries
-        ]
-    );
+    for source in [present.as_str(), forward.as_str()] {
+        assert_layout!(
+            source,
+            "PresentParams",
+            PresentUniform,
+            [
+                width,
+                height,
+                mode,
+                target_is_srgb,
+                exposure,
+                heat_lo,
+                heat_hi,
+                heat_entries
+            ]
+        );
+    }
 }

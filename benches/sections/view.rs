@@ -1,10 +1,9 @@
 //! `cargo bench --bench bench -- view`: the viewer's frame times at 1280×720 with Spot, as
-//! the window draws them (G-buffer, shading, present into a texture, waiting for the
-//! device; no readback), with the camera turning every frame (every pass runs) and still
-//! (the present pass alone), and the ground truth's samples per second; on the GPU
-//! renderer (the adapter wgpu finds: lavapipe here) and the CPU renderer.
-
-use std::time::Instant;
+//! the window draws them (into a texture, waiting for the device; no readback), with the
+//! camera turning every frame and still, on the GPU renderer's forward pass (the window's
+//! split-sum view) and its deferred passes (G-buffer, kernels, present: the truth and heat
+//! views), the ground truth's samples per second, and the CPU renderer; the GPU renderer
+//! on the adapter wgpu finds.
 
 use splitsum::gpu::GpuContext;
 use splitsum::view::frame::Mode;
@@ -16,34 +15,39 @@ use splitsum::BackendChoice;
 /// Frames timed per row (after two warm-up frames).
 const FRAMES: usize = 20;
 
-/// Mean seconds of `frames` calls of `frame`, after two untimed ones.
-fn time(frames: usize, mut frame: impl FnMut(usize)) -> f64 {
+/// (median wall seconds, mean CPU seconds of every thread) of `frames` calls of `frame`
+/// with the frame's number, after two untimed ones. Both are printed: the wall time is
+/// what a person sees, the CPU time steadier where the machine's cores are shared.
+fn time(frames: usize, mut frame: impl FnMut(usize)) -> (f64, f64) {
     frame(0);
     frame(1);
-    let t = Instant::now();
-    for i in 0..frames {
-        frame(i + 2);
-    }
-    t.elapsed().as_secs_f64() / frames as f64
+    let mut i = 2;
+    crate::measure(frames, || {
+        frame(i);
+        i += 1;
+    })
+}
+
+fn row(renderer: &str, frame: &str, (wall, cpu): (f64, f64), truth_rate: Option<f64>) {
+    println!(
+        "| {renderer} | {frame} | {:.1} | {:.1} | {:.1} | {} |",
+        1e3 * wall,
+        1.0 / wall,
+        1e3 * cpu,
+        truth_rate.map_or(String::new(), |r| format!("{r:.1}"))
+    );
 }
 
 pub fn benchmarks() {
-    println!("\n## The viewer at 1280×720 with Spot (mean of {FRAMES} frames)\n");
+    println!("\n## The viewer at 1280×720 with Spot (median of {FRAMES} frames)\n");
     let light = load_light(&LightSource::Bundled, BackendChoice::Auto, &mut |_| {}).unwrap();
     let models = splitsum::view::model::Model::bundled().unwrap();
     let size = DEFAULT_SIZE;
     let pixels = (size.0 * size.1) as f64;
-    println!("| renderer | frame | ms | frames/s | truth Msamples/s |");
-    println!("|---|---|---|---|---|");
+    println!("| renderer | frame | ms | frames/s | CPU ms | truth Msamples/s |");
+    println!("|---|---|---|---|---|---|");
     if let Ok(ctx) = GpuContext::new() {
-        let renderer = GpuRenderer::new(ctx.device.clone(), ctx.queue.clone()).unwrap();
-        let mut v = Viewer::new(
-            light.clone(),
-            models.clone(),
-            Renderer::Gpu(Box::new(renderer)),
-            "gpu",
-        )
-        .unwrap();
+        let name = format!("gpu: {}", ctx.adapter_description());
         let format = wgpu::TextureFormat::Rgba8Unorm;
         let target = splitsum::gpu::texture::create_texture_2d(
             &ctx.device,
@@ -53,40 +57,43 @@ pub fn benchmarks() {
             wgpu::TextureUsages::RENDER_ATTACHMENT,
         );
         let view = target.create_view(&Default::default());
-        let name = ctx.adapter_description();
-        let moving = time(FRAMES, |i| {
-            v.state.camera.yaw_deg = 0.05 * i as f32;
-            v.render_to(size, (&view, format)).unwrap();
-        });
-        let still = time(FRAMES, |_| v.render_to(size, (&view, format)).unwrap());
-        v.state.mode = Mode::Truth;
-        v.points_per_estimate = 8;
-        let truth = time(FRAMES / 4, |_| v.render_to(size, (&view, format)).unwrap());
-        let rate = pixels * 8.0 / truth / 1e6;
-        println!(
-            "| gpu: {name} | camera turning | {:.1} | {:.1} | |",
-            1e3 * moving,
-            1.0 / moving
-        );
-        println!(
-            "| gpu: {name} | still | {:.1} | {:.1} | |",
-            1e3 * still,
-            1.0 / still
-        );
-        println!(
-            "| gpu: {name} | truth, 8 points | {:.1} | {:.2} | {rate:.1} |",
-            1e3 * truth,
-            1.0 / truth
-        );
+        // The window's forward pass first, then the deferred passes the truth and heat
+        // views use, drawing the same split-sum picture.
+        for forward in [true, false] {
+            let mut renderer = GpuRenderer::new(ctx.device.clone(), ctx.queue.clone()).unwrap();
+            renderer.set_forward(forward);
+            let mut v = Viewer::new(
+                light.clone(),
+                models.clone(),
+                Renderer::Gpu(Box::new(renderer)),
+                "gpu",
+            )
+            .unwrap();
+            let path = if forward { "forward" } else { "deferred" };
+            let moving = time(FRAMES, |i| {
+                v.state.camera.yaw_deg = 0.05 * i as f32;
+                v.render_to(size, (&view, format)).unwrap();
+            });
+            row(&name, &format!("camera turning ({path})"), moving, None);
+            let still = time(FRAMES, |_| v.render_to(size, (&view, format)).unwrap());
+            row(&name, &format!("still ({path})"), still, None);
+            if !forward {
+                v.state.mode = Mode::Truth;
+                v.points_per_estimate = 8;
+                let truth = time(FRAMES / 4, |_| v.render_to(size, (&view, format)).unwrap());
+                row(
+                    &name,
+                    "truth, 8 points",
+                    truth,
+                    Some(pixels * 8.0 / truth.0 / 1e6),
+                );
+            }
+        }
     }
     let mut v = Viewer::new(light, models, Renderer::Cpu(CpuFrame::default()), "cpu").unwrap();
     let moving = time(FRAMES / 4, |i| {
         v.state.camera.yaw_deg = 0.05 * i as f32;
         v.render_image(size).unwrap();
     });
-    println!(
-        "| cpu | camera turning | {:.1} | {:.1} | |",
-        1e3 * moving,
-        1.0 / moving
-    );
+    row("cpu", "camera turning", moving, None);
 }

@@ -3,6 +3,3 @@
 override WORKGROUP_X: u32;
 override WORKGROUP_Y: u32;
 override WORKGROUP_Z: u32;
-
-const PI: f32 = 3.14159265358979323846;
-const FRAC_PI_2: f32 = 1.57079632679489661923;

@@ -1,6 +1,9 @@
 // Inverse trigonometry accurate to a few ULP and identical on every driver (Vulkan
 // allows 4096 ULP for atan/acos). Mirror of src/math/trig.rs (same function names).
 
+const PI: f32 = 3.14159265358979323846;
+const FRAC_PI_2: f32 = 1.57079632679489661923;
+
 // atan minimax coefficients (Cephes atanf); equal to ATAN_COEFFS in src/math/trig.rs
 // (checked by tests/shaders.rs).
 const ATAN_C0: f32 = -3.333295e-1;

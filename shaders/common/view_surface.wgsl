@@ -1,7 +1,6 @@
-// What the viewer's shading kernels share: the G-buffer's surfaces, their materials and
-// the point lights. Mirror of src/view/cpu.rs (same function names). The including kernel
-// declares `frame` (FrameParams), `lights` (storage: (position, 0), (colour, 0) each),
-// `gbuffer_position` and `gbuffer_normal` (texture_2d<f32>).
+// What the viewer's shading passes share: the surface a pixel sees, its material and the
+// point lights. Mirror of src/view/cpu.rs (same function names). The including shader
+// declares `frame` (FrameParams) and `lights` (storage: (position, 0), (colour, 0) each).
 
 // A packed material (FrameUniform's object or floor).
 fn unpack_material(m: array<vec4<f32>, 3>) -> ShadeMaterial {
@@ -31,15 +30,6 @@ struct Surface {
     n: vec3<f32>,
 }
 
-fn load_surface(pixel: vec2<u32>) -> Surface {
-    let g = textureLoad(gbuffer_position, pixel, 0);
-    var s: Surface;
-    s.id = u32(round(g.w));
-    s.p = g.xyz;
-    s.n = textureLoad(gbuffer_normal, pixel, 0).xyz;
-    return s;
-}
-
 fn surface_material(id: u32) -> ShadeMaterial {
     if (id == 1u) {
         return unpack_material(frame.object);
@@ -47,10 +37,10 @@ fn surface_material(id: u32) -> ShadeMaterial {
     return unpack_material(frame.floor);
 }
 
-// What a shading kernel sees at a pixel: its ray's direction, the G-buffer's surface
-// there, the view direction v = -dir, n.v clamped away from 0 by frame.front.w (silhouette
-// normals are perpendicular to v) and the surface's material (the floor's on background
-// pixels, which use only dir).
+// What a shading pass sees at a pixel: its ray's direction, the surface there, the view
+// direction v = -dir, n.v clamped away from 0 by frame.front.w (silhouette normals are
+// perpendicular to v) and the surface's material (the floor's on background pixels,
+// which use only dir).
 struct PixelView {
     dir: vec3<f32>,
     s: Surface,
@@ -59,10 +49,11 @@ struct PixelView {
     m: ShadeMaterial,
 }
 
-fn pixel_view(pixel: vec2<u32>) -> PixelView {
+// The view at the pixel centred at `centre` (x + 0.5, y + 0.5) of surface `s`.
+fn surface_view(centre: vec2<f32>, s: Surface) -> PixelView {
     var px: PixelView;
-    px.dir = pixel_ray(frame, vec2<f32>(f32(pixel.x) + 0.5, f32(pixel.y) + 0.5)).dir;
-    px.s = load_surface(pixel);
+    px.dir = pixel_ray(frame, centre).dir;
+    px.s = s;
     px.v = -px.dir;
     px.n_dot_v = max(dot(px.s.n, px.v), frame.front.w);
     px.m = surface_material(px.s.id);

@@ -13,6 +13,19 @@ macro_rules! kernel_source {
     };
 }
 
+/// Declares an assembled render-shader source (vertex and fragment stages, so without the
+/// workgroup overrides): trig and the shared files it uses, then the shader.
+#[cfg_attr(not(feature = "view"), allow(unused_macros))]
+macro_rules! render_source {
+    ($shader:literal, [$($common:literal),*]) => {
+        concat!(
+            include_str!("../../shaders/common/trig.wgsl"), "\n",
+            $(include_str!(concat!("../../shaders/common/", $common)), "\n",)*
+            include_str!(concat!("../../shaders/", $shader))
+        )
+    };
+}
+
 /// `shaders/brdf_lut.wgsl` with brdf and sampling.
 pub const BRDF_LUT: &str = kernel_source!("brdf_lut.wgsl", ["brdf.wgsl", "sampling.wgsl"]);
 
@@ -70,7 +83,7 @@ pub const PREVIEW_TRUTH: &str = kernel_source!(
 );
 
 /// `shaders/view_split_sum.wgsl` with brdf, cubemap, cube_fetch_bordered, cube_sample,
-/// material, split_sum, view_frame, view_surface.
+/// material, split_sum, view_frame, view_surface, view_gbuffer_read, view_shade.
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub const VIEW_SPLIT_SUM: &str = kernel_source!(
     "view_split_sum.wgsl",
@@ -82,12 +95,14 @@ pub const VIEW_SPLIT_SUM: &str = kernel_source!(
         "material.wgsl",
         "split_sum.wgsl",
         "view_frame.wgsl",
-        "view_surface.wgsl"
+        "view_surface.wgsl",
+        "view_gbuffer_read.wgsl",
+        "view_shade.wgsl"
     ]
 );
 
 /// `shaders/view_truth.wgsl` with brdf, sampling, cubemap, cube_fetch_bordered,
-/// cube_sample, material, truth, view_frame, view_surface.
+/// cube_sample, material, truth, view_frame, view_surface, view_gbuffer_read.
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub const VIEW_TRUTH: &str = kernel_source!(
     "view_truth.wgsl",
@@ -100,23 +115,43 @@ pub const VIEW_TRUTH: &str = kernel_source!(
         "material.wgsl",
         "truth.wgsl",
         "view_frame.wgsl",
-        "view_surface.wgsl"
+        "view_surface.wgsl",
+        "view_gbuffer_read.wgsl"
     ]
 );
 
-/// `shaders/view_gbuffer.wgsl` (vertex and fragment stages, so without the workgroup
-/// overrides) with view_frame.
+/// `shaders/view_gbuffer.wgsl` with view_frame and view_raster.
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
-pub const VIEW_GBUFFER: &str = concat!(
-    include_str!("../../shaders/common/view_frame.wgsl"),
-    "\n",
-    include_str!("../../shaders/view_gbuffer.wgsl")
+pub const VIEW_GBUFFER: &str = render_source!(
+    "view_gbuffer.wgsl",
+    ["view_frame.wgsl", "view_raster.wgsl"]
 );
 
-/// `shaders/view_present.wgsl` (vertex and fragment stages), without the constants the
-/// viewer writes before it (`view::gpu::present_source`).
+/// `shaders/view_present.wgsl` with view_display, without the constants the viewer writes
+/// before it (`view::gpu::present_source`).
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
-pub const VIEW_PRESENT_BODY: &str = include_str!("../../shaders/view_present.wgsl");
+pub const VIEW_PRESENT_BODY: &str = render_source!("view_present.wgsl", ["view_display.wgsl"]);
+
+/// `shaders/view_forward.wgsl` with brdf, cubemap, cube_fetch_bordered, cube_sample,
+/// material, split_sum, view_frame, view_surface, view_shade, view_raster, view_display,
+/// without the constants the viewer writes before it (`view::gpu::forward_source`).
+#[cfg_attr(not(feature = "view"), allow(dead_code))]
+pub const VIEW_FORWARD_BODY: &str = render_source!(
+    "view_forward.wgsl",
+    [
+        "brdf.wgsl",
+        "cubemap.wgsl",
+        "cube_fetch_bordered.wgsl",
+        "cube_sample.wgsl",
+        "material.wgsl",
+        "split_sum.wgsl",
+        "view_frame.wgsl",
+        "view_surface.wgsl",
+        "view_shade.wgsl",
+        "view_raster.wgsl",
+        "view_display.wgsl"
+    ]
+);
 
 #[cfg(any(test, feature = "internals"))]
 /// Every assembled kernel by name, for validation.

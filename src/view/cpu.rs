@@ -1,6 +1,7 @@
 //! The viewer's CPU renderer: the G-buffer of [`crate::view::raster`], then the shading
-//! and present passes written function for function like `shaders/view_split_sum.wgsl`,
-//! `shaders/view_truth.wgsl` and `shaders/view_present.wgsl`, with the preview's shading
+//! and present passes written function for function like the GPU renderer's deferred path
+//! (`shaders/view_split_sum.wgsl` with `common/view_shade.wgsl`, `view_truth.wgsl`,
+//! `view_present.wgsl` with `common/view_display.wgsl`), with the preview's shading
 //! functions (`cpu::preview_split_sum::split_sum_shade`, `cpu::preview_truth::truth_shade`).
 //! It renders where no adapter is (`--backend cpu`, offscreen) and checks the GPU's
 //! frames.
@@ -33,7 +34,8 @@ struct PixelView {
     m: ShadeMaterial,
 }
 
-/// A G-buffer pixel: (surface, position, normal) (`load_surface` in view_surface.wgsl).
+/// A G-buffer pixel: (surface, position, normal) (`load_surface` in
+/// view_gbuffer_read.wgsl).
 fn load_surface(g: &GBuffer, k: usize) -> (Surface, Vec3, Vec3) {
     let p = g.position[k];
     (
@@ -50,7 +52,7 @@ fn surface_material(frame: &FrameUniform, s: Surface) -> ShadeMaterial {
     }
 }
 
-/// `pixel_view` in view_surface.wgsl.
+/// `pixel_view` in view_gbuffer_read.wgsl (`surface_view` in view_surface.wgsl).
 fn pixel_view(frame: &FrameUniform, camera: &CameraFrame, g: &GBuffer, k: usize) -> PixelView {
     let (x, y) = ((k as u32) % frame.width, (k as u32) / frame.width);
     let (_, dir) = camera.pixel_ray(x, y, frame.width, frame.height);
@@ -87,7 +89,8 @@ fn direct_lights(frame: &FrameUniform, lights: &[[f32; 4]], px: &PixelView) -> V
         .sum()
 }
 
-/// The split-sum pass: per pixel (radiance, surface id).
+/// The split-sum pass: per pixel (radiance, surface id), the background's and the
+/// surfaces' as `background_radiance` and `surface_radiance` in view_shade.wgsl.
 pub fn shade_split_sum(
     frame: &FrameUniform,
     light: &ViewLight,
@@ -149,7 +152,8 @@ pub fn shade_truth(
     });
 }
 
-/// A linear radiance, exposed, tone-mapped and sRGB-encoded, in [0, 1].
+/// A linear radiance, exposed, tone-mapped and sRGB-encoded, in [0, 1] (`display` in
+/// view_display.wgsl).
 fn display(c: [f32; 3], exposure: f32) -> [f32; 3] {
     pbr_neutral(c.map(|v| v.max(0.0) * exposure)).map(linear_to_srgb)
 }

@@ -1,5 +1,6 @@
 //! The viewer's G-buffer: the vertices both renderers draw, and the CPU twin of the GPU's
-//! raster pass (`shaders/view_gbuffer.wgsl`).
+//! raster passes (`shaders/view_gbuffer.wgsl` and `view_forward.wgsl`, whose vertex stage
+//! and sphere ray-cast are `common/view_raster.wgsl`).
 //!
 //! The CPU rasteriser follows the rules a GPU's does (Vulkan specification, "Rasterization",
 //! polygon rasterization): triangles are clipped to the near plane in clip space
@@ -100,7 +101,7 @@ pub struct GBuffer {
 }
 
 /// The nearest hit of a ray on the sphere: (offset from the centre, distance), as
-/// `fs_sphere` computes it.
+/// `sphere_hit` (common/view_raster.wgsl) computes it.
 pub fn ray_sphere(origin: Vec3, dir: Vec3, centre: Vec3, radius: f32) -> Option<(Vec3, f32)> {
     let f = origin - centre;
     let b = f.dot(dir);

@@ -381,8 +381,8 @@ impl Viewer {
 
     /// The last frame's split-sum (radiance, surface id) and truth accumulation (radiance
     /// × points, points) per pixel, before exposure and tone mapping.
-    pub fn hdr(&self) -> Result<HdrFrame> {
-        match &self.renderer {
+    pub fn hdr(&mut self) -> Result<HdrFrame> {
+        match &mut self.renderer {
             Renderer::Gpu(g) => g.read_hdr(),
             Renderer::Cpu(c) => Ok((c.shaded.clone(), c.accum.clone())),
         }

@@ -1,33 +1,47 @@
-//! The viewer's GPU renderer: the G-buffer raster pass (`shaders/view_gbuffer.wgsl`),
-//! the split-sum and truth kernels (`view_split_sum.wgsl`, `view_truth.wgsl`) and the
-//! present pass (`view_present.wgsl`) into a window's surface or an offscreen texture.
-//! CPU twin: [`crate::view::cpu`] with [`crate::view::raster`]. Pipelines and buffers:
-//! `pipelines`; reading frames back: `readback`.
+//! The viewer's GPU renderer, two paths to one picture:
+//!
+//! - **forward** (the split-sum view, what the window draws while it is shown): one
+//!   render pass (`shaders/view_forward.wgsl`) shades each fragment of the model and the
+//!   floor, then the background, and writes the displayed colour with the HUD over it;
+//! - **deferred** (the truth and heat views, and the HDR a test reads back): the G-buffer
+//!   raster pass (`view_gbuffer.wgsl`), the split-sum and truth kernels
+//!   (`view_split_sum.wgsl`, `view_truth.wgsl`) into per-pixel buffers, and the present
+//!   pass (`view_present.wgsl`).
+//!
+//! Both call the same WGSL functions on the same surface; the forward path only skips
+//! writing and reading the per-pixel buffers, which on a software rasteriser cost more
+//! than the shading (docs/accuracy.md, "The viewer's cost"). CPU twin: [`crate::view::cpu`]
+//! with [`crate::view::raster`] (the deferred path). Pipelines and buffers: `pipelines`;
+//! reading frames back: `readback`.
 
 use image::RgbaImage;
 
 use crate::gpu::compute::{
-    bind_group, buffer_with_data, storage_buffer, uniform_buffer, with_error_scope, ComputeKernel,
+    buffer_with_data, storage_buffer, uniform_buffer, with_error_scope, ComputeKernel,
 };
 use crate::gpu::preview::{SplitSumUniform, TruthUniform};
 use crate::gpu::shaders;
 use crate::gpu::texture::{create_texture_2d, upload_bordered_cube, upload_lut_pairs};
-use crate::view::frame::{heat_table, light_table, FrameUniform, PresentUniform, ViewLight};
+use crate::view::frame::{heat_table, light_table, FrameUniform, Mode, PresentUniform, ViewLight};
 use crate::view::model::{Model, Shape};
-use crate::view::raster::{scene_vertices, sphere_box_vertices, Vertex};
+use crate::view::raster::{scene_vertices, sphere_box_vertices};
 use crate::view::scene::POINT_LIGHTS;
 use crate::{Error, Result};
 
+mod passes;
 mod pipelines;
 mod readback;
 
-pub use pipelines::present_source;
-use pipelines::{buffer, render_pipeline};
+use pipelines::{buffer, render_pipeline, vertex_layout, Depth};
+pub use pipelines::{forward_source, present_source};
 
 /// Workgroup of the shading kernels.
 const WORKGROUP: [u32; 3] = [8, 8, 1];
 /// Most quadrature points one truth estimate uses.
 pub const MAX_TRUTH_POINTS: u32 = 256;
+/// How many of the forward pass's first bindings its background reads
+/// (`shaders/view_forward.wgsl`).
+const BACKGROUND_BINDINGS: usize = 5;
 /// The G-buffer's formats: (position, id) and (normal, 0) in full floats, depth.
 const GBUFFER_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -56,6 +70,16 @@ struct Targets {
     hud: wgpu::Texture,
 }
 
+/// The display passes for one target format: the present pass and the forward pass's
+/// model, sphere and background pipelines.
+struct DisplayPipelines {
+    format: wgpu::TextureFormat,
+    present: wgpu::RenderPipeline,
+    mesh: wgpu::RenderPipeline,
+    sphere: wgpu::RenderPipeline,
+    background: wgpu::RenderPipeline,
+}
+
 /// The viewer's renderer on one device.
 pub struct GpuRenderer {
     device: wgpu::Device,
@@ -63,8 +87,13 @@ pub struct GpuRenderer {
     mesh_pipeline: wgpu::RenderPipeline,
     sphere_pipeline: wgpu::RenderPipeline,
     present_module: wgpu::ShaderModule,
-    /// The present pass per target format, compiled on first use.
-    present_pipelines: Vec<(wgpu::TextureFormat, wgpu::RenderPipeline)>,
+    forward_module: wgpu::ShaderModule,
+    /// The display passes per target format, compiled on first use.
+    display_pipelines: Vec<DisplayPipelines>,
+    /// Whether the split-sum view is drawn by the forward pass (else by the deferred one).
+    forward: bool,
+    /// Whether the G-buffer and the split-sum buffer hold the last frame drawn.
+    deferred_current: bool,
     split_sum: ComputeKernel,
     truth: ComputeKernel,
     frame: wgpu::Buffer,
@@ -97,39 +126,39 @@ impl GpuRenderer {
             WORKGROUP,
         )?;
         let truth = ComputeKernel::new(&device, "view_truth", shaders::VIEW_TRUTH, WORKGROUP)?;
-        let (mesh_pipeline, sphere_pipeline, present_module) =
+        let (mesh_pipeline, sphere_pipeline, present_module, forward_module) =
             with_error_scope(&device, "viewer pipelines", || {
                 let gbuffer = device.create_shader_module(wgpu::ShaderModuleDescriptor {
                     label: Some("view_gbuffer"),
                     source: wgpu::ShaderSource::Wgsl(shaders::VIEW_GBUFFER.into()),
                 });
-                let layout = wgpu::VertexBufferLayout {
-                    array_stride: std::mem::size_of::<Vertex>() as u64,
-                    step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4],
-                };
+                let layout = vertex_layout();
                 let gtargets = [Some(GBUFFER_FORMAT.into()), Some(GBUFFER_FORMAT.into())];
                 let mesh = render_pipeline(
                     &device,
                     &gbuffer,
-                    "fs_mesh",
+                    ("vs_main", "fs_mesh"),
                     &gtargets,
                     &[Some(layout.clone())],
-                    true,
+                    Depth::Nearest,
                 );
                 let sphere = render_pipeline(
                     &device,
                     &gbuffer,
-                    "fs_sphere",
+                    ("vs_main", "fs_sphere"),
                     &gtargets,
                     &[Some(layout)],
-                    true,
+                    Depth::Nearest,
                 );
                 let present = device.create_shader_module(wgpu::ShaderModuleDescriptor {
                     label: Some("view_present"),
                     source: wgpu::ShaderSource::Wgsl(present_source().into()),
                 });
-                (mesh, sphere, present)
+                let forward = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some("view_forward"),
+                    source: wgpu::ShaderSource::Wgsl(forward_source().into()),
+                });
+                (mesh, sphere, present, forward)
             })?;
         let uniform = wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST;
         let storage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
@@ -171,7 +200,10 @@ impl GpuRenderer {
             mesh_pipeline,
             sphere_pipeline,
             present_module,
-            present_pipelines: Vec::new(),
+            forward_module,
+            display_pipelines: Vec::new(),
+            forward: true,
+            deferred_current: false,
             split_sum,
             truth,
             frame,
@@ -188,22 +220,58 @@ impl GpuRenderer {
         })
     }
 
-    /// The present pass writing `format`.
-    fn present_pipeline(&mut self, format: wgpu::TextureFormat) -> Result<()> {
-        if !self.present_pipelines.iter().any(|(f, _)| *f == format) {
-            let pipeline = with_error_scope(&self.device, "the viewer's present pass", || {
-                render_pipeline(
-                    &self.device,
-                    &self.present_module,
-                    "fs_main",
-                    &[Some(format.into())],
-                    &[],
-                    false,
-                )
+    /// The display passes writing `format`.
+    fn display_pipelines(&mut self, format: wgpu::TextureFormat) -> Result<&DisplayPipelines> {
+        if !self.display_pipelines.iter().any(|p| p.format == format) {
+            let (device, present, forward) =
+                (&self.device, &self.present_module, &self.forward_module);
+            let pipelines = with_error_scope(device, "the viewer's display passes", || {
+                let targets = [Some(format.into())];
+                let layout = vertex_layout();
+                let mesh = |fragment| {
+                    render_pipeline(
+                        device,
+                        forward,
+                        ("vs_main", fragment),
+                        &targets,
+                        &[Some(layout.clone())],
+                        Depth::Nearest,
+                    )
+                };
+                DisplayPipelines {
+                    format,
+                    present: render_pipeline(
+                        device,
+                        present,
+                        ("vs_main", "fs_main"),
+                        &targets,
+                        &[],
+                        Depth::None,
+                    ),
+                    mesh: mesh("fs_mesh"),
+                    sphere: mesh("fs_sphere"),
+                    background: render_pipeline(
+                        device,
+                        forward,
+                        ("vs_background", "fs_background"),
+                        &targets,
+                        &[],
+                        Depth::Behind,
+                    ),
+                }
             })?;
-            self.present_pipelines.push((format, pipeline));
+            self.display_pipelines.push(pipelines);
         }
-        Ok(())
+        self.display_pipelines
+            .iter()
+            .find(|p| p.format == format)
+            .ok_or_else(|| gpu_error("viewer frame", "no display passes"))
+    }
+
+    /// Whether the split-sum view is drawn by the forward pass (the default) or by the
+    /// deferred passes, which give the same picture (a test compares them).
+    pub fn set_forward(&mut self, forward: bool) {
+        self.forward = forward;
     }
 
     /// Uploads the baked light.
@@ -304,9 +372,11 @@ impl GpuRenderer {
             .ok_or_else(|| gpu_error("viewer targets", "missing"))
     }
 
-    /// Records and submits one frame into `target`: the G-buffer and split-sum passes
-    /// when `geometry_changed`, one truth estimate with `points` when given, then the
-    /// present pass with `hud` (when given, a new HUD image) over it.
+    /// Records and submits one frame into `target`: the forward pass in the split-sum view
+    /// (when [`GpuRenderer::set_forward`] left it on); else the G-buffer and split-sum
+    /// passes when `geometry_changed` (or the buffers hold an older frame), one truth
+    /// estimate with `points` when given, then the present pass. `hud`, when given, is a
+    /// new HUD image to lay over the frame.
     pub fn render(
         &mut self,
         frame: &FrameUniform,
@@ -318,162 +388,71 @@ impl GpuRenderer {
     ) -> Result<()> {
         let size = (frame.width, frame.height);
         self.targets(size)?;
-        self.present_pipeline(format)?;
-        let present_pipeline = self
-            .present_pipelines
-            .iter()
-            .find(|(f, _)| *f == format)
-            .map(|(_, p)| p)
-            .ok_or_else(|| gpu_error("viewer frame", "no present pass"))?;
-        let (Some(light), Some((vertices, count)), Some(t)) =
-            (&self.light, &self.vertices, &self.targets)
-        else {
-            return Err(gpu_error("viewer frame", "no light or model uploaded"));
-        };
+        self.display_pipelines(format)?;
+        let forward = self.forward && points.is_none() && present.mode == Mode::SplitSum as u32;
+        let deferred = !forward && (geometry_changed || !self.deferred_current);
         let (device, queue) = (&self.device, &self.queue);
         with_error_scope(device, "viewer frame", || {
             queue.write_buffer(&self.frame, 0, bytemuck::bytes_of(frame));
             queue.write_buffer(&self.present, 0, bytemuck::bytes_of(present));
             if let Some(image) = hud {
-                queue.write_texture(
-                    wgpu::TexelCopyTextureInfo {
-                        texture: &t.hud,
-                        mip_level: 0,
-                        origin: wgpu::Origin3d::ZERO,
-                        aspect: wgpu::TextureAspect::All,
-                    },
-                    image.as_raw(),
-                    wgpu::TexelCopyBufferLayout {
-                        offset: 0,
-                        bytes_per_row: Some(4 * size.0),
-                        rows_per_image: Some(size.1),
-                    },
-                    t.hud.size(),
-                );
+                self.upload_hud(image, size);
             }
-            let mut encoder = device.create_command_encoder(&Default::default());
-            let bind = |pipeline: &wgpu::RenderPipeline, resources: &[wgpu::BindingResource]| {
-                bind_group(device, None, &pipeline.get_bind_group_layout(0), resources)
-            };
-            if geometry_changed {
-                let clear = wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                    store: wgpu::StoreOp::Store,
-                };
-                let attachment = |view| {
-                    Some(wgpu::RenderPassColorAttachment {
-                        view,
-                        resolve_target: None,
-                        ops: clear,
-                        depth_slice: None,
-                    })
-                };
-                let mesh_group = bind(&self.mesh_pipeline, &[self.frame.as_entire_binding()]);
-                let sphere_group = bind(&self.sphere_pipeline, &[self.frame.as_entire_binding()]);
-                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some("view gbuffer"),
-                    color_attachments: &[attachment(&t.position), attachment(&t.normal)],
-                    depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                        view: &t.depth,
-                        depth_ops: Some(wgpu::Operations {
-                            load: wgpu::LoadOp::Clear(1.0),
-                            store: wgpu::StoreOp::Store,
-                        }),
-                        stencil_ops: None,
-                    }),
-                    timestamp_writes: None,
-                    occlusion_query_set: None,
-                    multiview_mask: None,
-                });
-                pass.set_pipeline(&self.mesh_pipeline);
-                pass.set_bind_group(0, &mesh_group, &[]);
-                pass.set_vertex_buffer(0, vertices.slice(..));
-                pass.draw(0..*count, 0..1);
-                if self.sphere {
-                    pass.set_pipeline(&self.sphere_pipeline);
-                    pass.set_bind_group(0, &sphere_group, &[]);
-                    pass.set_vertex_buffer(0, self.sphere_box.slice(..));
-                    pass.draw(0..36, 0..1);
-                }
-                drop(pass);
-                self.split_sum.dispatch(
-                    device,
-                    &mut encoder,
-                    &[
-                        self.frame.as_entire_binding(),
-                        light.split_sum.as_entire_binding(),
-                        wgpu::BindingResource::TextureView(&light.specular),
-                        wgpu::BindingResource::TextureView(&light.irradiance),
-                        wgpu::BindingResource::TextureView(&light.lut),
-                        self.lights.as_entire_binding(),
-                        wgpu::BindingResource::TextureView(&t.position),
-                        wgpu::BindingResource::TextureView(&t.normal),
-                        t.shaded.as_entire_binding(),
-                    ],
-                    [size.0, size.1, 1],
-                );
+        })?;
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        if forward {
+            self.encode_forward(&mut encoder, (target, format))?;
+        } else {
+            if deferred {
+                self.encode_deferred_split_sum(&mut encoder)?;
             }
             if let Some(points) = points {
-                let n = points.len().min(MAX_TRUTH_POINTS as usize);
-                queue.write_buffer(&self.points, 0, bytemuck::cast_slice(&points[..n]));
-                let params = TruthUniform {
-                    env_size: light.truth_env_size,
-                    hot_count: light.hot_count,
-                    point_count: n as u32,
-                    _pad: 0,
-                };
-                queue.write_buffer(&self.truth_params, 0, bytemuck::bytes_of(&params));
-                self.truth.dispatch(
-                    device,
-                    &mut encoder,
-                    &[
-                        self.frame.as_entire_binding(),
-                        self.truth_params.as_entire_binding(),
-                        wgpu::BindingResource::TextureView(&light.env),
-                        wgpu::BindingResource::TextureView(&light.cold),
-                        light.hot.as_entire_binding(),
-                        self.points.as_entire_binding(),
-                        self.lights.as_entire_binding(),
-                        wgpu::BindingResource::TextureView(&t.position),
-                        wgpu::BindingResource::TextureView(&t.normal),
-                        t.accum.as_entire_binding(),
-                    ],
-                    [size.0, size.1, 1],
-                );
+                self.encode_truth(&mut encoder, points)?;
             }
-            let hud_view = t.hud.create_view(&Default::default());
-            let group = bind(
-                present_pipeline,
-                &[
-                    self.present.as_entire_binding(),
-                    t.shaded.as_entire_binding(),
-                    t.accum.as_entire_binding(),
-                    self.heat.as_entire_binding(),
-                    wgpu::BindingResource::TextureView(&hud_view),
-                ],
-            );
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("view present"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: target,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                        store: wgpu::StoreOp::Store,
-                    },
-                    depth_slice: None,
-                })],
-                depth_stencil_attachment: None,
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            pass.set_pipeline(present_pipeline);
-            pass.set_bind_group(0, &group, &[]);
-            pass.draw(0..3, 0..1);
-            drop(pass);
-            queue.submit([encoder.finish()]);
-        })
+            self.encode_present(&mut encoder, (target, format))?;
+        }
+        with_error_scope(&self.device, "viewer frame", || {
+            self.queue.submit([encoder.finish()]);
+        })?;
+        if forward && geometry_changed {
+            self.deferred_current = false;
+        } else if deferred {
+            self.deferred_current = true;
+        }
+        Ok(())
+    }
+
+    /// Brings the G-buffer and the split-sum buffer up to the last frame drawn (the
+    /// forward pass writes neither), for a readback.
+    pub(super) fn update_deferred(&mut self) -> Result<()> {
+        if !self.deferred_current {
+            let mut encoder = self.device.create_command_encoder(&Default::default());
+            self.encode_deferred_split_sum(&mut encoder)?;
+            with_error_scope(&self.device, "viewer frame", || {
+                self.queue.submit([encoder.finish()]);
+            })?;
+            self.deferred_current = true;
+        }
+        Ok(())
+    }
+
+    fn upload_hud(&self, image: &RgbaImage, size: (u32, u32)) {
+        let Some(t) = &self.targets else { return };
+        self.queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &t.hud,
+                mip_level: 0,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            image.as_raw(),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(4 * size.0),
+                rows_per_image: Some(size.1),
+            },
+            t.hud.size(),
+        );
     }
 
     /// Waits for the submitted work (so a frame's time is measured, and a lost device

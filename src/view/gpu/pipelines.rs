@@ -1,5 +1,6 @@
-//! The viewer's render pipelines and buffers: the present pass's source with the Rust
-//! constants it reads, and the helpers that create pipelines and buffers.
+//! The viewer's render pipelines and buffers: the display passes' sources (present and
+//! forward) with the Rust constants they read, and the helpers that create pipelines and
+//! buffers.
 
 use crate::gpu::shaders;
 use crate::math::color::{
@@ -9,10 +10,26 @@ use crate::stages::preview::picture::{
     HEAT_BACKGROUND, LUMINANCE, PBR_NEUTRAL_DESATURATION, PBR_NEUTRAL_START_COMPRESSION,
 };
 
+use crate::view::raster::Vertex;
+
 use super::DEPTH_FORMAT;
 
-/// The present pass's source: the Rust constants it needs, then `view_present.wgsl`.
-pub fn present_source() -> String {
+/// A [`Vertex`]: (position, surface id) and (normal, 0).
+const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 2] =
+    wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4];
+
+/// The vertex buffer layout of the model, floor and sphere-box draws.
+pub(super) fn vertex_layout() -> wgpu::VertexBufferLayout<'static> {
+    wgpu::VertexBufferLayout {
+        array_stride: std::mem::size_of::<Vertex>() as u64,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: &VERTEX_ATTRIBUTES,
+    }
+}
+
+/// The WGSL constants the display passes read (`common/view_display.wgsl` and the present
+/// pass's heat map), written from the Rust ones so none is typed twice.
+fn display_constants() -> String {
     let bg = HEAT_BACKGROUND.0.map(|v| v as f32 / 255.0);
     format!(
         "const PBR_NEUTRAL_START_COMPRESSION: f32 = {:?};\n\
@@ -23,7 +40,7 @@ pub fn present_source() -> String {
          const SRGB_OFFSET: f32 = {:?};\n\
          const SRGB_GAMMA: f32 = {:?};\n\
          const LUMINANCE: vec3<f32> = vec3<f32>({:?}, {:?}, {:?});\n\
-         const HEAT_BACKGROUND: vec3<f32> = vec3<f32>({:?}, {:?}, {:?});\n{}",
+         const HEAT_BACKGROUND: vec3<f32> = vec3<f32>({:?}, {:?}, {:?});\n",
         PBR_NEUTRAL_START_COMPRESSION,
         PBR_NEUTRAL_DESATURATION,
         SRGB_LINEAR_MAX,
@@ -37,8 +54,17 @@ pub fn present_source() -> String {
         bg[0],
         bg[1],
         bg[2],
-        shaders::VIEW_PRESENT_BODY
     )
+}
+
+/// The present pass's source: the Rust constants it needs, then `view_present.wgsl`.
+pub fn present_source() -> String {
+    display_constants() + shaders::VIEW_PRESENT_BODY
+}
+
+/// The forward pass's source: the Rust constants it needs, then `view_forward.wgsl`.
+pub fn forward_source() -> String {
+    display_constants() + shaders::VIEW_FORWARD_BODY
 }
 
 pub(super) fn buffer(
@@ -55,31 +81,49 @@ pub(super) fn buffer(
     })
 }
 
+/// How a pass uses the depth buffer.
+#[derive(Clone, Copy)]
+pub(super) enum Depth {
+    /// No depth buffer.
+    None,
+    /// Nearest wins: tested (less) and written.
+    Nearest,
+    /// Drawn where nothing nearer is (less or equal), not written: the forward pass's
+    /// background on the far plane.
+    Behind,
+}
+
+/// A render pipeline of `module`'s `vertex` and `fragment` entry points.
 pub(super) fn render_pipeline(
     device: &wgpu::Device,
     module: &wgpu::ShaderModule,
-    fragment: &str,
+    (vertex, fragment): (&str, &str),
     targets: &[Option<wgpu::ColorTargetState>],
     vertex_buffers: &[Option<wgpu::VertexBufferLayout>],
-    depth: bool,
+    depth: Depth,
 ) -> wgpu::RenderPipeline {
+    let depth_state = |write: bool, compare: wgpu::CompareFunction| wgpu::DepthStencilState {
+        format: DEPTH_FORMAT,
+        depth_write_enabled: Some(write),
+        depth_compare: Some(compare),
+        stencil: Default::default(),
+        bias: Default::default(),
+    };
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(fragment),
         layout: None,
         vertex: wgpu::VertexState {
             module,
-            entry_point: Some("vs_main"),
+            entry_point: Some(vertex),
             compilation_options: Default::default(),
             buffers: vertex_buffers,
         },
         primitive: wgpu::PrimitiveState::default(),
-        depth_stencil: depth.then(|| wgpu::DepthStencilState {
-            format: DEPTH_FORMAT,
-            depth_write_enabled: Some(true),
-            depth_compare: Some(wgpu::CompareFunction::Less),
-            stencil: Default::default(),
-            bias: Default::default(),
-        }),
+        depth_stencil: match depth {
+            Depth::None => None,
+            Depth::Nearest => Some(depth_state(true, wgpu::CompareFunction::Less)),
+            Depth::Behind => Some(depth_state(false, wgpu::CompareFunction::LessEqual)),
+        },
         multisample: Default::default(),
         fragment: Some(wgpu::FragmentState {
             module,

@@ -12,8 +12,10 @@ use super::{gpu_error, GpuRenderer};
 
 impl GpuRenderer {
     /// The last frame's split-sum (radiance, surface id) and truth accumulation
-    /// (radiance × points, points) per pixel.
-    pub fn read_hdr(&self) -> Result<HdrFrame> {
+    /// (radiance × points, points) per pixel; a frame drawn by the forward pass gets its
+    /// split-sum from the deferred passes first.
+    pub fn read_hdr(&mut self) -> Result<HdrFrame> {
+        self.update_deferred()?;
         let t = self
             .targets
             .as_ref()

@@ -1,0 +1,68 @@
+// The viewer's split-sum frame in one render pass (vertex and fragment stages), what the
+// window draws while the split-sum view is shown: each object and floor fragment shaded
+// as the deferred kernel shades a G-buffer pixel (`surface_radiance`,
+// common/view_shade.wgsl), the background where nothing nearer was drawn
+// (`background_radiance`), then displayed with the HUD over it as the present pass shows
+// a split-sum pixel (common/view_display.wgsl). The same functions of the same surface as
+// the deferred path (view_gbuffer, view_split_sum, view_present), which the truth and
+// heat views and the HDR readback use; both give the same picture (tests/view.rs). CPU
+// mirror: src/view/cpu.rs through the deferred path.
+
+// Bindings 0 to 4 are what the background reads, so its bind group is the first five of
+// the surfaces' (src/view/gpu/mod.rs, `BACKGROUND_BINDINGS`).
+@group(0) @binding(0) var<uniform> frame: FrameParams;
+@group(0) @binding(1) var<uniform> light: SplitSumParams;
+@group(0) @binding(2) var specular: texture_2d_array<f32>;
+@group(0) @binding(3) var<uniform> present: PresentParams;
+@group(0) @binding(4) var hud: texture_2d<f32>;
+@group(0) @binding(5) var irradiance: texture_2d_array<f32>;
+@group(0) @binding(6) var lut: texture_2d<f32>;
+@group(0) @binding(7) var<storage, read> lights: array<vec4<f32>>;
+
+// The displayed split-sum colour of surface `s` at the pixel centred at `centre`.
+fn shade_fragment(centre: vec2<f32>, s: Surface) -> vec4<f32> {
+    return with_hud(display(surface_radiance(surface_view(centre, s))), vec2<u32>(centre));
+}
+
+@fragment
+fn fs_mesh(v: VertexOut) -> @location(0) vec4<f32> {
+    var s: Surface;
+    s.id = u32(round(v.id));
+    s.p = v.world;
+    s.n = normalize(v.normal);
+    return shade_fragment(v.clip.xy, s);
+}
+
+struct SphereFragment {
+    @location(0) colour: vec4<f32>,
+    @builtin(frag_depth) depth: f32,
+}
+
+@fragment
+fn fs_sphere(v: VertexOut) -> SphereFragment {
+    let h = sphere_hit(v.clip.xy);
+    if (!h.hit) {
+        discard;
+    }
+    var s: Surface;
+    s.id = 1u;
+    s.p = h.p;
+    s.n = h.n;
+    var o: SphereFragment;
+    o.colour = shade_fragment(v.clip.xy, s);
+    o.depth = h.depth;
+    return o;
+}
+
+// The background: one triangle on the far plane, drawn last where the depth is still the
+// cleared 1.
+@vertex
+fn vs_background(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    return fullscreen_triangle(i, 1.0);
+}
+
+@fragment
+fn fs_background(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    let dir = pixel_ray(frame, position.xy).dir;
+    return with_hud(display(background_radiance(dir)), vec2<u32>(position.xy));
+}

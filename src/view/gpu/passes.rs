@@ -1,0 +1,245 @@
+//! The viewer's GPU passes, recorded into a frame's command encoder: the forward pass,
+//! the deferred G-buffer and split-sum passes, one truth estimate and the present pass
+//! (what each computes: the parent module's docs and the shaders named there).
+
+use crate::gpu::compute::{bind_group, with_error_scope};
+use crate::gpu::preview::TruthUniform;
+use crate::Result;
+
+use super::{
+    gpu_error, GpuRenderer, LightTextures, Targets, BACKGROUND_BINDINGS, MAX_TRUTH_POINTS,
+};
+
+impl GpuRenderer {
+    /// What every pass of a frame reads: the light, the model's vertices and the targets.
+    pub(super) fn frame_inputs(&self) -> Result<(&LightTextures, (&wgpu::Buffer, u32), &Targets)> {
+        match (&self.light, &self.vertices, &self.targets) {
+            (Some(light), Some((vertices, count)), Some(t)) => Ok((light, (vertices, *count), t)),
+            _ => Err(gpu_error("viewer frame", "no light or model uploaded")),
+        }
+    }
+
+    /// The model (and the ray-cast sphere) drawn into an open pass by `mesh` and `sphere`.
+    fn draw_scene(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        (mesh, sphere): (&wgpu::RenderPipeline, &wgpu::RenderPipeline),
+        resources: &[wgpu::BindingResource],
+    ) -> Result<()> {
+        let (_, (vertices, count), _) = self.frame_inputs()?;
+        let bind = |pipeline: &wgpu::RenderPipeline| {
+            bind_group(
+                &self.device,
+                None,
+                &pipeline.get_bind_group_layout(0),
+                resources,
+            )
+        };
+        pass.set_pipeline(mesh);
+        pass.set_bind_group(0, &bind(mesh), &[]);
+        pass.set_vertex_buffer(0, vertices.slice(..));
+        pass.draw(0..count, 0..1);
+        if self.sphere {
+            pass.set_pipeline(sphere);
+            pass.set_bind_group(0, &bind(sphere), &[]);
+            pass.set_vertex_buffer(0, self.sphere_box.slice(..));
+            pass.draw(0..36, 0..1);
+        }
+        Ok(())
+    }
+
+    /// The forward pass: the model, the floor and the background shaded and displayed.
+    pub(super) fn encode_forward(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        (target, format): (&wgpu::TextureView, wgpu::TextureFormat),
+    ) -> Result<()> {
+        let (light, _, t) = self.frame_inputs()?;
+        let p = self
+            .display_pipelines
+            .iter()
+            .find(|p| p.format == format)
+            .ok_or_else(|| gpu_error("viewer frame", "no display passes"))?;
+        let hud = t.hud.create_view(&Default::default());
+        let resources = [
+            self.frame.as_entire_binding(),
+            light.split_sum.as_entire_binding(),
+            wgpu::BindingResource::TextureView(&light.specular),
+            self.present.as_entire_binding(),
+            wgpu::BindingResource::TextureView(&hud),
+            wgpu::BindingResource::TextureView(&light.irradiance),
+            wgpu::BindingResource::TextureView(&light.lut),
+            self.lights.as_entire_binding(),
+        ];
+        with_error_scope(&self.device, "viewer frame", || {
+            let mut pass = begin_pass(
+                encoder,
+                "view forward",
+                &[colour_attachment(target)],
+                Some(&t.depth),
+            );
+            let drawn = self.draw_scene(&mut pass, (&p.mesh, &p.sphere), &resources);
+            pass.set_pipeline(&p.background);
+            pass.set_bind_group(
+                0,
+                &bind_group(
+                    &self.device,
+                    None,
+                    &p.background.get_bind_group_layout(0),
+                    &resources[..BACKGROUND_BINDINGS],
+                ),
+                &[],
+            );
+            pass.draw(0..3, 0..1);
+            drawn
+        })?
+    }
+
+    /// The G-buffer pass, then the split-sum kernel into the split-sum buffer.
+    pub(super) fn encode_deferred_split_sum(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+    ) -> Result<()> {
+        let (light, _, t) = self.frame_inputs()?;
+        with_error_scope(&self.device, "viewer frame", || {
+            let mut pass = begin_pass(
+                encoder,
+                "view gbuffer",
+                &[colour_attachment(&t.position), colour_attachment(&t.normal)],
+                Some(&t.depth),
+            );
+            let drawn = self.draw_scene(
+                &mut pass,
+                (&self.mesh_pipeline, &self.sphere_pipeline),
+                &[self.frame.as_entire_binding()],
+            );
+            drop(pass);
+            self.split_sum.dispatch(
+                &self.device,
+                encoder,
+                &[
+                    self.frame.as_entire_binding(),
+                    light.split_sum.as_entire_binding(),
+                    wgpu::BindingResource::TextureView(&light.specular),
+                    wgpu::BindingResource::TextureView(&light.irradiance),
+                    wgpu::BindingResource::TextureView(&light.lut),
+                    self.lights.as_entire_binding(),
+                    wgpu::BindingResource::TextureView(&t.position),
+                    wgpu::BindingResource::TextureView(&t.normal),
+                    t.shaded.as_entire_binding(),
+                ],
+                [t.size.0, t.size.1, 1],
+            );
+            drawn
+        })?
+    }
+
+    /// One truth estimate with `points` added to the truth buffer.
+    pub(super) fn encode_truth(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        points: &[[f32; 4]],
+    ) -> Result<()> {
+        let (light, _, t) = self.frame_inputs()?;
+        with_error_scope(&self.device, "viewer frame", || {
+            let n = points.len().min(MAX_TRUTH_POINTS as usize);
+            self.queue
+                .write_buffer(&self.points, 0, bytemuck::cast_slice(&points[..n]));
+            let params = TruthUniform {
+                env_size: light.truth_env_size,
+                hot_count: light.hot_count,
+                point_count: n as u32,
+                _pad: 0,
+            };
+            self.queue
+                .write_buffer(&self.truth_params, 0, bytemuck::bytes_of(&params));
+            self.truth.dispatch(
+                &self.device,
+                encoder,
+                &[
+                    self.frame.as_entire_binding(),
+                    self.truth_params.as_entire_binding(),
+                    wgpu::BindingResource::TextureView(&light.env),
+                    wgpu::BindingResource::TextureView(&light.cold),
+                    light.hot.as_entire_binding(),
+                    self.points.as_entire_binding(),
+                    self.lights.as_entire_binding(),
+                    wgpu::BindingResource::TextureView(&t.position),
+                    wgpu::BindingResource::TextureView(&t.normal),
+                    t.accum.as_entire_binding(),
+                ],
+                [t.size.0, t.size.1, 1],
+            );
+        })
+    }
+
+    /// The present pass: the mode's picture from the per-pixel buffers, with the HUD.
+    pub(super) fn encode_present(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        (target, format): (&wgpu::TextureView, wgpu::TextureFormat),
+    ) -> Result<()> {
+        let (_, _, t) = self.frame_inputs()?;
+        let p = self
+            .display_pipelines
+            .iter()
+            .find(|p| p.format == format)
+            .ok_or_else(|| gpu_error("viewer frame", "no display passes"))?;
+        with_error_scope(&self.device, "viewer frame", || {
+            let hud = t.hud.create_view(&Default::default());
+            let group = bind_group(
+                &self.device,
+                None,
+                &p.present.get_bind_group_layout(0),
+                &[
+                    self.present.as_entire_binding(),
+                    t.shaded.as_entire_binding(),
+                    t.accum.as_entire_binding(),
+                    self.heat.as_entire_binding(),
+                    wgpu::BindingResource::TextureView(&hud),
+                ],
+            );
+            let mut pass = begin_pass(encoder, "view present", &[colour_attachment(target)], None);
+            pass.set_pipeline(&p.present);
+            pass.set_bind_group(0, &group, &[]);
+            pass.draw(0..3, 0..1);
+        })
+    }
+}
+
+/// A colour attachment cleared to transparent black and stored.
+fn colour_attachment(view: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachment<'_>> {
+    Some(wgpu::RenderPassColorAttachment {
+        view,
+        resolve_target: None,
+        ops: wgpu::Operations {
+            load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+            store: wgpu::StoreOp::Store,
+        },
+        depth_slice: None,
+    })
+}
+
+/// A render pass into `colours`, with `depth` cleared to 1 (the far plane) when given.
+fn begin_pass<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    label: &str,
+    colours: &[Option<wgpu::RenderPassColorAttachment<'_>>],
+    depth: Option<&wgpu::TextureView>,
+) -> wgpu::RenderPass<'e> {
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: colours,
+        depth_stencil_attachment: depth.map(|view| wgpu::RenderPassDepthStencilAttachment {
+            view,
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(1.0),
+                store: wgpu::StoreOp::Store,
+            }),
+            stencil_ops: None,
+        }),
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    })
+}
