@@ -87,7 +87,8 @@ pub struct Viewer {
     /// The frame time the HUD shows, refreshed a few times a second (redrawing the HUD
     /// every frame would cost more than the frame).
     shown_frame_seconds: (f32, Instant),
-    last_hud: Option<Vec<String>>,
+    /// The size and lines of the HUD image last uploaded (a new size means new targets).
+    last_hud: Option<((u32, u32), Vec<String>)>,
     backend: String,
 }
 
@@ -287,10 +288,14 @@ impl Viewer {
         }
     }
 
-    /// The HUD image when its lines changed since the last frame.
+    /// The HUD image when its lines or the frame's size changed since the last upload.
     fn hud_image(&mut self, size: (u32, u32)) -> Result<Option<RgbaImage>> {
         let lines = self.hud_lines();
-        if self.last_hud.as_ref() == Some(&lines) {
+        if self
+            .last_hud
+            .as_ref()
+            .is_some_and(|(s, l)| *s == size && *l == lines)
+        {
             return Ok(None);
         }
         let img = hud::draw(&lines, size.0, size.1).map_err(|message| Error::Encode {
@@ -298,7 +303,7 @@ impl Viewer {
             format: "text",
             message,
         })?;
-        self.last_hud = Some(lines);
+        self.last_hud = Some((size, lines));
         Ok(Some(img))
     }
 
@@ -311,9 +316,6 @@ impl Viewer {
         let target_is_srgb = target.1.is_srgb();
         let started = Instant::now();
         let (frame, changed) = self.next_frame(size);
-        if changed {
-            self.last_hud = None;
-        }
         let points = self.truth_points();
         self.count_estimate(&points);
         let present = self.present_uniform(size, target_is_srgb);
