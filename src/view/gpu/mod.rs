@@ -220,8 +220,8 @@ impl GpuRenderer {
         })
     }
 
-    /// The display passes writing `format`.
-    fn display_pipelines(&mut self, format: wgpu::TextureFormat) -> Result<&DisplayPipelines> {
+    /// Compiles the display passes writing `format` unless they are.
+    fn display_pipelines(&mut self, format: wgpu::TextureFormat) -> Result<()> {
         if !self.display_pipelines.iter().any(|p| p.format == format) {
             let (device, present, forward) =
                 (&self.device, &self.present_module, &self.forward_module);
@@ -262,6 +262,11 @@ impl GpuRenderer {
             })?;
             self.display_pipelines.push(pipelines);
         }
+        Ok(())
+    }
+
+    /// The display passes compiled for `format` (by `display_pipelines`).
+    fn compiled_display(&self, format: wgpu::TextureFormat) -> Result<&DisplayPipelines> {
         self.display_pipelines
             .iter()
             .find(|p| p.format == format)

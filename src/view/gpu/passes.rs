@@ -55,11 +55,7 @@ impl GpuRenderer {
         (target, format): (&wgpu::TextureView, wgpu::TextureFormat),
     ) -> Result<()> {
         let (light, _, t) = self.frame_inputs()?;
-        let p = self
-            .display_pipelines
-            .iter()
-            .find(|p| p.format == format)
-            .ok_or_else(|| gpu_error("viewer frame", "no display passes"))?;
+        let p = self.compiled_display(format)?;
         let hud = t.hud.create_view(&Default::default());
         let resources = [
             self.frame.as_entire_binding(),
@@ -180,11 +176,7 @@ impl GpuRenderer {
         (target, format): (&wgpu::TextureView, wgpu::TextureFormat),
     ) -> Result<()> {
         let (_, _, t) = self.frame_inputs()?;
-        let p = self
-            .display_pipelines
-            .iter()
-            .find(|p| p.format == format)
-            .ok_or_else(|| gpu_error("viewer frame", "no display passes"))?;
+        let p = self.compiled_display(format)?;
         with_error_scope(&self.device, "viewer frame", || {
             let hud = t.hud.create_view(&Default::default());
             let group = bind_group(
