@@ -1,9 +1,9 @@
 //! `cargo bench --bench bench -- view`: the viewer's frame times at 1280×720 with Spot, as
 //! the window draws them (into a texture, waiting for the device; no readback), with the
-//! camera turning every frame and still, on the GPU renderer's forward pass (the window's
-//! split-sum view) and its deferred passes (G-buffer, kernels, present: the truth and heat
-//! views), the ground truth's samples per second, and the CPU renderer; the GPU renderer
-//! on the adapter wgpu finds.
+//! camera turning every frame (the GPU renderer's forward pass, and its deferred passes:
+//! G-buffer, kernels, present, as the truth and heat views draw) and still (the present
+//! pass alone), the ground truth's samples per second, and the CPU renderer; the GPU
+//! renderer on the adapter wgpu finds.
 
 use splitsum::gpu::GpuContext;
 use splitsum::view::frame::Mode;
@@ -57,8 +57,9 @@ pub fn benchmarks() {
             wgpu::TextureUsages::RENDER_ATTACHMENT,
         );
         let view = target.create_view(&Default::default());
-        // The window's forward pass first, then the deferred passes the truth and heat
-        // views use, drawing the same split-sum picture.
+        // As the window draws the split-sum view (forward while it moves, the present pass
+        // alone while it stands still), then with the deferred passes the truth and heat
+        // views use, which draw the same picture.
         for forward in [true, false] {
             let mut renderer = GpuRenderer::new(ctx.device.clone(), ctx.queue.clone()).unwrap();
             renderer.set_forward(forward);
@@ -69,15 +70,16 @@ pub fn benchmarks() {
                 "gpu",
             )
             .unwrap();
-            let path = if forward { "forward" } else { "deferred" };
             let moving = time(FRAMES, |i| {
                 v.state.camera.yaw_deg = 0.05 * i as f32;
                 v.render_to(size, (&view, format)).unwrap();
             });
-            row(&name, &format!("camera turning ({path})"), moving, None);
-            let still = time(FRAMES, |_| v.render_to(size, (&view, format)).unwrap());
-            row(&name, &format!("still ({path})"), still, None);
-            if !forward {
+            if forward {
+                row(&name, "camera turning (forward pass)", moving, None);
+                let still = time(FRAMES, |_| v.render_to(size, (&view, format)).unwrap());
+                row(&name, "still (present pass)", still, None);
+            } else {
+                row(&name, "camera turning (deferred passes)", moving, None);
                 v.state.mode = Mode::Truth;
                 v.points_per_estimate = 8;
                 let truth = time(FRAMES / 4, |_| v.render_to(size, (&view, format)).unwrap());

@@ -1,12 +1,12 @@
 //! The viewer's GPU renderer, two paths to one picture:
 //!
-//! - **forward** (the split-sum view, what the window draws while it is shown): one
+//! - **forward** (the split-sum view while it changes, as when the camera moves): one
 //!   render pass (`shaders/view_forward.wgsl`) shades each fragment of the model and the
 //!   floor, then the background, and writes the displayed colour with the HUD over it;
-//! - **deferred** (the truth and heat views, and the HDR a test reads back): the G-buffer
-//!   raster pass (`view_gbuffer.wgsl`), the split-sum and truth kernels
-//!   (`view_split_sum.wgsl`, `view_truth.wgsl`) into per-pixel buffers, and the present
-//!   pass (`view_present.wgsl`).
+//! - **deferred** (the truth and heat views, the HDR a test reads back, and a split-sum
+//!   view standing still): the G-buffer raster pass (`view_gbuffer.wgsl`), the split-sum
+//!   and truth kernels (`view_split_sum.wgsl`, `view_truth.wgsl`) into per-pixel buffers,
+//!   and the present pass (`view_present.wgsl`), which alone redraws a still view.
 //!
 //! Both call the same WGSL functions on the same surface; the forward path only skips
 //! writing and reading the per-pixel buffers, which on a software rasteriser cost more
@@ -273,8 +273,9 @@ impl GpuRenderer {
             .ok_or_else(|| gpu_error("viewer frame", "no display passes"))
     }
 
-    /// Whether the split-sum view is drawn by the forward pass (the default) or by the
-    /// deferred passes, which give the same picture (a test compares them).
+    /// Whether the split-sum view is drawn by the forward pass while it changes (the
+    /// default) or always by the deferred passes, which give the same picture (a test
+    /// compares them).
     pub fn set_forward(&mut self, forward: bool) {
         self.forward = forward;
     }
@@ -378,10 +379,10 @@ impl GpuRenderer {
     }
 
     /// Records and submits one frame into `target`: the forward pass in the split-sum view
-    /// (when [`GpuRenderer::set_forward`] left it on); else the G-buffer and split-sum
-    /// passes when `geometry_changed` (or the buffers hold an older frame), one truth
-    /// estimate with `points` when given, then the present pass. `hud`, when given, is a
-    /// new HUD image to lay over the frame.
+    /// when `geometry_changed` (and [`GpuRenderer::set_forward`] left it on); else the
+    /// G-buffer and split-sum passes when `geometry_changed` or the buffers hold an older
+    /// frame, one truth estimate with `points` when given, then the present pass. `hud`,
+    /// when given, is a new HUD image to lay over the frame.
     pub fn render(
         &mut self,
         frame: &FrameUniform,
@@ -394,7 +395,11 @@ impl GpuRenderer {
         let size = (frame.width, frame.height);
         self.targets(size)?;
         self.display_pipelines(format)?;
-        let forward = self.forward && points.is_none() && present.mode == Mode::SplitSum as u32;
+        // The split-sum view is drawn by the forward pass while the view changes; once it
+        // stands still, the deferred passes draw it once more, and the frames after that
+        // are the present pass alone (the same picture for less work).
+        let split_sum_view = points.is_none() && present.mode == Mode::SplitSum as u32;
+        let forward = self.forward && split_sum_view && geometry_changed;
         let deferred = !forward && (geometry_changed || !self.deferred_current);
         let (device, queue) = (&self.device, &self.queue);
         with_error_scope(device, "viewer frame", || {
