@@ -10,7 +10,7 @@ use block_compression::{CompressionVariant, GpuBlockCompressor};
 
 use crate::environment::Cubemap;
 use crate::gpu::compute::{map_read, with_error_scope};
-use crate::gpu::texture::create_texture_2d;
+use crate::gpu::texture::{create_texture_2d, write_texels};
 use crate::plan::bc6h::{encoder_input, face_bytes, padded_edge, Bc6hQuality};
 use crate::Result;
 
@@ -43,28 +43,12 @@ pub fn encode_bc6h(
                 wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
             );
             for face in 0..6u32 {
-                queue.write_texture(
-                    wgpu::TexelCopyTextureInfo {
-                        texture: &texture,
-                        mip_level: 0,
-                        origin: wgpu::Origin3d {
-                            x: 0,
-                            y: 0,
-                            z: face,
-                        },
-                        aspect: wgpu::TextureAspect::All,
-                    },
+                write_texels(
+                    queue,
+                    &texture,
+                    (0, face),
+                    (p, p, 1),
                     bytemuck::cast_slice(&encoder_input(cube, m, face)),
-                    wgpu::TexelCopyBufferLayout {
-                        offset: 0,
-                        bytes_per_row: Some(p * 8),
-                        rows_per_image: Some(p),
-                    },
-                    wgpu::Extent3d {
-                        width: p,
-                        height: p,
-                        depth_or_array_layers: 1,
-                    },
                 );
             }
             let size = (6 * face_bytes(n)) as u64;

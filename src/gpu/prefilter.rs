@@ -9,7 +9,9 @@ use crate::plan::chain::{level_method, LevelMethod, SpecularChain};
 use crate::environment::{Cubemap, IrradianceSource};
 use crate::gpu::compute::{storage_buffer, uniform_buffer, with_error_scope, ComputeKernel};
 use crate::gpu::shaders;
-use crate::gpu::texture::{create_cube_texture, cube_array_view, cube_mip_view, read_cubemap};
+use crate::gpu::texture::{
+    create_cube_texture, cube_array_view, cube_mip_view, read_cubemap, write_texels,
+};
 use crate::Result;
 
 /// Workgroup of both kernels (x, y over the face, z = face).
@@ -69,25 +71,7 @@ pub fn upload_cube(
     let texture = create_cube_texture(device, "cube", cube.size, mips);
     for (m, level) in cube.levels.iter().enumerate().take(mips as usize) {
         let n = cube.level_size(m);
-        queue.write_texture(
-            wgpu::TexelCopyTextureInfo {
-                texture: &texture,
-                mip_level: m as u32,
-                origin: wgpu::Origin3d::ZERO,
-                aspect: wgpu::TextureAspect::All,
-            },
-            bytemuck::cast_slice(level),
-            wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(n * 16),
-                rows_per_image: Some(n),
-            },
-            wgpu::Extent3d {
-                width: n,
-                height: n,
-                depth_or_array_layers: 6,
-            },
-        );
+        write_texels(queue, &texture, (m as u32, 0), (n, n, 6), bytemuck::cast_slice(level));
     }
     texture
 }

@@ -31,6 +31,44 @@ pub fn create_texture_2d(
     })
 }
 
+/// Writes `data` into `texture` (an uncompressed format) at mip `mip` from array layer
+/// `first_layer`: `layers` tightly packed images of `width`×`height` texels, each at its
+/// layer's top-left corner.
+pub fn write_texels(
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+    (mip, first_layer): (u32, u32),
+    (width, height, layers): (u32, u32, u32),
+    data: &[u8],
+) {
+    // None only for compressed and depth formats, which nothing writes through here; a
+    // zero row length then fails wgpu's validation in the caller's error scope.
+    let texel_bytes = texture.format().block_copy_size(None).unwrap_or(0);
+    queue.write_texture(
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: mip,
+            origin: wgpu::Origin3d {
+                x: 0,
+                y: 0,
+                z: first_layer,
+            },
+            aspect: wgpu::TextureAspect::All,
+        },
+        data,
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(width * texel_bytes),
+            rows_per_image: Some(height),
+        },
+        wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: layers,
+        },
+    );
+}
+
 /// Uploads a `width`×`height` RGB image as an `Rgba32Float` 2D texture (A = 1), read with
 /// `textureLoad`.
 pub fn upload_rgb_texture(
@@ -84,21 +122,7 @@ fn upload_rgba_texture(
             wgpu::TextureFormat::Rgba32Float,
             wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
         );
-        queue.write_texture(
-            wgpu::TexelCopyTextureInfo {
-                texture: &texture,
-                mip_level: 0,
-                origin: wgpu::Origin3d::ZERO,
-                aspect: wgpu::TextureAspect::All,
-            },
-            bytemuck::cast_slice(rgba),
-            wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(width * 16),
-                rows_per_image: Some(height),
-            },
-            texture.size(),
-        );
+        write_texels(queue, &texture, (0, 0), (width, height, 1), bytemuck::cast_slice(rgba));
         texture
     })
 }
@@ -177,28 +201,12 @@ pub fn upload_bordered_cube(
     );
     for m in 0..levels {
         let p = cube.level_size(m as usize) + 2;
-        queue.write_texture(
-            wgpu::TexelCopyTextureInfo {
-                texture: &texture,
-                mip_level: 0,
-                origin: wgpu::Origin3d {
-                    x: 0,
-                    y: 0,
-                    z: 6 * m,
-                },
-                aspect: wgpu::TextureAspect::All,
-            },
+        write_texels(
+            queue,
+            &texture,
+            (0, 6 * m),
+            (p, p, 6),
             bytemuck::cast_slice(bordered.level(m as usize)),
-            wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(p * 16),
-                rows_per_image: Some(p),
-            },
-            wgpu::Extent3d {
-                width: p,
-                height: p,
-                depth_or_array_layers: 6,
-            },
         );
     }
     texture.create_view(&wgpu::TextureViewDescriptor {

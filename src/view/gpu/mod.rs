@@ -21,7 +21,9 @@ use crate::gpu::compute::{
 };
 use crate::gpu::preview::{SplitSumUniform, TruthUniform};
 use crate::gpu::shaders;
-use crate::gpu::texture::{create_texture_2d, upload_bordered_cube, upload_lut_pairs};
+use crate::gpu::texture::{
+    create_texture_2d, upload_bordered_cube, upload_lut_pairs, write_texels,
+};
 use crate::view::frame::{heat_table, light_table, FrameUniform, Mode, PresentUniform, ViewLight};
 use crate::view::model::{Model, Shape};
 use crate::view::raster::{scene_vertices, sphere_box_vertices};
@@ -448,20 +450,12 @@ impl GpuRenderer {
 
     fn upload_hud(&self, image: &RgbaImage, size: (u32, u32)) {
         let Some(t) = &self.targets else { return };
-        self.queue.write_texture(
-            wgpu::TexelCopyTextureInfo {
-                texture: &t.hud,
-                mip_level: 0,
-                origin: wgpu::Origin3d::ZERO,
-                aspect: wgpu::TextureAspect::All,
-            },
+        write_texels(
+            &self.queue,
+            &t.hud,
+            (0, 0),
+            (size.0, size.1, 1),
             image.as_raw(),
-            wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(4 * size.0),
-                rows_per_image: Some(size.1),
-            },
-            t.hud.size(),
         );
     }
 
