@@ -426,7 +426,7 @@ impl GpuRenderer {
         with_error_scope(&self.device, "viewer frame", || {
             self.queue.submit([encoder.finish()]);
         })?;
-        if forward && geometry_changed {
+        if forward {
             self.deferred_current = false;
         } else if deferred {
             self.deferred_current = true;
