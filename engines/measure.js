@@ -212,6 +212,14 @@ export function cubeCorrelation(a, b, n) {
   return correlation(blocks(a), blocks(b));
 }
 
+// A size × size canvas added to the page, for an engine to draw into.
+export function pageCanvas(size) {
+  const canvas = document.createElement('canvas');
+  canvas.width = canvas.height = size;
+  document.body.appendChild(canvas);
+  return canvas;
+}
+
 // An RGBA8 PNG (data URL) of a float image, Reinhard-mapped and flipped upright, for the
 // record.
 export function toPng(px, size) {

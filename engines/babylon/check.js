@@ -14,9 +14,7 @@ const { SIZE, MIRROR_SIZE, SPHERE_DISTANCE, SPHERE_FOV, SKY_FOV, add, scale, nor
 // Babylon's PBR output clamp with the image processing as a post-process (pbr.fragment).
 const CLAMP = 30;
 
-const canvas = document.createElement('canvas');
-canvas.width = canvas.height = 64;
-document.body.appendChild(canvas);
+const canvas = measure.pageCanvas(64);
 const engine = new B.Engine(canvas, false, { preserveDrawingBuffer: true });
 const scene = new B.Scene(engine);
 scene.imageProcessingConfiguration.applyByPostProcess = true;

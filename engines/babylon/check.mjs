@@ -54,9 +54,7 @@ const recipe = {
   head: '<script src="/engines/babylon/node_modules/babylonjs/babylon.js"></script>',
   prelude: `import * as measure from '/engines/measure.js';
 const size = 64;
-const canvas = document.createElement('canvas');
-canvas.width = canvas.height = size;
-document.body.appendChild(canvas);
+const canvas = measure.pageCanvas(size);
 const engine = new BABYLON.Engine(canvas, false, { preserveDrawingBuffer: true });
 const scene = new BABYLON.Scene(engine);
 const camera = new BABYLON.FreeCamera('camera', new BABYLON.Vector3(0, 0, -measure.SPHERE_DISTANCE), scene);

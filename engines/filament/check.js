@@ -18,9 +18,7 @@ const { SIZE, MIRROR_SIZE, SPHERE_DISTANCE, SPHERE_FOV, SKY_FOV, add, scale, deg
 // it, so both show radiance × INTENSITY × the camera's exposure.
 const INTENSITY = 30000;
 
-const canvas = document.createElement('canvas');
-canvas.width = canvas.height = MIRROR_SIZE;
-document.body.appendChild(canvas);
+const canvas = measure.pageCanvas(MIRROR_SIZE);
 await new Promise((ok) => Filament.init([], ok));
 const engine = Filament.Engine.create(canvas, { preserveDrawingBuffer: true });
 const gl = engine.context;

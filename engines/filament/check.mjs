@@ -75,9 +75,7 @@ const recipe = {
 import { sphereGlb } from '/engines/sphere.js';
 import { drawFrames } from '/engines/filament/frames.js';
 const size = 64;
-const canvas = document.createElement('canvas');
-canvas.width = canvas.height = size;
-document.body.appendChild(canvas);
+const canvas = measure.pageCanvas(size);
 await new Promise((ok) => Filament.init([], ok));
 const engine = Filament.Engine.create(canvas, { preserveDrawingBuffer: true });
 const scene = engine.createScene();`,

@@ -21,9 +21,7 @@ const TRUTH_SIZE = 16;
 // The viewer's linearTosRGB: pow(color, 1/2.2).
 const DECODE = Float32Array.from({ length: 256 }, (_, i) => (i / 255) ** 2.2);
 
-const canvas = document.createElement('canvas');
-canvas.width = canvas.height = MIRROR_SIZE;
-document.body.appendChild(canvas);
+const canvas = measure.pageCanvas(MIRROR_SIZE);
 const gl = canvas.getContext('webgl2', { preserveDrawingBuffer: true, antialias: false, alpha: false });
 const view = new GltfView(gl);
 const state = view.createState();
