@@ -403,29 +403,29 @@ impl GpuRenderer {
         let split_sum_view = points.is_none() && present.mode == Mode::SplitSum as u32;
         let forward = self.forward && split_sum_view && geometry_changed;
         let deferred = !forward && (geometry_changed || !self.deferred_current);
-        let (device, queue) = (&self.device, &self.queue);
-        with_error_scope(device, "viewer frame", || {
-            queue.write_buffer(&self.frame, 0, bytemuck::bytes_of(frame));
-            queue.write_buffer(&self.present, 0, bytemuck::bytes_of(present));
+        with_error_scope(&self.device, "viewer frame", || -> Result<()> {
+            self.queue
+                .write_buffer(&self.frame, 0, bytemuck::bytes_of(frame));
+            self.queue
+                .write_buffer(&self.present, 0, bytemuck::bytes_of(present));
             if let Some(image) = hud {
                 self.upload_hud(image, size);
             }
-        })?;
-        let mut encoder = self.device.create_command_encoder(&Default::default());
-        if forward {
-            self.encode_forward(&mut encoder, (target, format))?;
-        } else {
-            if deferred {
-                self.encode_deferred_split_sum(&mut encoder)?;
+            let mut encoder = self.device.create_command_encoder(&Default::default());
+            if forward {
+                self.encode_forward(&mut encoder, (target, format))?;
+            } else {
+                if deferred {
+                    self.encode_deferred_split_sum(&mut encoder)?;
+                }
+                if let Some(points) = points {
+                    self.encode_truth(&mut encoder, points)?;
+                }
+                self.encode_present(&mut encoder, (target, format))?;
             }
-            if let Some(points) = points {
-                self.encode_truth(&mut encoder, points)?;
-            }
-            self.encode_present(&mut encoder, (target, format))?;
-        }
-        with_error_scope(&self.device, "viewer frame", || {
             self.queue.submit([encoder.finish()]);
-        })?;
+            Ok(())
+        })??;
         if forward {
             self.deferred_current = false;
         } else if deferred {
@@ -438,11 +438,12 @@ impl GpuRenderer {
     /// forward pass writes neither), for a readback.
     pub(super) fn update_deferred(&mut self) -> Result<()> {
         if !self.deferred_current {
-            let mut encoder = self.device.create_command_encoder(&Default::default());
-            self.encode_deferred_split_sum(&mut encoder)?;
-            with_error_scope(&self.device, "viewer frame", || {
+            with_error_scope(&self.device, "viewer frame", || -> Result<()> {
+                let mut encoder = self.device.create_command_encoder(&Default::default());
+                self.encode_deferred_split_sum(&mut encoder)?;
                 self.queue.submit([encoder.finish()]);
-            })?;
+                Ok(())
+            })??;
             self.deferred_current = true;
         }
         Ok(())

@@ -1,8 +1,9 @@
 //! The viewer's GPU passes, recorded into a frame's command encoder: the forward pass,
 //! the deferred G-buffer and split-sum passes, one truth estimate and the present pass
-//! (what each computes: the parent module's docs and the shaders named there).
+//! (what each computes: the parent module's docs and the shaders named there). The caller
+//! records them inside its frame's error scope.
 
-use crate::gpu::compute::{bind_group, with_error_scope};
+use crate::gpu::compute::bind_group;
 use crate::gpu::preview::TruthUniform;
 use crate::Result;
 
@@ -67,7 +68,7 @@ impl GpuRenderer {
             wgpu::BindingResource::TextureView(&light.lut),
             self.lights.as_entire_binding(),
         ];
-        with_error_scope(&self.device, "viewer frame", || {
+        {
             let mut pass = begin_pass(
                 encoder,
                 "view forward",
@@ -88,7 +89,7 @@ impl GpuRenderer {
             );
             pass.draw(0..3, 0..1);
             drawn
-        })?
+        }
     }
 
     /// The G-buffer pass, then the split-sum kernel into the split-sum buffer.
@@ -97,7 +98,7 @@ impl GpuRenderer {
         encoder: &mut wgpu::CommandEncoder,
     ) -> Result<()> {
         let (light, _, t) = self.frame_inputs()?;
-        with_error_scope(&self.device, "viewer frame", || {
+        {
             let mut pass = begin_pass(
                 encoder,
                 "view gbuffer",
@@ -127,7 +128,7 @@ impl GpuRenderer {
                 [t.size.0, t.size.1, 1],
             );
             drawn
-        })?
+        }
     }
 
     /// One truth estimate with `points` added to the truth buffer.
@@ -137,7 +138,7 @@ impl GpuRenderer {
         points: &[[f32; 4]],
     ) -> Result<()> {
         let (light, _, t) = self.frame_inputs()?;
-        with_error_scope(&self.device, "viewer frame", || {
+        {
             let n = points.len().min(MAX_TRUTH_POINTS as usize);
             self.queue
                 .write_buffer(&self.points, 0, bytemuck::cast_slice(&points[..n]));
@@ -166,7 +167,8 @@ impl GpuRenderer {
                 ],
                 [t.size.0, t.size.1, 1],
             );
-        })
+        }
+        Ok(())
     }
 
     /// The present pass: the mode's picture from the per-pixel buffers, with the HUD.
@@ -177,7 +179,7 @@ impl GpuRenderer {
     ) -> Result<()> {
         let (_, _, t) = self.frame_inputs()?;
         let p = self.compiled_display(format)?;
-        with_error_scope(&self.device, "viewer frame", || {
+        {
             let hud = t.hud.create_view(&Default::default());
             let group = bind_group(
                 &self.device,
@@ -195,7 +197,8 @@ impl GpuRenderer {
             pass.set_pipeline(&p.present);
             pass.set_bind_group(0, &group, &[]);
             pass.draw(0..3, 0..1);
-        })
+        }
+        Ok(())
     }
 }
 
