@@ -96,7 +96,14 @@ pub mod view;
 pub(crate) mod view;
 
 pub use backend::BackendChoice;
-pub use bake::{read_bake_dir, BakeOptions, BakeReport, Baker, LoadedInput, Manifest};
+pub use bake::{
+    clipped_sun_warning, read_bake_dir, BakeOptions, BakeReport, Baker, LoadedInput, Manifest,
+};
+pub use environment::inventory::{inventory, Inventory};
+pub use environment::sun::{
+    find_lights, find_sun, split_lights, split_sun, Sun, SunFit, SunMode, MAX_LIGHTS,
+    MIN_SHARE as MIN_SUN_SHARE,
+};
 pub use environment::{Cubemap, Environment, Equirect};
 pub use error::{Error, Result};
 pub use io::atomic::remove_in_flight_temporaries;
@@ -115,6 +122,7 @@ pub use stages::convert::check_cube_size;
 pub use stages::light::{BakedEnvironment, Stage};
 pub use stages::preview::{Preview, PreviewOptions, SphereStats, PREVIEW_ROUGHNESS};
 pub use stages::sh::ShCoefficients;
+pub use targets::generic::sun_json;
 pub use targets::{
     FileSet, LutChannels, LutSpec, Orientation, Target, BABYLON, BEVY, FILAMENT, GENERIC, GLTF,
     TARGETS, THREE,

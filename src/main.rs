@@ -34,6 +34,7 @@ fn main() -> ExitCode {
         Command::Bake(args) => cli::commands::bake(args),
         Command::Preview(args) => cli::commands::preview(args),
         Command::Verify(args) => cli::commands::verify(args),
+        Command::Inspect(args) => cli::commands::inspect(args),
         Command::View(args) => cli::commands::view(args),
     };
     match result {

@@ -8,6 +8,7 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use crate::bake::options::BakeOptions;
+use crate::environment::sun::{Sun, SunMode};
 use crate::environment::Cubemap;
 use crate::io::staging::OutputRecord;
 use crate::io::to_json;
@@ -16,8 +17,12 @@ use crate::plan::chain::SpecularChain;
 use crate::plan::lut::BrdfLut;
 use crate::stages::light::BakedEnvironment;
 use crate::stages::preview::{Preview, SphereStats};
+use crate::targets::generic::read_sun_json;
 use crate::targets::GENERIC;
 use crate::{Error, Result};
+
+/// What the preview's ground truth is, as manifests say it.
+const TRUTH_DEFINITION: &str = "the integral of the same BRDF over the environment with the real view direction: the specular chain's level 0 (with --sun split, the residual plus the sun as a uniform disc of its measured radius and irradiance), hot texels summed exactly, the rest by GGX visible-normal and cosine quasi-Monte Carlo";
 
 /// `manifest.json`'s root.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -34,6 +39,9 @@ pub struct Manifest {
     pub target: TargetRecord,
     /// Every parameter of the bake.
     pub parameters: Parameters,
+    /// The sun: whether it was taken out, and what was found (in either mode).
+    #[serde(default)]
+    pub sun: SunRecord,
     /// How preview.png was made and what it measured, when there is one.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub preview: Option<PreviewRecord>,
@@ -86,6 +94,16 @@ pub struct Parameters {
     pub exposure_ev: f32,
     /// Edge of the LUTs written, if any.
     pub lut_size: Option<u32>,
+}
+
+/// The sun of the bake's environment.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct SunRecord {
+    /// `keep` (baked into the IBL) or `split` (taken out; `sun.json` holds the lights).
+    pub mode: SunMode,
+    /// The compact lights found, the sun first, in the generic frame (rotation applied);
+    /// empty when there is none.
+    pub lights: Vec<Sun>,
 }
 
 /// The encoder of a block format.
@@ -167,7 +185,8 @@ impl From<&SphereStats> for SphereRecord {
 
 impl Manifest {
     /// The manifest of a bake of `input` with `opts` on the backend `backend` (its
-    /// identity) that wrote `outputs` (and the preview, when there is one).
+    /// identity) that wrote `outputs` (and the preview, when there is one); the lights
+    /// found are set in [`Manifest::sun`] by the caller.
     pub fn new(
         input: &Path,
         backend: String,
@@ -210,13 +229,17 @@ impl Manifest {
                 exposure_ev: opts.exposure_ev,
                 lut_size,
             },
+            sun: SunRecord {
+                mode: opts.sun,
+                lights: Vec::new(),
+            },
             preview: preview.zip(opts.preview.as_ref()).map(|(p, o)| PreviewRecord {
                 cell: o.cell,
                 exposure: p.exposure,
                 tone_mapping: "Khronos PBR Neutral, then sRGB".into(),
                 truth_samples: o.truth_samples,
                 split_sum: "prefiltered(reflect(-v, n), lod(r)) * (F0 * A + B) + irradiance(n) * albedo * (1 - F_roughness(n.v)) * (1 - metallic)".into(),
-                truth: "the integral of the same BRDF over the specular chain's level 0 with the real view direction: hot texels summed exactly, the rest by GGX visible-normal and cosine quasi-Monte Carlo".into(),
+                truth: TRUTH_DEFINITION.into(),
                 relative_difference: "on each pixel's luminance Y: mean_relative = sum |Y_split_sum - Y_truth| / sum Y_truth over the sphere, worst_relative = the largest |Y_split_sum - Y_truth| / Y_truth of one pixel".into(),
                 spheres: p.stats.iter().map(SphereRecord::from).collect(),
             }),
@@ -300,6 +323,12 @@ pub fn read_bake_dir(dir: &Path) -> Result<(BakedEnvironment, Option<BrdfLut>)> 
         levels,
         roughness: GENERIC.roughness,
     };
+    let sun_path = dir.join("sun.json");
+    let lights = match manifest.sun.mode {
+        SunMode::Split if sun_path.is_file() => read_sun_json(&sun_path)?,
+        SunMode::Split => Vec::new(),
+        SunMode::Keep => manifest.sun.lights.clone(),
+    };
     Ok((
         BakedEnvironment {
             specular,
@@ -307,6 +336,8 @@ pub fn read_bake_dir(dir: &Path) -> Result<(BakedEnvironment, Option<BrdfLut>)> 
             irradiance,
             sh: None,
             sheen: None,
+            lights,
+            sun_mode: manifest.sun.mode,
         },
         lut,
     ))

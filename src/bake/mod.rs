@@ -16,6 +16,7 @@ pub use manifest::{read_bake_dir, Manifest};
 pub use options::BakeOptions;
 
 use crate::backend::Backend;
+use crate::environment::sun::Sun;
 use crate::environment::Environment;
 use crate::io::atomic::write_all_atomic;
 use crate::io::cubemap::{clip_warning, BlockEncoder, CubeEncoding};
@@ -43,6 +44,20 @@ pub struct BakeReport {
     pub preview: Option<Preview>,
     /// The backend that computed the outputs (as the manifest records it).
     pub backend: String,
+    /// The compact lights found in the input, the sun first (generic frame, rotation
+    /// applied), whichever the mode.
+    pub lights: Vec<Sun>,
+}
+
+/// The line saying that `sun` (found in `input`) looks clipped, when it does.
+pub fn clipped_sun_warning(input: &Path, sun: &Sun) -> Option<String> {
+    sun.clipped.then(|| {
+        format!(
+            "{}: the sun looks clipped (its core is a plateau at one value: the camera saturated), so its irradiance {:.4} is a lower bound of the real sun's",
+            input.display(),
+            sun.illuminance()
+        )
+    })
 }
 
 /// The output folder of `input` under `out_root`: `<out_root>/<stem>`.
@@ -94,6 +109,7 @@ pub fn bake(
 ) -> Result<BakeReport> {
     let mut timings = Vec::new();
     let (baked, mut warnings) = load_and_bake(backend, input, opts, progress, &mut timings)?;
+    warnings.extend(baked.sun().and_then(|s| clipped_sun_warning(input, s)));
     let preview = match &opts.preview {
         None => None,
         Some(p) => Some(timed_stage(Stage::Preview, progress, &mut timings, || {
@@ -134,6 +150,7 @@ pub fn bake(
         },
     };
     let mut out = Staging::default();
+    let lights = baked.lights.clone();
     warnings.extend((target.files.write)(&ctx, baked, &mut out)?);
     if opts.luts {
         write_luts(&mut out, &dir, target, luts)?;
@@ -147,7 +164,7 @@ pub fn bake(
     }
     // The manifest lists every other file (it cannot hold its own hash).
     let identity = backend.identity();
-    let manifest = Manifest::new(
+    let mut manifest = Manifest::new(
         input,
         identity.clone(),
         &backend.bc6h_identity(),
@@ -156,6 +173,7 @@ pub fn bake(
         preview.as_ref(),
         &out.records,
     );
+    manifest.sun.lights = lights.clone();
     out.add(
         dir.join("manifest.json"),
         manifest.to_json().into_bytes(),
@@ -171,5 +189,6 @@ pub fn bake(
         warnings,
         preview,
         backend: identity,
+        lights,
     })
 }

@@ -2,6 +2,7 @@
 //! of every option before any input is read; errors name the option as its field.
 
 use crate::backend::BackendChoice;
+use crate::environment::sun::SunMode;
 use crate::io::cubemap::Container;
 use crate::io::input::InputOptions;
 use crate::io::PixelFormat;
@@ -58,6 +59,10 @@ pub struct BakeOptions {
     pub luts: bool,
     /// Render `preview.png` (split-sum against ground truth).
     pub preview: Option<PreviewOptions>,
+    /// Whether the sun is taken out of the environment and written as a light
+    /// ([`SunMode::Split`]) or baked into the IBL ([`SunMode::Keep`]); it is found and
+    /// recorded in the manifest either way.
+    pub sun: SunMode,
 }
 
 impl BakeOptions {
@@ -80,6 +85,7 @@ impl BakeOptions {
             sh: target.sh,
             luts: target.lut,
             preview: None,
+            sun: SunMode::Keep,
         }
     }
 
@@ -116,6 +122,7 @@ impl BakeOptions {
             rotate_degrees: self.rotate_degrees,
             sheen: self.target.files.sheen,
             sh: self.sh,
+            sun: self.sun,
         }
     }
 

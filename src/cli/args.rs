@@ -202,6 +202,17 @@ pub enum Command {
     /// prints their differences; exits 1 when one is out of tolerance.
     Verify(VerifyArgs),
 
+    /// Says what is in an environment: size, mean and peak radiance, dynamic range, bad
+    /// texels, and its sun.
+    ///
+    /// The sun is the most energetic compact bright region (docs/sun.md): its direction
+    /// (azimuth 0 along +X, the equirect's centre, 90 along +Z; elevation above the XZ
+    /// plane), its irradiance E on a surface facing it (Σ L dω per channel, the sky under
+    /// it taken off), its angular radius and solid angle, its share of the luminous flux,
+    /// and whether it looks clipped. An environment with no compact dominant source has no
+    /// sun. --json writes the same as JSON on stdout.
+    Inspect(InspectArgs),
+
     /// Opens a window on a bake: an object above a floor under the baked light.
     ///
     /// Walk around it (WASD, the mouse while the cursor is captured), switch materials and
@@ -364,6 +375,9 @@ pub struct BakeArgs {
     pub input_opts: InputArgs,
 
     #[command(flatten)]
+    pub sun: SunArgs,
+
+    #[command(flatten)]
     pub common: CommonArgs,
 }
 
@@ -399,11 +413,56 @@ pub struct PreviewArgs {
     #[arg(long, default_value_t = 256)]
     pub specular_size: u32,
 
+    /// Also write the figures as JSON: the mode, the sun, and per sphere the material,
+    /// roughness, mean and worst relative difference.
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+
+    /// With an environment: keep the sun in the IBL, or split it out and shade it as a
+    /// light with the BRDF [default: keep]. A bake folder is shown as it was baked.
+    #[arg(long, value_name = "MODE", value_parser = sun_mode_parser())]
+    pub sun: Option<splitsum::SunMode>,
+
     #[command(flatten)]
     pub render: PreviewRenderArgs,
 
     #[command(flatten)]
     pub common: CommonArgs,
+}
+
+/// `splitsum inspect`.
+#[derive(Debug, Args)]
+pub struct InspectArgs {
+    /// An environment (as `bake` reads it).
+    pub input: PathBuf,
+
+    /// Print JSON on stdout instead of text.
+    #[arg(long)]
+    pub json: bool,
+
+    #[command(flatten)]
+    pub input_opts: InputArgs,
+}
+
+/// What to do with the sun (`--sun`), shared by `bake`, `cubemap` and `preview`.
+#[derive(Debug, Args)]
+pub struct SunArgs {
+    /// keep: the sun stays in the environment (a sun found is reported); split: it is taken
+    /// out, its texels filled from the sky around it, and written as a light (bake:
+    /// sun.json beside an IBL baked from the rest; cubemap: the rest as the cube and
+    /// <output stem>_sun.json)
+    #[arg(long, value_name = "MODE", default_value = "keep", value_parser = sun_mode_parser())]
+    pub sun: splitsum::SunMode,
+}
+
+/// `--sun`'s values.
+fn sun_mode_parser() -> impl TypedValueParser<Value = splitsum::SunMode> {
+    PossibleValuesParser::new(
+        splitsum::SunMode::ALL
+            .iter()
+            .map(|m| PossibleValue::new(m.name())),
+    )
+    .map(|name| splitsum::SunMode::by_name(&name).unwrap_or_default())
 }
 
 /// `splitsum verify`.
@@ -537,6 +596,9 @@ pub struct CubemapArgs {
 
     #[command(flatten)]
     pub input_opts: InputArgs,
+
+    #[command(flatten)]
+    pub sun: SunArgs,
 
     #[command(flatten)]
     pub common: CommonArgs,

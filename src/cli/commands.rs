@@ -11,13 +11,13 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use splitsum::{
     check_cube_path, check_cube_size, check_lut_path, check_output_extension, input_stem,
     png_clip_warning, read_bake_dir, write_atomic, write_lut, BakeOptions, BakeReport, Baker,
-    Container, CubeWriteOptions, LutWriteOptions, Preview, PreviewOptions, Stage,
-    PREVIEW_ROUGHNESS,
+    Container, CubeWriteOptions, LutWriteOptions, Preview, PreviewOptions, Stage, SunMode,
+    MIN_SUN_SHARE, PREVIEW_ROUGHNESS,
 };
 
 use super::args::{
-    BakeArgs, CommonArgs, CubemapArgs, LutArgs, PreviewArgs, PreviewRenderArgs, VerifyArgs,
-    ViewArgs,
+    BakeArgs, CommonArgs, CubemapArgs, InspectArgs, LutArgs, PreviewArgs, PreviewRenderArgs,
+    VerifyArgs, ViewArgs,
 };
 use super::{for_user, Usage};
 
@@ -77,6 +77,7 @@ pub fn bake(args: BakeArgs) -> anyhow::Result<()> {
         preview: args
             .preview
             .then(|| preview_options(&args.preview_render, args.preview_exposure)),
+        sun: args.sun.sun,
         ..defaults
     };
     let mut baker = open_baker("bake", opts, &args.common)?;
@@ -103,6 +104,8 @@ pub fn bake(args: BakeArgs) -> anyhow::Result<()> {
                 }
                 if !args.quiet {
                     eprintln!("{}", summary(input, &report, start.elapsed().as_secs_f64()));
+                    let line = sun_line(input, &report.lights, args.sun.sun, "sun.json");
+                    eprint!("{}", line.map(|l| l + "\n").unwrap_or_default());
                 }
                 if args.common.verbose {
                     let stages: Vec<String> = report
@@ -123,6 +126,35 @@ pub fn bake(args: BakeArgs) -> anyhow::Result<()> {
         anyhow::bail!("{failed} of {} inputs failed", args.inputs.len());
     }
     Ok(())
+}
+
+/// What became of the sun (and further compact lights) of `input` in `mode`, in one line
+/// (`light` names the file the lights went to); none for an environment without a sun
+/// baked as it is.
+fn sun_line(input: &Path, lights: &[splitsum::Sun], mode: SunMode, light: &str) -> Option<String> {
+    let input = input.display();
+    let more = match lights.len() {
+        0 | 1 => String::new(),
+        n => format!(
+            " and {} more compact light{} ({:.1} % of the light)",
+            n - 1,
+            if n > 2 { "s" } else { "" },
+            100.0 * lights[1..].iter().map(|l| l.share).sum::<f32>()
+        ),
+    };
+    Some(match (lights.first(), mode) {
+        (Some(sun), SunMode::Keep) => format!(
+            "{input}: sun at {sun}{more}; baked into the IBL (--sun split writes them as lights, the sun with shadows)"
+        ),
+        (Some(sun), SunMode::Split) => {
+            format!("{input}: sun at {sun}{more}; taken out of the IBL, written as {light}")
+        }
+        (None, SunMode::Keep) => return None,
+        (None, SunMode::Split) => format!(
+            "{input}: no sun (no compact source holds {:.0} % of the light): nothing taken out, no light written",
+            100.0 * MIN_SUN_SHARE
+        ),
+    })
 }
 
 /// `baked sky.hdr -> out/sky/ (5 files, 4.4 MB, 2.1 s)`.
@@ -198,9 +230,14 @@ pub fn preview(args: PreviewArgs) -> anyhow::Result<()> {
         }
     });
     check_output_extension(&output, "a preview", &["png"]).map_err(|e| for_user("preview", e))?;
+    if let Some(json) = &args.json {
+        check_output_extension(json, "the preview's figures", &["json"])
+            .map_err(|e| for_user("preview", e))?;
+    }
     let opts = BakeOptions {
         specular_size: args.specular_size,
         preview: Some(popts),
+        sun: args.sun.unwrap_or_default(),
         ..BakeOptions::default()
     };
     let mut baker = open_baker("preview", opts, &args.common)?;
@@ -208,7 +245,17 @@ pub fn preview(args: PreviewArgs) -> anyhow::Result<()> {
     spinner.enable_steady_tick(std::time::Duration::from_millis(120));
     let (baked, lut) = if args.input.is_dir() {
         spinner.set_message(format!("reading {}", args.input.display()));
-        read_bake_dir(&args.input)?
+        let (baked, lut) = read_bake_dir(&args.input)?;
+        if let Some(mode) = args.sun.filter(|m| *m != baked.sun_mode) {
+            return Err(Usage(format!(
+                "invalid --sun: {} was baked with --sun {}; bake it again with --sun {}, or preview the HDRI itself",
+                args.input.display(),
+                baked.sun_mode.name(),
+                mode.name()
+            ))
+            .into());
+        }
+        (baked, lut)
     } else {
         spinner.set_message(format!("baking {}", args.input.display()));
         let loaded = baker.load(&args.input, Some(args.specular_size))?;
@@ -237,9 +284,62 @@ pub fn preview(args: PreviewArgs) -> anyhow::Result<()> {
     let preview = baker.preview(&name, &baked, lut.as_ref(), &popts)?;
     spinner.finish_and_clear();
     warn(baker.take_warnings());
+    let line = sun_line(&source, &baked.lights, baked.sun_mode, "lights");
+    eprint!(
+        "{}",
+        line.map(|l| l + "
+")
+            .unwrap_or_default()
+    );
     write_atomic(&output, &preview.png)?;
+    if let Some(json) = &args.json {
+        write_atomic(json, preview_json(&source, &baked, &preview).as_bytes())?;
+    }
     print_preview(&output, &preview, args.common.verbose);
     Ok(())
+}
+
+/// `preview --json`: the mode, the sun, and per sphere the split-sum's relative
+/// difference from the truth.
+fn preview_json(input: &Path, baked: &splitsum::BakedEnvironment, p: &Preview) -> String {
+    #[derive(serde::Serialize)]
+    struct Sphere {
+        material: &'static str,
+        roughness: f32,
+        mean: f32,
+        worst: f32,
+    }
+    #[derive(serde::Serialize)]
+    struct Out<'a> {
+        input: String,
+        sun_mode: &'static str,
+        sun: Option<splitsum::Sun>,
+        additional_lights: &'a [splitsum::Sun],
+        exposure: f32,
+        definition: &'static str,
+        spheres: Vec<Sphere>,
+    }
+    let out = Out {
+        input: input.display().to_string(),
+        sun_mode: baked.sun_mode.name(),
+        sun: baked.sun().copied(),
+        additional_lights: baked.lights.get(1..).unwrap_or_default(),
+        exposure: p.exposure,
+        definition: "per sphere, on each pixel's luminance Y: mean = sum |Y_split_sum - Y_truth| / sum Y_truth, worst = the largest |Y_split_sum - Y_truth| / Y_truth of one pixel",
+        spheres: p
+            .stats
+            .iter()
+            .map(|s| Sphere {
+                material: s.material,
+                roughness: s.roughness,
+                mean: s.mean_relative,
+                worst: s.worst_relative,
+            })
+            .collect(),
+    };
+    let mut text = serde_json::to_string_pretty(&out).unwrap_or_default();
+    text.push('\n');
+    text
 }
 
 /// `splitsum cubemap`.
@@ -289,11 +389,32 @@ pub fn cubemap(args: CubemapArgs) -> anyhow::Result<()> {
     };
     let mut baker = open_baker("cubemap", opts, &args.common)?;
     let start = Instant::now();
-    let loaded = match &args.input {
+    let mut loaded = match &args.input {
         Some(path) => baker.load(path, args.size)?,
         None => baker.load_faces(&args.faces, args.size)?,
     };
-    warn(loaded.warnings);
+    warn(loaded.warnings.drain(..));
+    let sun_path = output.with_file_name(format!("{}_sun.json", input_stem(&output)));
+    let lights: Vec<splitsum::Sun> = match args.sun.sun {
+        SunMode::Keep => splitsum::find_lights(&loaded.env),
+        SunMode::Split => splitsum::split_lights(&mut loaded.env),
+    }
+    .into_iter()
+    .map(|s| s.rotated(args.input_opts.rotate))
+    .collect();
+    if let Some(w) = lights
+        .first()
+        .and_then(|s| splitsum::clipped_sun_warning(&first_input, s))
+    {
+        warn([w]);
+    }
+    let line = sun_line(
+        &first_input,
+        &lights,
+        args.sun.sun,
+        &sun_path.display().to_string(),
+    );
+    eprint!("{}", line.map(|l| l + "\n").unwrap_or_default());
     if args.common.verbose {
         eprintln!(
             "read {}: {:.3} s",
@@ -328,6 +449,11 @@ pub fn cubemap(args: CubemapArgs) -> anyhow::Result<()> {
         )
         .map_err(|e| for_user("cubemap", e))?;
     warn(baker.take_warnings());
+    if let Some(json) =
+        splitsum::sun_json(&lights, target).filter(|_| args.sun.sun == SunMode::Split)
+    {
+        write_atomic(&sun_path, json.as_bytes())?;
+    }
     let shown: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
     eprintln!(
         "wrote {} ({}×{}, {} levels)",
@@ -341,6 +467,118 @@ pub fn cubemap(args: CubemapArgs) -> anyhow::Result<()> {
         }
     );
     Ok(())
+}
+
+/// `splitsum inspect`.
+pub fn inspect(args: InspectArgs) -> anyhow::Result<()> {
+    let opts = BakeOptions {
+        rotate_degrees: args.input_opts.rotate,
+        exposure_ev: args.input_opts.exposure,
+        backend: splitsum::BackendChoice::Cpu,
+        ..BakeOptions::default()
+    };
+    let baker = Baker::new(opts).map_err(|e| for_user("inspect", e))?;
+    let loaded = baker.load(&args.input, None)?;
+    let inventory = splitsum::inventory(&loaded.env);
+    let lights: Vec<splitsum::Sun> = splitsum::find_lights(&loaded.env)
+        .into_iter()
+        .map(|s| s.rotated(args.input_opts.rotate))
+        .collect();
+    let light_out = |sun: &splitsum::Sun| LightOut {
+        sun: *sun,
+        illuminance: sun.illuminance(),
+        azimuth_deg: sun.azimuth_deg(),
+        elevation_deg: sun.elevation_deg(),
+    };
+    if args.json {
+        #[derive(serde::Serialize)]
+        struct Out<'a> {
+            input: String,
+            #[serde(flatten)]
+            inventory: &'a splitsum::Inventory,
+            sun: Option<LightOut>,
+            additional_lights: Vec<LightOut>,
+            warnings: &'a [String],
+        }
+        let out = Out {
+            input: args.input.display().to_string(),
+            inventory: &inventory,
+            sun: lights.first().map(light_out),
+            additional_lights: lights.iter().skip(1).map(light_out).collect(),
+            warnings: &loaded.warnings,
+        };
+        println!("{}", serde_json::to_string_pretty(&out)?);
+        return Ok(());
+    }
+    warn(loaded.warnings);
+    let i = &inventory;
+    println!("{}", args.input.display());
+    match i.layout {
+        "cube" => println!("  size          cube, 6 × {0}×{0} texels", i.width),
+        _ => println!("  size          {}×{} {}", i.width, i.height, i.layout),
+    }
+    println!(
+        "  mean          {:.4} (R {:.4}, G {:.4}, B {:.4}); peak {:.4}; dynamic range {:.3e}",
+        i.mean_luminance, i.mean[0], i.mean[1], i.mean[2], i.peak_luminance, i.dynamic_range
+    );
+    if i.non_finite + i.negative > 0 {
+        println!(
+            "  bad texels    {} non-finite, {} negative",
+            i.non_finite, i.negative
+        );
+    }
+    if lights.is_empty() {
+        println!(
+            "  sun           none (no compact source holds {:.0} % of the light)",
+            100.0 * MIN_SUN_SHARE
+        );
+    }
+    for (k, s) in lights.iter().enumerate() {
+        let label = if k == 0 {
+            "sun".to_string()
+        } else {
+            format!("light {}", k + 1)
+        };
+        println!(
+            "  {label:<14}azimuth {:.2}°, elevation {:.2}°, direction ({:.5}, {:.5}, {:.5})",
+            s.azimuth_deg(),
+            s.elevation_deg(),
+            s.direction[0],
+            s.direction[1],
+            s.direction[2]
+        );
+        println!(
+            "                irradiance E (facing it) {:.4} (R {:.4}, G {:.4}, B {:.4}), {:.1} % of the light",
+            s.illuminance(),
+            s.irradiance[0],
+            s.irradiance[1],
+            s.irradiance[2],
+            100.0 * s.share
+        );
+        println!(
+            "                angular radius {:.3}°, solid angle {:.3e} sr, {} texels{}",
+            s.angular_radius_deg,
+            s.solid_angle_sr,
+            s.texels,
+            if s.clipped {
+                "; clipped (its core is a plateau: the camera saturated, so E is a lower bound)"
+            } else {
+                ""
+            }
+        );
+    }
+    Ok(())
+}
+
+/// A light as `inspect --json` writes it: its figures with its illuminance, azimuth and
+/// elevation.
+#[derive(serde::Serialize)]
+struct LightOut {
+    #[serde(flatten)]
+    sun: splitsum::Sun,
+    illuminance: f32,
+    azimuth_deg: f32,
+    elevation_deg: f32,
 }
 
 /// `splitsum verify`.

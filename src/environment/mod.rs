@@ -3,10 +3,12 @@
 //! [`EquirectIntegral`]) and cubemaps (with mip chains), both linear RGB radiance.
 
 pub mod hot;
+pub mod inventory;
 mod integral;
 pub mod mips;
 mod pyramid;
 pub mod sample;
+pub mod sun;
 pub mod texels;
 pub mod walk;
 

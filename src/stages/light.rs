@@ -6,6 +6,7 @@
 use std::time::Instant;
 
 use crate::backend::Backend;
+use crate::environment::sun::{find_lights, split_lights, Sun, SunMode};
 use crate::environment::{Cubemap, Environment};
 use crate::plan::chain::SpecularChain;
 use crate::plan::fit::fit_roughest_level;
@@ -18,6 +19,8 @@ use crate::Result;
 pub enum Stage {
     /// Reading and validating the input.
     Load,
+    /// Finding the sun (and taking it out with `--sun split`).
+    Sun,
     /// Converting to the environment cubemap with mips.
     Cubemap,
     /// Prefiltering the specular chain.
@@ -39,6 +42,7 @@ impl Stage {
     pub fn name(self) -> &'static str {
         match self {
             Stage::Load => "load",
+            Stage::Sun => "sun",
             Stage::Cubemap => "cubemap",
             Stage::Specular => "specular",
             Stage::Irradiance => "irradiance",
@@ -50,8 +54,9 @@ impl Stage {
     }
 
     /// All stages in order.
-    pub const ALL: [Stage; 8] = [
+    pub const ALL: [Stage; 9] = [
         Stage::Load,
+        Stage::Sun,
         Stage::Cubemap,
         Stage::Specular,
         Stage::Irradiance,
@@ -96,6 +101,8 @@ pub struct LightOptions {
     pub sheen: bool,
     /// Project onto SH.
     pub sh: bool,
+    /// Whether the sun is taken out and baked as a light.
+    pub sun: SunMode,
 }
 
 /// The light of one environment baked in memory, in the generic orientation (before a
@@ -112,6 +119,29 @@ pub struct BakedEnvironment {
     pub sh: Option<ShCoefficients>,
     /// The prefiltered Charlie sheen chain, in the specular chain's layout, when asked for.
     pub sheen: Option<Cubemap>,
+    /// The compact lights found in the environment, the sun first (see
+    /// [`split_lights`]), in the output frame (rotation applied), whatever the mode; empty
+    /// when it has none.
+    pub lights: Vec<Sun>,
+    /// [`SunMode::Split`]: the chain, irradiance, SH and sheen are the residual's (the
+    /// environment without its lights), and the lights are lights of their own.
+    pub sun_mode: SunMode,
+}
+
+impl BakedEnvironment {
+    /// The sun: the most energetic compact light, if any.
+    pub fn sun(&self) -> Option<&Sun> {
+        self.lights.first()
+    }
+
+    /// The lights to shade beside the IBL: those taken out of it (none with
+    /// [`SunMode::Keep`]).
+    pub fn split_lights(&self) -> &[Sun] {
+        match self.sun_mode {
+            SunMode::Split => &self.lights,
+            SunMode::Keep => &[],
+        }
+    }
 }
 
 /// Bakes `source` in memory as `opts` say on `backend`. `progress` is called as each stage
@@ -123,6 +153,17 @@ pub fn bake_light(
     progress: &mut dyn FnMut(Stage),
     timings: &mut Timings,
 ) -> Result<BakedEnvironment> {
+    let mut source = source;
+    let lights = timed_stage(Stage::Sun, progress, timings, || {
+        let lights = match opts.sun {
+            SunMode::Keep => find_lights(&source),
+            SunMode::Split => split_lights(&mut source),
+        };
+        Ok(lights
+            .into_iter()
+            .map(|s| s.rotated(opts.rotate_degrees))
+            .collect::<Vec<_>>())
+    })?;
     let (env, irradiance_source) = timed_stage(Stage::Cubemap, progress, timings, || {
         environment_into_cube_with_irradiance(
             backend,
@@ -158,5 +199,7 @@ pub fn bake_light(
         irradiance,
         sh,
         sheen,
+        lights,
+        sun_mode: opts.sun,
     })
 }

@@ -62,6 +62,7 @@ pub const FILES: FileSet = FileSet {
 
 /// Writes [`FILES`]; warns when level 0 holds radiance RGBD cannot (above 255).
 fn write(ctx: &FileContext, baked: BakedEnvironment, out: &mut Staging) -> Result<Vec<String>> {
+    crate::targets::generic::add_sun_json(ctx, &baked, out);
     let path = ctx.dir.join(format!("{}.env", ctx.stem));
     let specular = ctx.target.orientation.apply(baked.specular);
     let enc_err = |message: String| Error::Encode {

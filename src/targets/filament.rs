@@ -83,6 +83,7 @@ pub const FILES: FileSet = FileSet {
 
 /// Writes [`FILES`].
 fn write(ctx: &FileContext, baked: BakedEnvironment, out: &mut Staging) -> Result<Vec<String>> {
+    crate::targets::generic::add_sun_json(ctx, &baked, out);
     let (dir, stem, format) = (ctx.dir, ctx.stem, ctx.encoding.format);
     let specular = ctx.target.orientation.apply(baked.specular);
     let sh = baked.sh.as_ref().map(|sh| engine_sh(sh, ctx.target));

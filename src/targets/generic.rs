@@ -5,6 +5,7 @@
 
 use serde::Serialize;
 
+use crate::environment::sun::Sun;
 use crate::io::cubemap::{encode_cube, Container};
 use crate::io::staging::Staging;
 use crate::io::{to_json, PixelFormat};
@@ -13,7 +14,7 @@ use crate::plan::chain::{MipRoughness, DEFAULT_MIN_MIP_SIZE};
 use crate::stages::light::BakedEnvironment;
 use crate::stages::sh::ShCoefficients;
 use crate::targets::{FileContext, FileSet, Orientation, Target, BRDF_LUT_PNG};
-use crate::Result;
+use crate::{Error, Result};
 
 /// The standard file set ([`write_standard`]), in the bake's container.
 pub const STANDARD: FileSet = FileSet {
@@ -56,6 +57,7 @@ pub fn write_standard(
     baked: BakedEnvironment,
     out: &mut Staging,
 ) -> Result<Vec<String>> {
+    add_sun_json(ctx, &baked, out);
     let target = ctx.target;
     let enc = &ctx.encoding;
     let fmt = match enc.container {
@@ -101,4 +103,88 @@ pub fn sh_json(sh: &ShCoefficients) -> String {
         radiance_sh9: &sh.radiance,
         irradiance_sh9: &sh.irradiance,
     })
+}
+
+/// One light of `sun.json`.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct LightJson {
+    direction: [f32; 3],
+    irradiance: [f32; 3],
+    illuminance: f32,
+    angular_radius_deg: f32,
+    solid_angle_sr: f32,
+    share: f32,
+    clipped: bool,
+    azimuth_deg: f32,
+    elevation_deg: f32,
+}
+
+/// `sun.json`: the lights taken out of the IBL (`--sun split`): the sun at the top level,
+/// further compact lights (an interior's brightest lamps) in `additional_lights`.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct SunJson {
+    /// What the numbers mean.
+    about: String,
+    /// The frame `direction` is in.
+    frame: String,
+    #[serde(flatten)]
+    sun: LightJson,
+    additional_lights: Vec<LightJson>,
+}
+
+/// What `sun.json`'s figures mean.
+const SUN_JSON_ABOUT: &str = "the sun, taken out of the IBL, as a directional light (cast its shadows); additional_lights: further compact lights taken out, in the same terms. direction: unit vector toward the light in the frame below; irradiance: E on a surface facing it per channel (the sum of L dw over it, in the HDRI's radiance units); illuminance: its luminance (0.2126 R + 0.7152 G + 0.0722 B); share: of the HDRI's luminous flux; azimuth and elevation in the generic frame (azimuth 0 along +X, 90 along +Z); clipped: its core is a plateau (a saturated camera), so its irradiance is a lower bound";
+
+/// Stages `sun.json` when lights were taken out of `baked` (their directions in the
+/// target's world frame). Every target's writer calls it: the IBL of a split bake lacks
+/// them, so the lights must reach the engine.
+pub fn add_sun_json(ctx: &FileContext, baked: &BakedEnvironment, out: &mut Staging) {
+    if let Some(json) = sun_json(baked.split_lights(), ctx.target) {
+        out.add(ctx.dir.join("sun.json"), json.into_bytes(), ("sun", "json", 0, 0));
+    }
+}
+
+/// `sun.json` of `lights` (generic frame, the sun first) for `target`; `None` for none.
+pub fn sun_json(lights: &[Sun], target: &Target) -> Option<String> {
+    let light = |sun: &Sun| LightJson {
+        direction: target.orientation.frame.apply(sun.direction),
+        irradiance: sun.irradiance,
+        illuminance: sun.illuminance(),
+        angular_radius_deg: sun.angular_radius_deg,
+        solid_angle_sr: sun.solid_angle_sr,
+        share: sun.share,
+        clipped: sun.clipped,
+        azimuth_deg: sun.azimuth_deg(),
+        elevation_deg: sun.elevation_deg(),
+    };
+    let (sun, rest) = lights.split_first()?;
+    Some(to_json(&SunJson {
+        about: SUN_JSON_ABOUT.into(),
+        frame: format!("target {}: {}", target.name, target.orientation.description),
+        sun: light(sun),
+        additional_lights: rest.iter().map(light).collect(),
+    }))
+}
+
+/// Reads a generic target's `sun.json` back: its lights, the sun first.
+pub fn read_sun_json(path: &std::path::Path) -> Result<Vec<Sun>> {
+    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    let j: SunJson = serde_json::from_str(&text).map_err(|e| Error::Decode {
+        path: path.to_path_buf(),
+        format: "JSON",
+        message: format!("{e} (not a sun.json splitsum bake wrote?)"),
+    })?;
+    let sun = |l: &LightJson| Sun {
+        direction: l.direction,
+        irradiance: l.irradiance,
+        solid_angle_sr: l.solid_angle_sr,
+        angular_radius_deg: l.angular_radius_deg,
+        share: l.share,
+        clipped: l.clipped,
+        texels: 0,
+    };
+    Ok(std::iter::once(&j.sun)
+        .chain(&j.additional_lights)
+        .map(sun)
+        .collect())
 }

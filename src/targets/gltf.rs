@@ -74,6 +74,7 @@ pub const FILES: FileSet = FileSet {
 
 /// Writes [`FILES`].
 fn write(ctx: &FileContext, baked: BakedEnvironment, out: &mut Staging) -> Result<Vec<String>> {
+    crate::targets::generic::add_sun_json(ctx, &baked, out);
     let orientation = ctx.target.orientation;
     let fmt = ctx.encoding.format.name();
     let mut cube = |folder: &str, name: &str, kind: &'static str, cube: Cubemap| -> Result<()> {

@@ -20,12 +20,16 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::backend::Backend;
+use crate::cpu::preview_truth::hot_texels_shade;
+use crate::environment::sun::Sun;
+use crate::environment::texels::SourceTexel;
 use crate::environment::Cubemap;
 use crate::plan::chain::SpecularChain;
 use crate::plan::lut::{BrdfLut, DEFAULT_LUT_SIZE};
 use crate::plan::scene::{
-    disk_points, material_table, pixel_geometry, PixelGeometry, Scene, SceneUniform,
-    SplitSumInputs, SplitSumLight, TruthInputs, TruthLight, DEFAULT_CELL, DEFAULT_TRUTH_SAMPLES, MATERIALS, ROUGHNESS,
+    disk_points, material_table, pixel_geometry, preview_material, PixelGeometry, Scene,
+    SceneUniform, SplitSumInputs, SplitSumLight, TruthInputs, TruthLight, DEFAULT_CELL,
+    DEFAULT_TRUTH_SAMPLES, MATERIALS, MIN_N_DOT_V, ROUGHNESS,
 };
 use crate::plan::sources::{split_hot_texels, SampledSource};
 use crate::stages::light::BakedEnvironment;
@@ -48,6 +52,10 @@ pub struct BakedLight<'a> {
     pub irradiance: &'a Cubemap,
     /// The split-sum LUT (scale, bias).
     pub lut: &'a BrdfLut,
+    /// The lights taken out of the chain and the irradiance (`--sun split`, the sun
+    /// first): the split-sum shades each as a directional light with the preview's BRDF,
+    /// the truth integrates each as a uniform disc of its radius beside the residual.
+    pub lights: &'a [Sun],
 }
 
 /// How the preview is made.
@@ -111,6 +119,8 @@ pub struct Preview {
     pub split_sum_seconds: f64,
     /// Wall-clock seconds of the ground-truth render.
     pub truth_seconds: f64,
+    /// The lights shaded beside the IBL (`--sun split`), the sun first.
+    pub lights: Vec<Sun>,
 }
 
 impl PreviewOptions {
@@ -206,6 +216,59 @@ pub fn truth_environment(specular: &Cubemap) -> (Cubemap, SampledSource) {
     (env, split)
 }
 
+/// Rings of the disc the truth integrates the sun as (127 cells: each under 0.1 of the
+/// radius across, far below the narrowest lobe the preview's r ≥ 0.25 spheres have).
+pub const SUN_DISC_RINGS: u32 = 7;
+
+/// The sun as the truth's exact texels: a uniform disc of its radius and irradiance.
+pub fn sun_texels(sun: &Sun) -> Vec<SourceTexel> {
+    sun.disc_cells(SUN_DISC_RINGS)
+        .into_iter()
+        .map(|(d, omega, l)| SourceTexel {
+            dir_omega: [d[0], d[1], d[2], omega],
+            radiance: [l[0], l[1], l[2], 0.0],
+        })
+        .collect()
+}
+
+/// Adds the sun, a directional light of irradiance E⊥ from its direction, to every sphere
+/// pixel of the split-sum panel: E⊥ f(l, v) (n·l) with the preview's BRDF, evaluated by
+/// the truth's exact sum over one texel (`cpu::preview_truth::hot_texels_shade`), so the
+/// light is shaded as the truth shades its hot texels. At r = 0 a mirror reflects no
+/// directional light (the truth's mirror reads the residual too).
+pub fn add_sun_light(
+    scene: &SceneUniform,
+    columns: &[[f32; 4]],
+    materials: &[[f32; 4]],
+    sun: &Sun,
+    panel: &mut [[f32; 3]],
+) {
+    let d = sun.direction;
+    let light = [SourceTexel {
+        dir_omega: [d[0], d[1], d[2], 1.0],
+        radiance: [sun.irradiance[0], sun.irradiance[1], sun.irradiance[2], 0.0],
+    }];
+    for y in 0..scene.height {
+        for x in 0..scene.width {
+            if let PixelGeometry::Sphere {
+                n,
+                v,
+                material,
+                column,
+            } = pixel_geometry(scene, x, y)
+            {
+                let m = preview_material(columns, materials, material, column);
+                let n_dot_v = n.dot(v).max(MIN_N_DOT_V);
+                let alpha = crate::math::brdf::alpha_from_roughness(m.roughness);
+                let (spec, diff) = hot_texels_shade(&light, n, v, n_dot_v, alpha, m.f0, m.metallic);
+                let c = spec + diff * m.albedo;
+                let p = &mut panel[(y * scene.width + x) as usize];
+                *p = [p[0] + c.x, p[1] + c.y, p[2] + c.z];
+            }
+        }
+    }
+}
+
 /// Renders the preview of `light` with `backend`.
 pub fn render_preview(
     backend: &dyn Backend,
@@ -219,7 +282,7 @@ pub fn render_preview(
     let materials = material_table();
 
     let t = Instant::now();
-    let split_sum = backend.preview_split_sum(
+    let mut split_sum = backend.preview_split_sum(
         &uniform,
         &SplitSumInputs {
             light: SplitSumLight {
@@ -231,13 +294,19 @@ pub fn render_preview(
             materials: &materials,
         },
     )?;
+    for sun in light.lights {
+        add_sun_light(&uniform, &columns, &materials, sun, &mut split_sum);
+    }
     let split_sum_seconds = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
     let truth = if opts.truth_samples == 0 {
         Vec::new()
     } else {
-        let (env, split) = truth_environment(light.specular);
+        let (env, mut split) = truth_environment(light.specular);
+        for sun in light.lights {
+            split.hot.extend(sun_texels(sun));
+        }
         let points = disk_points(opts.truth_samples);
         backend.preview_truth(
             &uniform,
@@ -292,6 +361,7 @@ pub fn render_preview(
         truth,
         split_sum_seconds,
         truth_seconds,
+        lights: light.lights.to_vec(),
     })
 }
 
@@ -304,6 +374,7 @@ impl<'a> BakedLight<'a> {
             chain: baked.chain,
             irradiance: &baked.irradiance,
             lut,
+            lights: baked.split_lights(),
         }
     }
 }
