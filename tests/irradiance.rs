@@ -319,7 +319,7 @@ fn sh_of_a_lamp_is_exact() {
             .map(|&d| {
                 (
                     eval(&|k| exact[k], d),
-                    eval(&|k| sh.irradiance[k][0] as f64, d),
+                    eval(&|k| sh.exact_irradiance[k][0] as f64, d),
                 )
             })
             .collect();

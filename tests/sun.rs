@@ -11,7 +11,7 @@ use splitsum::environment::{Cubemap, Environment, Equirect};
 use splitsum::math::cubemap::cube_face_direction;
 use splitsum::{find_sun, split_sun, Sun};
 
-use common::{test_equirect, uniform_directions};
+use common::{brute_force_irradiance, light_irradiance, test_equirect, uniform_directions};
 
 /// The synthetic sun's irradiance E⊥ per channel (the sky's is about 2.3, so the sun
 /// holds about two thirds of the light, as outdoor HDRIs' suns do).
@@ -354,59 +354,6 @@ fn the_bundled_suns_are_where_the_pictures_show_them() {
     }
 }
 
-/// Σ L Ω max(0, n·l) of every texel of `e`, per channel, at each of `normals`.
-fn brute_force_irradiance(e: &Equirect, normals: &[[f64; 3]]) -> Vec<[f64; 3]> {
-    use rayon::prelude::*;
-    let terms: Vec<([f64; 3], [f64; 3])> = (0..e.data.len())
-        .map(|k| {
-            let (w, h) = (e.width as usize, e.height as usize);
-            let (x, y) = (k % w, k / w);
-            let (t0, t1) = (PI * y as f64 / h as f64, PI * (y + 1) as f64 / h as f64);
-            let omega = 2.0 * PI / w as f64 * (t0.cos() - t1.cos());
-            let theta = 0.5 * (t0 + t1);
-            let phi = 2.0 * PI * ((x as f64 + 0.5) / w as f64 - 0.5);
-            let l = e.data[k];
-            (
-                [
-                    theta.sin() * phi.cos(),
-                    theta.cos(),
-                    theta.sin() * phi.sin(),
-                ],
-                [0, 1, 2].map(|c| l[c] as f64 * omega),
-            )
-        })
-        .collect();
-    normals
-        .par_iter()
-        .map(|n| {
-            let mut s = [0.0; 3];
-            for (d, lo) in &terms {
-                let c = dot(*n, *d);
-                if c > 0.0 {
-                    for i in 0..3 {
-                        s[i] += lo[i] * c;
-                    }
-                }
-            }
-            s
-        })
-        .collect()
-}
-
-/// The sun's irradiance at `n`: the disc (a fine grid of cells) clipped by n's horizon.
-fn sun_irradiance(sun: &Sun, n: [f64; 3]) -> [f64; 3] {
-    let mut s = [0.0; 3];
-    for (d, omega, l) in sun.disc_cells(24) {
-        let c = dot(n, d.map(f64::from));
-        if c > 0.0 {
-            for i in 0..3 {
-                s[i] += f64::from(l[i]) * f64::from(omega) * c;
-            }
-        }
-    }
-    s
-}
-
 fn flux(e: &Equirect) -> [f64; 3] {
     let mut s = [0.0; 3];
     for y in 0..e.height {
@@ -457,7 +404,7 @@ fn the_residual_and_the_light_keep_the_energy() {
         let rest = brute_force_irradiance(&residual, &normals);
         let mut worst: f64 = 0.0;
         for (k, n) in normals.iter().enumerate() {
-            let s = sun_irradiance(&sun, *n);
+            let s = light_irradiance(&sun, *n);
             for c in 0..3 {
                 let rel = ((rest[k][c] + s[c]) / full[k][c] - 1.0).abs();
                 worst = worst.max(rel);

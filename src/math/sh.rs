@@ -61,7 +61,6 @@ pub fn irradiance_band_factor(band: usize) -> f32 {
     [PI, 2.0 * PI / 3.0, PI / 4.0][band] / PI
 }
 
-#[cfg(any(test, feature = "internals"))]
 /// Evaluates 9 RGB coefficients at `d`.
 pub fn sh_eval(coeffs: &[[f32; 3]; 9], d: [f32; 3]) -> [f32; 3] {
     let y = sh_basis(d);
@@ -114,9 +113,112 @@ pub fn sh_rotated(coeffs: &[[f32; 3]; 9], r: [[f32; 3]; 3]) -> [[f32; 3]; 9] {
     out
 }
 
+/// The deringing window of band `band` at `cutoff` (in bands): sinc(π l / w)⁴ below the
+/// cutoff, 0 from it on, 1 for band 0 (Sloan, "Deringing Spherical Harmonics", 2017;
+/// the window Filament's `CubemapSH::windowSH` applies). The smaller the cutoff, the
+/// stronger the window; band 0, and with it the mean, is never changed.
+pub fn sinc_window(band: usize, cutoff: f32) -> f32 {
+    if band == 0 {
+        return 1.0;
+    }
+    if band as f32 >= cutoff {
+        return 0.0;
+    }
+    let x = PI * band as f32 / cutoff;
+    (x.sin() / x).powi(4)
+}
+
+/// `coeffs` with [`sinc_window`] at `cutoff` applied band by band.
+pub fn sh_windowed(coeffs: &[[f32; 3]; 9], cutoff: f32) -> [[f32; 3]; 9] {
+    std::array::from_fn(|k| coeffs[k].map(|c| c * sinc_window(sh_band(k), cutoff)))
+}
+
+/// ZH3 (Roughton, Bastard, Salvi & Ahmed, "ZH3: Quadratic Zonal Harmonics", i3D 2024):
+/// linear SH (bands 0 and 1, per channel) plus one zonal harmonic of band 2 per channel,
+/// all about one axis: the direction of the luminance's band-1 vector. 15 numbers where
+/// SH9 has 27; for irradiance it recovers most of what band 2 adds over linear SH.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Zh3 {
+    /// The zonal axis (unit; +Y when the luminance has no band 1).
+    pub axis: [f32; 3],
+    /// Bands 0 and 1 as in SH9's order (l0m0, l1m-1, l1m0, l1m1), per channel.
+    pub linear: [[f32; 3]; 4],
+    /// The zonal coefficient z per channel: the band-2 part is z · Y20 about the axis,
+    /// ¼√(5/π) (3 (axis·d)² − 1) z.
+    pub zonal: [f32; 3],
+}
+
+/// The ZH3 of 9 SH coefficients: the linear bands kept, band 2 projected onto the zonal
+/// harmonic about the luminance axis, z = √(4π/5) Σₘ f₂ₘ Y₂ₘ(axis) (the addition theorem:
+/// the rotated zonal harmonic's coefficients are √(4π/5) Y₂ₘ(axis)).
+pub fn zh3_from_sh9(coeffs: &[[f32; 3]; 9]) -> Zh3 {
+    let lum = |c: [f32; 3]| 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+    // Band 1 is c1 (k11 x + k1-1 y + k10 z): the luminance's vector is (k11, k1-1, k10).
+    let v = [lum(coeffs[3]), lum(coeffs[1]), lum(coeffs[2])];
+    let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let axis = if len > 0.0 {
+        v.map(|c| c / len)
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let y = sh_basis(axis);
+    let scale = (4.0 * PI / 5.0).sqrt();
+    let zonal = std::array::from_fn(|ch| scale * (4..9).map(|k| coeffs[k][ch] * y[k]).sum::<f32>());
+    Zh3 {
+        axis,
+        linear: [coeffs[0], coeffs[1], coeffs[2], coeffs[3]],
+        zonal,
+    }
+}
+
+#[cfg(any(test, feature = "internals"))]
+/// Evaluates a [`Zh3`] at unit direction `d`.
+pub fn zh3_eval(zh3: &Zh3, d: [f32; 3]) -> [f32; 3] {
+    let y = sh_basis(d);
+    let k20 = sh_constants()[6];
+    let c = zh3.axis[0] * d[0] + zh3.axis[1] * d[1] + zh3.axis[2] * d[2];
+    let zonal = k20 * (3.0 * c * c - 1.0);
+    std::array::from_fn(|ch| {
+        (0..4).map(|k| zh3.linear[k][ch] * y[k]).sum::<f32>() + zh3.zonal[ch] * zonal
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn zh3_of_a_zonal_function_about_the_luminance_axis_is_exact() {
+        // A grey function 1 + 0.5 (a·d) + 0.3 Y20 about a = (0.48, 0.6, -0.64): its SH9
+        // projection, then ZH3, evaluates to the same values.
+        let a = [0.48f32, 0.6, -0.64];
+        let mut c = [[0.0f32; 3]; 9];
+        let y = sh_basis(a);
+        let scale = (4.0 * PI / 5.0).sqrt();
+        for ch in 0..3 {
+            c[0][ch] = 1.0;
+            (c[3][ch], c[1][ch], c[2][ch]) = (0.5 * a[0], 0.5 * a[1], 0.5 * a[2]);
+            for k in 4..9 {
+                c[k][ch] = 0.3 * scale * y[k];
+            }
+        }
+        let z = zh3_from_sh9(&c);
+        for (i, v) in a.iter().enumerate() {
+            assert!((z.axis[i] - v).abs() < 1e-5);
+        }
+        for d in [[0.0f32, 1.0, 0.0], [0.6, 0.0, 0.8], [-0.36, -0.48, 0.8], a] {
+            let (e, g) = (sh_eval(&c, d), zh3_eval(&z, d));
+            assert!((e[0] - g[0]).abs() < 1e-5, "{d:?}: {e:?} vs {g:?}");
+        }
+    }
+
+    #[test]
+    fn the_window_keeps_band_0_and_goes_to_zero_at_its_cutoff() {
+        assert_eq!(sinc_window(0, 1.5), 1.0);
+        assert_eq!(sinc_window(2, 2.0), 0.0);
+        assert!(sinc_window(1, 1e6) > 0.999999);
+        assert!(sinc_window(2, 3.0) < sinc_window(1, 3.0));
+    }
 
     #[test]
     fn constants_match_the_real_sh_basis() {

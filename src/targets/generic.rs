@@ -9,7 +9,7 @@ use crate::environment::sun::Sun;
 use crate::io::cubemap::{encode_cube, Container};
 use crate::io::staging::Staging;
 use crate::io::{to_json, PixelFormat};
-use crate::math::sh::SH_ORDER;
+use crate::math::sh::{sinc_window, SH_ORDER};
 use crate::plan::chain::{MipRoughness, DEFAULT_MIN_MIP_SIZE};
 use crate::stages::light::BakedEnvironment;
 use crate::stages::sh::ShCoefficients;
@@ -88,20 +88,59 @@ pub fn write_standard(
     Ok(Vec::new())
 }
 
-/// `sh.json`: the coefficient order, the radiance projection and the E/π coefficients.
+/// `sh.json`: the coefficient order, the radiance projection and the E/π coefficients a
+/// renderer uses (deringed), the exact projection, the window, and ZH3.
 #[derive(Serialize)]
 struct ShJson<'a> {
     order: &'a str,
     radiance_sh9: &'a [[f32; 3]; 9],
     irradiance_sh9: &'a [[f32; 3]; 9],
+    deringing: Deringing,
+    exact_radiance_sh9: &'a [[f32; 3]; 9],
+    exact_irradiance_sh9: &'a [[f32; 3]; 9],
+    zh3_irradiance: Zh3Json,
+}
+
+/// How `radiance_sh9` and `irradiance_sh9` were deringed.
+#[derive(Serialize)]
+struct Deringing {
+    about: &'static str,
+    /// The cutoff in bands; `None` when the exact projection did not ring.
+    cutoff: Option<f32>,
+    /// The factor of each band.
+    band_factors: [f32; 3],
+}
+
+/// ZH3 as `sh.json` writes it.
+#[derive(Serialize)]
+struct Zh3Json {
+    about: &'static str,
+    axis: [f32; 3],
+    linear: [[f32; 3]; 4],
+    zonal: [f32; 3],
 }
 
 /// `sh.json` of `sh` (world space, generic orientation, whatever the target).
 pub fn sh_json(sh: &ShCoefficients) -> String {
+    let band_factors = std::array::from_fn(|l| sh.window_cutoff.map_or(1.0, |w| sinc_window(l, w)));
+    let z = &sh.zh3_irradiance;
     to_json(&ShJson {
         order: SH_ORDER,
         radiance_sh9: &sh.radiance,
         irradiance_sh9: &sh.irradiance,
+        deringing: Deringing {
+            about: "radiance_sh9 and irradiance_sh9 are the exact projection with each band l multiplied by sinc(pi l / cutoff)^4 (0 from l = cutoff on): the weakest such window that leaves irradiance_sh9 non-negative in every direction (Sloan, Deringing Spherical Harmonics; Filament's windowSH); the mean (band 0) is unchanged; cutoff null: no window was needed",
+            cutoff: sh.window_cutoff,
+            band_factors,
+        },
+        exact_radiance_sh9: &sh.exact_radiance,
+        exact_irradiance_sh9: &sh.exact_irradiance,
+        zh3_irradiance: Zh3Json {
+            about: "ZH3 (Roughton et al., i3D 2024) of exact_irradiance_sh9, E / pi: linear holds l0m0, l1m-1, l1m0, l1m1 per channel as in the SH9 order; E / pi (d) = sum of linear[k] Y_k(d) + zonal * 0.25 sqrt(5 / pi) (3 (axis . d)^2 - 1)",
+            axis: z.axis,
+            linear: z.linear,
+            zonal: z.zonal,
+        },
     })
 }
 

@@ -378,3 +378,56 @@ pub fn equirect_terms(e: &splitsum::Equirect) -> Vec<Term> {
     }
     out
 }
+
+/// Σ L Ω max(0, n·l) of every texel of `e`, per channel, at each of `normals`.
+pub fn brute_force_irradiance(e: &splitsum::Equirect, normals: &[[f64; 3]]) -> Vec<[f64; 3]> {
+    use rayon::prelude::*;
+    let terms: Vec<([f64; 3], [f64; 3])> = (0..e.data.len())
+        .map(|k| {
+            let (w, h) = (e.width as usize, e.height as usize);
+            let (x, y) = (k % w, k / w);
+            let (t0, t1) = (PI * y as f64 / h as f64, PI * (y + 1) as f64 / h as f64);
+            let omega = 2.0 * PI / w as f64 * (t0.cos() - t1.cos());
+            let theta = 0.5 * (t0 + t1);
+            let phi = 2.0 * PI * ((x as f64 + 0.5) / w as f64 - 0.5);
+            let l = e.data[k];
+            (
+                [
+                    theta.sin() * phi.cos(),
+                    theta.cos(),
+                    theta.sin() * phi.sin(),
+                ],
+                [0, 1, 2].map(|c| l[c] as f64 * omega),
+            )
+        })
+        .collect();
+    normals
+        .par_iter()
+        .map(|n| {
+            let mut s = [0.0; 3];
+            for (d, lo) in &terms {
+                let c = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
+                if c > 0.0 {
+                    for i in 0..3 {
+                        s[i] += lo[i] * c;
+                    }
+                }
+            }
+            s
+        })
+        .collect()
+}
+
+/// A light's irradiance at `n`: the disc (a fine grid of cells) clipped by n's horizon.
+pub fn light_irradiance(sun: &splitsum::Sun, n: [f64; 3]) -> [f64; 3] {
+    let mut s = [0.0; 3];
+    for (d, omega, l) in sun.disc_cells(24) {
+        let c = n[0] * f64::from(d[0]) + n[1] * f64::from(d[1]) + n[2] * f64::from(d[2]);
+        if c > 0.0 {
+            for i in 0..3 {
+                s[i] += f64::from(l[i]) * f64::from(omega) * c;
+            }
+        }
+    }
+    s
+}

@@ -2,6 +2,8 @@
 //! fitted to the ring and the light measured from what the fill leaves (see the module
 //! above for the estimator).
 
+use rayon::prelude::*;
+
 use crate::environment::sun::grid::{angle, dot, luminance, normalize, tangent_frame, Grid};
 use crate::environment::sun::{
     Sun, SunFit, CLIP_AREA, CLIP_TEXELS, CLIP_TOLERANCE, CORE_FRACTION, HALO_TEXELS, HOT_FACTOR,
@@ -14,21 +16,40 @@ pub(crate) struct FluxStats {
     pub(crate) flux: f64,
 }
 
+/// Texels a parallel pass gives each task; the partial sums are added in order, so the
+/// result does not depend on the thread count.
+const CHUNK: usize = 1 << 16;
+
+/// The texel ranges of the parallel passes, in order.
+fn chunks(grid: &Grid) -> impl IndexedParallelIterator<Item = std::ops::Range<usize>> {
+    let n = grid.len();
+    (0..n.div_ceil(CHUNK))
+        .into_par_iter()
+        .map(move |c| c * CHUNK..((c + 1) * CHUNK).min(n))
+}
+
 pub(crate) fn flux_stats(grid: &Grid) -> FluxStats {
-    let flux = (0..grid.len())
-        .map(|k| luminance(grid.radiance(k)) * grid.solid_angle(k))
-        .sum();
-    FluxStats { flux }
+    let partial: Vec<f64> = chunks(grid)
+        .map(|r| {
+            r.map(|k| luminance(grid.radiance(k)) * grid.solid_angle(k))
+                .sum()
+        })
+        .collect();
+    FluxStats {
+        flux: partial.iter().sum(),
+    }
 }
 
 /// The candidate clusters' brightest texels, the most energetic cluster first (those
 /// holding at least [`MIN_SHARE`] of `flux`, at most [`MAX_CLUSTERS`]).
 pub(crate) fn clusters(grid: &Grid, mean: f64, flux: f64) -> Vec<usize> {
     let threshold = HOT_FACTOR * mean;
-    let mut hot: Vec<(usize, f64)> = (0..grid.len())
-        .filter_map(|k| {
-            let y = luminance(grid.radiance(k));
-            (y > threshold).then_some((k, y))
+    let mut hot: Vec<(usize, f64)> = chunks(grid)
+        .flat_map_iter(|r| {
+            r.filter_map(|k| {
+                let y = luminance(grid.radiance(k));
+                (y > threshold).then_some((k, y))
+            })
         })
         .collect();
     let by_brightness = |a: &(usize, f64), b: &(usize, f64)| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0));
