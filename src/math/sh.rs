@@ -192,16 +192,16 @@ mod tests {
         // A grey function 1 + 0.5 (a·d) + 0.3 Y20 about a = (0.48, 0.6, -0.64): its SH9
         // projection, then ZH3, evaluates to the same values.
         let a = [0.48f32, 0.6, -0.64];
-        let mut c = [[0.0f32; 3]; 9];
         let y = sh_basis(a);
         let scale = (4.0 * PI / 5.0).sqrt();
-        for ch in 0..3 {
-            c[0][ch] = 1.0;
-            (c[3][ch], c[1][ch], c[2][ch]) = (0.5 * a[0], 0.5 * a[1], 0.5 * a[2]);
-            for k in 4..9 {
-                c[k][ch] = 0.3 * scale * y[k];
-            }
-        }
+        let grey = |k: usize| match k {
+            0 => 1.0,
+            1 => 0.5 * a[1],
+            2 => 0.5 * a[2],
+            3 => 0.5 * a[0],
+            _ => 0.3 * scale * y[k],
+        };
+        let c: [[f32; 3]; 9] = std::array::from_fn(|k| [grey(k); 3]);
         let z = zh3_from_sh9(&c);
         for (i, v) in a.iter().enumerate() {
             assert!((z.axis[i] - v).abs() < 1e-5);
