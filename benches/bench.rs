@@ -453,6 +453,9 @@ fn main() {
         bake_benchmarks();
         process_versus_cmgen();
     }
+    if run("sun") {
+        sun_benchmarks();
+    }
     if run("cubemap") {
         cubemap_benchmarks();
     }
@@ -471,6 +474,72 @@ fn main() {
     }
     if run("view") {
         view::benchmarks();
+    }
+}
+
+/// What finding the sun and filling its hole cost against a default CPU bake of the same
+/// HDRI (the bar: at most 10 % of its CPU seconds), for the bundled HDRIs with and
+/// without a sun: the search alone (`find_lights`, as `--sun keep` runs it), the search
+/// and fill (`split_lights`), and whole CPU bakes in both modes, medians of 3.
+fn sun_benchmarks() {
+    use splitsum::bake::{bake, BakeOptions};
+    use splitsum::{Stage, SunMode};
+    println!("\n## The sun: search and fill against a default CPU bake\n");
+    println!("| HDRI | lights | find CPU s | split CPU s | bake keep CPU s | bake split CPU s | sun stage / bake |");
+    println!("|---|---|---|---|---|---|---|");
+    let out = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench-sun");
+    let cpu = splitsum::backend::CpuBackend;
+    let lut = splitsum::backend::Backend::brdf_lut(&cpu, 512, 512).unwrap();
+    for name in [
+        "quarry_01_1k.hdr",
+        "royal_esplanade_1k.hdr",
+        "venice_sunset_1k.hdr",
+    ] {
+        let input = std::path::Path::new("tests/data").join(name);
+        let env = splitsum::io::input::load_input(&input, &Default::default())
+            .unwrap()
+            .env;
+        let mut lights = 0;
+        let (_, find_cpu) = measure(3, || lights = splitsum::find_lights(&env).len());
+        let (_, split_cpu) = measure(3, || {
+            splitsum::split_lights(&mut env.clone());
+        });
+        let mut sun_stage = 0.0;
+        let bake_cpu = |sun: SunMode, sun_stage: &mut f64| {
+            let opts = BakeOptions {
+                sun,
+                ..BakeOptions::default()
+            };
+            measure(3, || {
+                let mut start = None;
+                let mut stage_cpu = 0.0;
+                bake(
+                    &cpu,
+                    &input,
+                    &out,
+                    &opts,
+                    std::slice::from_ref(&lut),
+                    &mut |stage| {
+                        let now = cpu_seconds().unwrap_or(0.0);
+                        if let Some(s) = start.take() {
+                            stage_cpu = now - s;
+                        }
+                        if stage == Stage::Sun {
+                            start = Some(now);
+                        }
+                    },
+                )
+                .unwrap();
+                *sun_stage = stage_cpu;
+            })
+            .1
+        };
+        let keep = bake_cpu(SunMode::Keep, &mut sun_stage);
+        let split = bake_cpu(SunMode::Split, &mut sun_stage);
+        println!(
+            "| {name} | {lights} | {find_cpu:.3} | {split_cpu:.3} | {keep:.2} | {split:.2} | {:.1} % |",
+            100.0 * sun_stage / split
+        );
     }
 }
 

@@ -145,15 +145,7 @@ fn real_hdris_keep_their_energy_in_every_format() {
         Some(ctx) => Box::new(GpuBackend { ctx }),
         None => Box::new(CpuBackend),
     };
-    for name in [
-        "quarry_01_1k.hdr",
-        "royal_esplanade_1k.hdr",
-        "venice_sunset_1k.hdr",
-        "pedestrian_overpass_1k.hdr",
-        "studio_small_03_1k.hdr",
-        "venice_sunset_1k_f32_piz.exr",
-        "blender_studiolight_interior.exr",
-    ] {
+    for name in common::BUNDLED_HDRIS {
         let loaded = load_environment(&dir.join(name), &InputOptions::default()).unwrap();
         let Environment::Equirect(e) = &loaded.env else {
             panic!("{name} is not an equirect")

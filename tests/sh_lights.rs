@@ -11,17 +11,6 @@ use splitsum::{BackendChoice, BakeOptions, BakedEnvironment, Baker, Equirect, Su
 
 use common::{brute_force_irradiance, light_irradiance, test_equirect, uniform_directions};
 
-/// Every bundled HDRI (equirects).
-const BUNDLED: [&str; 7] = [
-    "quarry_01_1k.hdr",
-    "royal_esplanade_1k.hdr",
-    "venice_sunset_1k.hdr",
-    "pedestrian_overpass_1k.hdr",
-    "studio_small_03_1k.hdr",
-    "venice_sunset_1k_f32_piz.exr",
-    "blender_studiolight_interior.exr",
-];
-
 fn bake(e: &Equirect, sun: SunMode) -> BakedEnvironment {
     let mut baker = Baker::new(BakeOptions {
         backend: BackendChoice::Cpu,
@@ -146,7 +135,7 @@ fn the_sh_a_target_uses_is_never_negative() {
     // bundled HDRI: E/π ≥ −1e-4 × its mean in every channel, and the window keeps the
     // mean (band 0).
     let dirs = uniform_directions(10_000, 11);
-    for name in BUNDLED {
+    for name in common::BUNDLED_HDRIS {
         let e = test_equirect(name);
         for mode in [SunMode::Keep, SunMode::Split] {
             let sh = bake(&e, mode).sh.unwrap();
@@ -175,7 +164,7 @@ fn zh3_is_at_least_as_good_as_linear_sh() {
     // ZH3's irradiance against brute force, RMS over 1000 directions, on every bundled HDRI
     // with its sun kept: at most linear SH's (bands 0 and 1 of the same projection).
     let normals = uniform_directions(1000, 3);
-    for name in BUNDLED {
+    for name in common::BUNDLED_HDRIS {
         let e = test_equirect(name);
         let truth = brute_force_irradiance(&e, &normals);
         let sh = bake(&e, SunMode::Keep).sh.unwrap();

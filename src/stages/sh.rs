@@ -44,7 +44,7 @@ pub struct ShCoefficients {
     pub exact_radiance: [[f32; 3]; 9],
     /// Its irradiance / π, which may ring below 0.
     pub exact_irradiance: [[f32; 3]; 9],
-    /// The deringing window's cutoff in bands (see [`crate::math::sh::sinc_window`]);
+    /// The cutoff, in bands, of the sinc⁴ deringing window applied to `irradiance`;
     /// `None` when the exact irradiance is non-negative already.
     pub window_cutoff: Option<f32>,
     /// ZH3 of the exact irradiance / π.

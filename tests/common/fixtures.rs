@@ -84,6 +84,17 @@ pub fn backends() -> Vec<Box<dyn splitsum::backend::Backend>> {
     v
 }
 
+/// Every bundled HDRI in `tests/data` (all equirects).
+pub const BUNDLED_HDRIS: [&str; 7] = [
+    "quarry_01_1k.hdr",
+    "royal_esplanade_1k.hdr",
+    "venice_sunset_1k.hdr",
+    "pedestrian_overpass_1k.hdr",
+    "studio_small_03_1k.hdr",
+    "venice_sunset_1k_f32_piz.exr",
+    "blender_studiolight_interior.exr",
+];
+
 /// An HDRI from `tests/data` as an equirect (the tests' real environments).
 pub fn test_equirect(name: &str) -> splitsum::Equirect {
     use splitsum::environment::Environment;

@@ -254,7 +254,7 @@ fn fit_plane(grid: &Grid, ring: &[usize], gnomonic: &dyn Fn([f64; 3]) -> (f64, f
     Plane { coef, low, high }
 }
 
-/// Solves m · x = rhs[c] for each channel c by Cramer's rule; `None` when m is singular.
+/// Solves m · x = `rhs[c]` for each channel c by Cramer's rule; `None` when m is singular.
 fn solve3(m: [[f64; 3]; 3], rhs: [[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
     let det = |a: [[f64; 3]; 3]| {
         a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1])
