@@ -485,8 +485,8 @@ fn sun_benchmarks() {
     use splitsum::bake::{bake, BakeOptions};
     use splitsum::{Stage, SunMode};
     println!("\n## The sun: search and fill against a default CPU bake\n");
-    println!("| HDRI | lights | find CPU s | split CPU s | bake keep CPU s | bake split CPU s | sun stage / bake |");
-    println!("|---|---|---|---|---|---|---|");
+    println!("| HDRI | lights | find CPU s | split CPU s | bake keep CPU s | bake split CPU s | sun stage / bake | background stage / bake |");
+    println!("|---|---|---|---|---|---|---|---|");
     let out = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench-sun");
     let cpu = splitsum::backend::CpuBackend;
     let lut = splitsum::backend::Backend::brdf_lut(&cpu, 512, 512).unwrap();
@@ -504,15 +504,15 @@ fn sun_benchmarks() {
         let (_, split_cpu) = measure(3, || {
             splitsum::split_lights(&mut env.clone());
         });
-        let mut sun_stage = 0.0;
-        let bake_cpu = |sun: SunMode, sun_stage: &mut f64| {
+        // CPU seconds of the sun and background stages of the last bake measured.
+        let stage_cpu = |sun: SunMode, stages: &mut Vec<(Stage, f64)>| {
             let opts = BakeOptions {
                 sun,
                 ..BakeOptions::default()
             };
             measure(3, || {
-                let mut start = None;
-                let mut stage_cpu = 0.0;
+                let mut running: Option<(Stage, f64)> = None;
+                stages.clear();
                 bake(
                     &cpu,
                     &input,
@@ -521,24 +521,29 @@ fn sun_benchmarks() {
                     std::slice::from_ref(&lut),
                     &mut |stage| {
                         let now = cpu_seconds().unwrap_or(0.0);
-                        if let Some(s) = start.take() {
-                            stage_cpu = now - s;
+                        if let Some((s, t)) = running.take() {
+                            stages.push((s, now - t));
                         }
-                        if stage == Stage::Sun {
-                            start = Some(now);
-                        }
+                        running = Some((stage, now));
                     },
                 )
                 .unwrap();
-                *sun_stage = stage_cpu;
             })
             .1
         };
-        let keep = bake_cpu(SunMode::Keep, &mut sun_stage);
-        let split = bake_cpu(SunMode::Split, &mut sun_stage);
+        let mut stages = Vec::new();
+        let keep = stage_cpu(SunMode::Keep, &mut stages);
+        let split = stage_cpu(SunMode::Split, &mut stages);
+        let of = |wanted: Stage| {
+            stages
+                .iter()
+                .filter(|(s, _)| *s == wanted)
+                .fold(0.0, |sum, (_, t)| sum + t)
+        };
         println!(
-            "| {name} | {lights} | {find_cpu:.3} | {split_cpu:.3} | {keep:.2} | {split:.2} | {:.1} % |",
-            100.0 * sun_stage / split
+            "| {name} | {lights} | {find_cpu:.3} | {split_cpu:.3} | {keep:.2} | {split:.2} | {:.1} % | {:.1} % |",
+            100.0 * of(Stage::Sun) / split,
+            100.0 * of(Stage::Background) / split
         );
     }
 }

@@ -10,6 +10,8 @@
 mod common;
 
 use std::collections::HashMap;
+
+use common::{cube_flux, texel_solid_angle};
 use std::f64::consts::PI;
 
 use splitsum::environment::walk::texel_centres;
@@ -23,15 +25,6 @@ const SIZES: [u32; 9] = [8, 16, 32, 64, 128, 256, 512, 1024, 2048];
 
 /// The flux bar (docs/accuracy.md): 0.1 % of each channel.
 const FLUX_BAR: f64 = 1e-3;
-
-/// Exact solid angle of texel (i, j) of an n×n face, in f64.
-fn texel_solid_angle(i: u32, j: u32, n: u32) -> f64 {
-    let e = |x: f64, y: f64| (x * y).atan2((x * x + y * y + 1.0).sqrt());
-    let inv = 2.0 / n as f64;
-    let (x0, y0) = (i as f64 * inv - 1.0, j as f64 * inv - 1.0);
-    let (x1, y1) = (x0 + inv, y0 + inv);
-    e(x0, y0) - e(x0, y1) - e(x1, y0) + e(x1, y1)
-}
 
 /// Solid angle of one texel of row y of a W×H equirect.
 fn row_solid_angle(y: u32, w: u32, h: u32) -> f64 {
@@ -47,17 +40,6 @@ fn equirect_flux(e: &Equirect) -> [f64; 3] {
             let t = e.get(x, y);
             (0..3).for_each(|c| f[c] += t[c] as f64 * o);
         }
-    }
-    f
-}
-
-fn cube_flux(cube: &Cubemap) -> [f64; 3] {
-    let n = cube.size;
-    let mut f = [0.0; 3];
-    for (face, i, j, _) in texel_centres(n) {
-        let t = cube.texel(0, face, i, j);
-        let o = texel_solid_angle(i, j, n);
-        (0..3).for_each(|c| f[c] += t[c] as f64 * o);
     }
     f
 }

@@ -6,7 +6,7 @@ mod common;
 
 use std::path::Path;
 
-use common::{output_dir, run_ok, splitsum};
+use common::{cube_flux, output_dir, run_ok, splitsum};
 
 const QUARRY: &str = "tests/data/quarry_01_1k.hdr";
 const ROYAL: &str = "tests/data/royal_esplanade_1k.hdr";
@@ -96,6 +96,36 @@ fn bake_split_writes_the_lights_and_records_them() {
         .unwrap()
         .iter()
         .any(|o| o["file"] == "sun.json"));
+    // background.ktx2: the environment as seen, one level, the lights in it: its flux is
+    // the residual's (specular level 0) plus the lights' E⊥ (Σ L dω of what was taken
+    // out). 1 %: the conversion keeps flux to 4e-6 at any size; what is left is the
+    // lights' E⊥ summed over three channels against a luminance-free flux comparison.
+    assert!(manifest["outputs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|o| o["file"] == "background.ktx2" && o["kind"] == "background"));
+    let cube = |file: &str| {
+        let loaded =
+            splitsum::io::input::load_environment(&out.join(file), &Default::default()).unwrap();
+        match loaded.env {
+            splitsum::Environment::Cube(c) => c,
+            splitsum::Environment::Equirect(_) => unreachable!("a KTX2 cube"),
+        }
+    };
+    let (background, specular) = (cube("background.ktx2"), cube("specular.ktx2"));
+    assert_eq!(background.size, specular.size);
+    let lights_e: f64 = manifest["sun"]["lights"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l["irradiance"][1].as_f64().unwrap())
+        .sum();
+    let (fb, fs) = (cube_flux(&background)[1], cube_flux(&specular)[1]);
+    assert!(
+        ((fb - fs) / lights_e - 1.0).abs() < 0.01,
+        "background {fb}, residual {fs}, lights {lights_e}"
+    );
     // sh.json: the deringed SH beside the exact projection, and ZH3.
     let sh = json(&out.join("sh.json"));
     for key in [
@@ -121,6 +151,8 @@ fn bake_split_writes_the_lights_and_records_them() {
     );
     let out = keep.join("quarry_01_1k");
     assert!(!out.join("sun.json").exists());
+    // Kept, the specular chain's level 0 is the environment as seen: no background.
+    assert!(!out.join("background.ktx2").exists());
     let manifest = json(&out.join("manifest.json"));
     assert_eq!(manifest["sun"]["mode"], "keep");
     assert_eq!(manifest["sun"]["lights"].as_array().unwrap().len(), 1);

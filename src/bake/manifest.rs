@@ -338,6 +338,8 @@ pub fn read_bake_dir(dir: &Path) -> Result<(BakedEnvironment, Option<BrdfLut>)> 
             sheen: None,
             lights,
             sun_mode: manifest.sun.mode,
+            // What the lights are shaded against is read back; a background is not.
+            background: None,
         },
         lut,
     ))

@@ -13,7 +13,7 @@ use crate::environment::Cubemap;
 pub struct OutputRecord {
     /// Path of the file.
     pub path: PathBuf,
-    /// What it holds ("specular", "irradiance", "sheen", "skybox", "sh", "brdf_lut",
+    /// What it holds ("specular", "irradiance", "sheen", "skybox", "background", "sun", "sh", "brdf_lut",
     /// "preview", "manifest").
     pub kind: &'static str,
     /// Pixel format or file format.

@@ -10,7 +10,7 @@ use crate::environment::sun::{find_lights, split_lights, Sun, SunMode};
 use crate::environment::{Cubemap, Environment};
 use crate::plan::chain::SpecularChain;
 use crate::plan::fit::fit_roughest_level;
-use crate::stages::convert::environment_into_cube_with_irradiance;
+use crate::stages::convert::{environment_into_cube, environment_into_cube_with_irradiance};
 use crate::stages::sh::{sh_project, ShCoefficients};
 use crate::Result;
 
@@ -23,6 +23,9 @@ pub enum Stage {
     Sun,
     /// Converting to the environment cubemap with mips.
     Cubemap,
+    /// Converting the environment as seen, lights included, for a background (only when
+    /// `--sun split` took lights out).
+    Background,
     /// Prefiltering the specular chain.
     Specular,
     /// Convolving the irradiance cube.
@@ -44,6 +47,7 @@ impl Stage {
             Stage::Load => "load",
             Stage::Sun => "sun",
             Stage::Cubemap => "cubemap",
+            Stage::Background => "background",
             Stage::Specular => "specular",
             Stage::Irradiance => "irradiance",
             Stage::Sheen => "sheen",
@@ -54,10 +58,11 @@ impl Stage {
     }
 
     /// All stages in order.
-    pub const ALL: [Stage; 9] = [
+    pub const ALL: [Stage; 10] = [
         Stage::Load,
         Stage::Sun,
         Stage::Cubemap,
+        Stage::Background,
         Stage::Specular,
         Stage::Irradiance,
         Stage::Sheen,
@@ -126,6 +131,12 @@ pub struct BakedEnvironment {
     /// [`SunMode::Split`]: the chain, irradiance, SH and sheen are the residual's (the
     /// environment without its lights), and the lights are lights of their own.
     pub sun_mode: SunMode,
+    /// With [`SunMode::Split`] and lights taken out: the environment as seen, lights
+    /// included, at the specular chain's level-0 size (one level): what a target's skybox
+    /// or background shows, since a background is seen, not lit by. `None` otherwise
+    /// (level 0 of `specular` is the environment as seen then), and for a bake read back
+    /// from its folder.
+    pub background: Option<Cubemap>,
 }
 
 impl BakedEnvironment {
@@ -154,16 +165,30 @@ pub fn bake_light(
     timings: &mut Timings,
 ) -> Result<BakedEnvironment> {
     let mut source = source;
-    let lights = timed_stage(Stage::Sun, progress, timings, || {
-        let lights = match opts.sun {
-            SunMode::Keep => find_lights(&source),
-            SunMode::Split => split_lights(&mut source),
+    // The environment as seen is kept for the background when lights are taken out (a
+    // background is seen, not lit by).
+    let (lights, seen) = timed_stage(Stage::Sun, progress, timings, || {
+        let (lights, seen) = match opts.sun {
+            SunMode::Keep => (find_lights(&source), None),
+            SunMode::Split => {
+                let seen = source.clone();
+                let lights = split_lights(&mut source);
+                let seen = (!lights.is_empty()).then_some(seen);
+                (lights, seen)
+            }
         };
-        Ok(lights
+        let lights = lights
             .into_iter()
             .map(|s| s.rotated(opts.rotate_degrees))
-            .collect::<Vec<_>>())
+            .collect::<Vec<_>>();
+        Ok((lights, seen))
     })?;
+    let background = match seen {
+        Some(seen) => Some(timed_stage(Stage::Background, progress, timings, || {
+            environment_into_cube(backend, seen, opts.specular_size, false, opts.rotate_degrees)
+        })?),
+        None => None,
+    };
     let (env, irradiance_source) = timed_stage(Stage::Cubemap, progress, timings, || {
         environment_into_cube_with_irradiance(
             backend,
@@ -201,5 +226,6 @@ pub fn bake_light(
         sheen,
         lights,
         sun_mode: opts.sun,
+        background,
     })
 }

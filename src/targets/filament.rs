@@ -102,9 +102,13 @@ fn write(ctx: &FileContext, baked: BakedEnvironment, out: &mut Staging) -> Resul
     let bytes = ktx(&ibl, &specular, &key_values)?;
     let levels = specular.levels.len() as u32;
     out.add(ibl, bytes, ("specular", fmt, specular.size, levels));
-    let skybox_cube = Cubemap {
-        size: specular.size,
-        levels: vec![specular.levels[0].clone()],
+    // The skybox is seen, not lit by: it keeps the lights a split bake took out.
+    let skybox_cube = match baked.background {
+        Some(background) => ctx.target.orientation.apply(background),
+        None => Cubemap {
+            size: specular.size,
+            levels: vec![specular.levels[0].clone()],
+        },
     };
     let skybox = dir.join(format!("{stem}_skybox.ktx"));
     let bytes = ktx(&skybox, &skybox_cube, &[])?;

@@ -50,8 +50,9 @@ pub const GENERIC: Target = Target {
 };
 
 /// The standard file set: `specular.<ext>` and (when [`Target::irradiance`]) `irradiance.<ext>`
-/// in the bake's container (KTX2, DDS, or OpenEXR crosses, one per level), and `sh.json`
-/// when the SH were asked for.
+/// in the bake's container (KTX2, DDS, or OpenEXR crosses, one per level), `sh.json`
+/// when the SH were asked for, and with lights split out `sun.json` and
+/// `background.<ext>` (the environment as seen, lights included, one level: for a skybox).
 pub fn write_standard(
     ctx: &FileContext,
     baked: BakedEnvironment,
@@ -68,6 +69,16 @@ pub fn write_standard(
     let specular = target.orientation.apply(baked.specular);
     let path = ctx.dir.join(format!("specular.{ext}"));
     out.add_cube(encode_cube(&path, &specular, enc)?, "specular", fmt, &specular);
+    if let Some(background) = baked.background {
+        let background = target.orientation.apply(background);
+        let path = ctx.dir.join(format!("background.{ext}"));
+        out.add_cube(
+            encode_cube(&path, &background, enc)?,
+            "background",
+            fmt,
+            &background,
+        );
+    }
     if target.irradiance {
         let irradiance = target.orientation.apply(baked.irradiance);
         let path = ctx.dir.join(format!("irradiance.{ext}"));

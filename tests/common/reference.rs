@@ -431,3 +431,24 @@ pub fn light_irradiance(sun: &splitsum::Sun, n: [f64; 3]) -> [f64; 3] {
     }
     s
 }
+
+/// Exact solid angle of texel (i, j) of an n×n face, in f64.
+pub fn texel_solid_angle(i: u32, j: u32, n: u32) -> f64 {
+    let e = |x: f64, y: f64| (x * y).atan2((x * x + y * y + 1.0).sqrt());
+    let inv = 2.0 / n as f64;
+    let (x0, y0) = (i as f64 * inv - 1.0, j as f64 * inv - 1.0);
+    let (x1, y1) = (x0 + inv, y0 + inv);
+    e(x0, y0) - e(x0, y1) - e(x1, y0) + e(x1, y1)
+}
+
+/// Flux Σ L·Ω of level 0 of `cube` per channel, each texel's exact solid angle.
+pub fn cube_flux(cube: &splitsum::Cubemap) -> [f64; 3] {
+    let n = cube.size;
+    let mut f = [0.0; 3];
+    for (face, i, j, _) in splitsum::environment::walk::texel_centres(n) {
+        let t = cube.texel(0, face, i, j);
+        let o = texel_solid_angle(i, j, n);
+        (0..3).for_each(|c| f[c] += t[c] as f64 * o);
+    }
+    f
+}
