@@ -370,3 +370,52 @@ export function recipeReport(lit, unlit, size) {
   };
   return { sphere: mean(lit, middle), sphereUnlit: mean(unlit, middle), sky: mean(lit, corner) };
 }
+
+// The sun checks (docs/engines.md, "The sun as a light"). The mean luminance of a diffuse
+// unit sphere's pixels (rendered as for maskSphere) on its lit side (n·sun ≥ `edge`) and
+// on its shaded side (n·sun ≤ −`edge`): the pixels near the terminator, where a light and
+// a blurred lobe differ most in shape, are left out of both.
+export function sideMeans(px, eye, ray, size, sun, edge = 0.2) {
+  const lit = [0, 0], shaded = [0, 0];
+  for (let y = 0; y < size; y++) {
+    for (let x = 0; x < size; x++) {
+      const hit = sphereHit(eye, ray([x + 0.5, y + 0.5]));
+      if (!(hit && hit.depth > 0.15)) continue;
+      const c = dot(normalize(hit.p), sun);
+      const l = luminance(px, 4 * (y * size + x));
+      if (c >= edge) { lit[0] += l; lit[1]++; }
+      if (c <= -edge) { shaded[0] += l; shaded[1]++; }
+    }
+  }
+  return { lit: lit[0] / lit[1], shaded: shaded[0] / shaded[1], litPixels: lit[1], shadedPixels: shaded[1] };
+}
+
+// A box floating above a floor at y = 0, lit by the sun alone and seen from straight
+// above by an orthographic camera spanning ±`extent` in x and z (`size`² image, row 0 at
+// the bottom, pixel x along +x and pixel y along −z): its shadow is the floor's pixels
+// darker than half the lit floor's median. Returns the shadow's centroid (x, z), how many
+// pixels it holds, and its azimuth about the box's foot, atan2(z, x) in degrees, against
+// where `sun` (toward the sun) puts the shadow of the box's centre at `height`: the
+// shadow of a centrally symmetric solid under parallel light is centrally symmetric about
+// the shadow of its centre, so the two centroids coincide.
+export function shadowAzimuth(px, size, extent, sun, height) {
+  const lums = [];
+  for (let i = 0; i < size * size; i++) lums.push(luminance(px, 4 * i));
+  const sorted = lums.filter((l) => l > 0).sort((a, b) => a - b);
+  const median = sorted[Math.floor(sorted.length / 2)];
+  let sx = 0, sz = 0, count = 0;
+  for (let y = 0; y < size; y++) {
+    for (let x = 0; x < size; x++) {
+      if (!(lums[y * size + x] < 0.5 * median)) continue;
+      sx += ((2 * (x + 0.5)) / size - 1) * extent;
+      sz += -((2 * (y + 0.5)) / size - 1) * extent;
+      count++;
+    }
+  }
+  const centre = [sx / count, sz / count];
+  const expected = [(-sun[0] * height) / sun[1], (-sun[2] * height) / sun[1]];
+  const azimuth = (v) => (Math.atan2(v[1], v[0]) * 180) / Math.PI;
+  let error = Math.abs(azimuth(centre) - azimuth(expected));
+  error = Math.min(error, 360 - error);
+  return { centre, expected, pixels: count, azimuth: azimuth(centre), expectedAzimuth: azimuth(expected), error };
+}

@@ -8,6 +8,11 @@
 //   scene.environment = bake.envMap;
 //   scene.background = bake.envMap;
 //   scene.add(bake.lightProbe); // optional: the SH as a THREE.LightProbe
+//   if (bake.sunLight) {        // a `--sun split` bake: the sun, taken out of the IBL
+//     renderer.shadowMap.enabled = true;
+//     scene.add(bake.sunLight, bake.sunLight.target);
+//     scene.background = bake.background; // the sky as seen, the sun in it
+//   }
 //
 // Why a loader of its own: KTX2Loader (r187) returns a cube KTX2 in an uncompressed format
 // as a 2D DataTexture whose levels hold the six faces one after another, with Nearest
@@ -26,6 +31,7 @@
 import {
   CompressedCubeTexture,
   DataUtils,
+  DirectionalLight,
   RGB_BPTC_UNSIGNED_Format,
   UnsignedByteType,
   FloatType,
@@ -190,21 +196,77 @@ export function lightProbeFromSh(sh) {
 }
 
 /**
+ * A light of a splitsum sun.json (the sun, or one of its `additional_lights`) as a
+ * THREE.DirectionalLight with the same irradiance: three shades a directional light of
+ * colour c and intensity I with the irradiance c·I on a surface facing it, in the units
+ * its environment's radiance is in, so the light is `illuminance` (E's luminance) in
+ * intensity and E / illuminance (linear, components above 1 allowed) in colour. It shines
+ * from `direction` toward the origin, from `distance` away; with `shadows` it casts them
+ * through a `shadowMapSize`² map whose orthographic camera spans ±`shadowExtent` about
+ * the origin (fit `light.shadow.camera` to a scene of another size).
+ * @param {object} light - sun.json, or an entry of its additional_lights.
+ * @param {{distance?: number, shadows?: boolean, shadowMapSize?: number, shadowExtent?: number}} options
+ * @returns {DirectionalLight}
+ */
+export function directionalLightFromSun(light, { distance = 50, shadows = true, shadowMapSize = 2048, shadowExtent = 10 } = {}) {
+  const e = light.irradiance;
+  const illuminance = light.illuminance;
+  const sun = new DirectionalLight(0xffffff, illuminance);
+  if (illuminance > 0) {
+    sun.color.setRGB(e[0] / illuminance, e[1] / illuminance, e[2] / illuminance, LinearSRGBColorSpace);
+  }
+  const [x, y, z] = light.direction;
+  sun.position.set(x * distance, y * distance, z * distance);
+  sun.target.position.set(0, 0, 0);
+  sun.name = 'splitsum sun';
+  if (shadows) {
+    sun.castShadow = true;
+    sun.shadow.mapSize.set(shadowMapSize, shadowMapSize);
+    const cam = sun.shadow.camera;
+    cam.left = -shadowExtent;
+    cam.right = shadowExtent;
+    cam.top = shadowExtent;
+    cam.bottom = -shadowExtent;
+    cam.near = Math.max(distance - 2 * shadowExtent, 0.1);
+    cam.far = distance + 2 * shadowExtent;
+    cam.updateProjectionMatrix();
+    // One shadow-map texel of depth (the map spans 2·shadowExtent) keeps a lit floor
+    // free of acne at a grazing sun.
+    sun.shadow.normalBias = (2 * shadowExtent) / shadowMapSize;
+  }
+  return sun;
+}
+
+/**
  * Loads a `--target three` bake folder: specular.ktx2 as the PMREM environment,
- * sh.json (when written) as a LightProbe, and the manifest.
+ * sh.json (when written) as a LightProbe, and the manifest. A `--sun split` bake that
+ * found a sun also gives `sunLight` (a shadow-casting DirectionalLight, see
+ * directionalLightFromSun), `lights` (the further compact lights taken out, without
+ * shadows) and `background` (background.ktx2: the environment as seen, the sun in it, for
+ * `scene.background`); they are null (lights empty) otherwise.
  * @param {string} dir - the bake's folder (URL), e.g. 'out/sky'.
  * @param {THREE.WebGLRenderer} renderer
- * @returns {Promise<{envMap: CompressedCubeTexture, lightProbe: LightProbe|null, manifest: object}>}
+ * @returns {Promise<{envMap: CompressedCubeTexture, lightProbe: LightProbe|null, sunLight: DirectionalLight|null, lights: DirectionalLight[], background: CompressedCubeTexture|null, manifest: object}>}
  */
 export async function loadSplitsumBake(dir, renderer) {
   const manifest = await (await fetch(`${dir}/manifest.json`)).json();
   if (manifest.target?.name !== 'three') {
     throw new Error(`${dir}: baked for target '${manifest.target?.name}', not 'three' (bake with --target three)`);
   }
+  const has = (file) => manifest.outputs.some((o) => o.file === file);
   const envMap = await loadSplitsumCube(`${dir}/specular.ktx2`, renderer);
-  const hasSh = manifest.outputs.some((o) => o.file === 'sh.json');
-  const lightProbe = hasSh
+  const lightProbe = has('sh.json')
     ? lightProbeFromSh(await (await fetch(`${dir}/sh.json`)).json())
     : null;
-  return { envMap, lightProbe, manifest };
+  let sunLight = null;
+  let lights = [];
+  if (has('sun.json')) {
+    const sun = await (await fetch(`${dir}/sun.json`)).json();
+    sunLight = directionalLightFromSun(sun);
+    lights = (sun.additional_lights ?? []).map((l) => directionalLightFromSun(l, { shadows: false }));
+  }
+  const background = has('background.ktx2')
+    ? await loadSplitsumCube(`${dir}/background.ktx2`, renderer, { pmrem: false })
+    : null;
+  return { envMap, lightProbe, sunLight, lights, background, manifest };
 }

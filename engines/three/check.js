@@ -73,7 +73,7 @@ function pixelRay(camera, [x, y]) {
 
 const degrees = (a, b) => THREE.MathUtils.radToDeg(a.angleTo(b));
 
-window.runCheck = async function ({ hdrUrl, bakeDir, cubeUrl, roughness }) {
+window.runCheck = async function ({ hdrUrl, bakeDir, cubeUrl, roughness, splitDir }) {
   const manifest = await (await fetch(`${bakeDir}/manifest.json`)).json();
   const format = manifest.parameters.pixel_format;
   if (format === 'bc6h' && !supportsBc6h(renderer)) {
@@ -198,8 +198,77 @@ window.runCheck = async function ({ hdrUrl, bakeDir, cubeUrl, roughness }) {
     images.probe_three = toPng(want);
   }
 
+  if (splitDir) out.sunLight = await sunLight(bake, splitDir, images);
+
   out.renderer = renderer.getContext().getParameter(renderer.getContext().VERSION);
   return { out, images };
 };
+
+// The sun as a light (a `--sun split` bake in `splitDir`, beside the kept bake `full`): a
+// white diffuse sphere lit by the full IBL against the residual IBL plus
+// `bake.sunLight`, seen 90° from the sun (half lit, half shaded); then a box floating above
+// a floor, lit by the sun alone with its shadow, seen from straight above.
+async function sunLight(full, splitDir, images) {
+  const split = await loadSplitsumBake(splitDir, renderer);
+  if (!split.sunLight) throw new Error(`${splitDir}: no sun.json (bake with --sun split)`);
+  const toSun = split.sunLight.position.clone().normalize();
+  const sun = toSun.toArray();
+  const eye = measure.scale(measure.turnedFrom(sun, 90), measure.SPHERE_DISTANCE);
+  const cam = measure.pinhole(eye, [0, 0, 0], measure.SPHERE_FOV);
+  const camera = new THREE.PerspectiveCamera(measure.SPHERE_FOV, 1, 0.1, 100);
+  camera.position.set(...eye);
+  camera.up.set(...cam.up);
+  camera.lookAt(0, 0, 0);
+  camera.updateMatrixWorld();
+  const diffuse = new THREE.MeshPhysicalMaterial({ color: 0xffffff, metalness: 0, roughness: 1, specularIntensity: 0 });
+  const sphere = new THREE.Mesh(new THREE.SphereGeometry(1, 128, 64), diffuse);
+  const sides = (scene) => {
+    scene.add(sphere);
+    const px = render(scene, camera);
+    return { px, ...measure.sideMeans(px, eye, (p) => measure.pixelRay(cam, p, SIZE), SIZE, sun) };
+  };
+  const fullScene = new THREE.Scene();
+  fullScene.environment = full.envMap;
+  const want = sides(fullScene);
+  const splitScene = new THREE.Scene();
+  splitScene.environment = split.envMap;
+  splitScene.add(split.sunLight, split.sunLight.target, ...split.lights);
+  const got = sides(splitScene);
+  images.sun_sphere_full_ibl = toPng(want.px);
+  images.sun_sphere_split = toPng(got.px);
+
+  // The shadow: the sun alone (no environment), shadows on.
+  const HEIGHT = 1, EXTENT = 10, SHADOW_SIZE = 256;
+  renderer.shadowMap.enabled = true;
+  renderer.shadowMap.type = THREE.PCFShadowMap;
+  const scene = new THREE.Scene();
+  const floor = new THREE.Mesh(new THREE.PlaneGeometry(4 * EXTENT, 4 * EXTENT), new THREE.MeshStandardMaterial({ color: 0xffffff, roughness: 1 }));
+  floor.rotation.x = -Math.PI / 2;
+  floor.receiveShadow = true;
+  const box = new THREE.Mesh(new THREE.BoxGeometry(1, 1, 1), new THREE.MeshStandardMaterial({ color: 0xffffff, roughness: 1 }));
+  box.position.set(0, HEIGHT, 0);
+  box.castShadow = true;
+  scene.add(floor, box, split.sunLight, split.sunLight.target);
+  const top = new THREE.OrthographicCamera(-EXTENT, EXTENT, EXTENT, -EXTENT, 0.1, 100);
+  top.position.set(0, 50, 0);
+  top.up.set(0, 0, -1);
+  top.lookAt(0, 0, 0);
+  top.updateMatrixWorld();
+  const saved = SIZE;
+  setSize(SHADOW_SIZE);
+  const px = render(scene, top);
+  setSize(saved);
+  renderer.shadowMap.enabled = false;
+  images.sun_shadow = measure.toPng(px, SHADOW_SIZE);
+  return {
+    direction: sun,
+    intensity: split.sunLight.intensity,
+    litRatio: got.lit / want.lit,
+    shadedRatio: got.shaded / want.shaded,
+    litPixels: got.litPixels,
+    shadedPixels: got.shadedPixels,
+    shadow: measure.shadowAzimuth(px, SHADOW_SIZE, EXTENT, sun, HEIGHT),
+  };
+}
 
 window.checkReady = true;

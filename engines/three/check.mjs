@@ -30,6 +30,11 @@ const chromium = process.env.CHROMIUM ?? '/usr/bin/chromium';
 const BARS = { sunDegrees: 1, brightness: 0.05, correlation: 0.98 };
 const ROUGHNESS = [0.25, 0.5, 1];
 const HDRIS = ['quarry_01_1k', 'venice_sunset_1k'];
+// The sun bars (docs/engines.md, "The sun as a light"): a diffuse sphere under the residual
+// IBL plus the sun light within 3 % of the full IBL on its lit and shaded sides; the
+// shadow's centre within 2° of the azimuth the sun's direction puts it at.
+const SUN_HDRI = 'quarry_01_1k';
+const SUN_BARS = { sides: 0.03, shadowDegrees: 2 };
 
 requireTools([['splitsum', splitsum], ['chromium', chromium]]);
 
@@ -42,6 +47,12 @@ execFileSync(
 execFileSync(
   splitsum,
   ['bake', ...HDRIS.map((h) => `tests/data/${h}.hdr`), '--target', 'three', '--pixel-format', 'bc6h', '-q', '-o', 'target/engines/three/bakes_bc6h'],
+  { cwd: root, stdio: 'inherit' },
+);
+// The sun as a light: quarry_01 with its sun split out.
+execFileSync(
+  splitsum,
+  ['bake', `tests/data/${SUN_HDRI}.hdr`, '--target', 'three', '--sun', 'split', '-q', '-o', 'target/engines/three/bakes_split'],
   { cwd: root, stdio: 'inherit' },
 );
 for (const h of HDRIS) {
@@ -111,6 +122,7 @@ await runEngineCheck({
       bakeDir: `/target/engines/three/${bakes}/${hdri}`,
       cubeUrl: `/target/engines/three/bakes/${hdri}_cube.ktx2`,
       roughness: ROUGHNESS,
+      splitDir: name === SUN_HDRI ? `/target/engines/three/bakes_split/${hdri}` : undefined,
     };
   },
   judge: (r, { bad, note }) => {
@@ -123,6 +135,13 @@ await runEngineCheck({
     for (const s of r.spheres) {
       bad(Math.abs(s.ratio - 1) <= BARS.brightness && s.correlation >= BARS.correlation,
         `${s.metalness ? 'metal' : 'dielectric'} r = ${s.roughness}: brightness ${(100 * (s.ratio - 1)).toFixed(2)} % against three's PMREM, correlation ${s.correlation.toFixed(4)} (${s.pixels} pixels); ${(100 * (s.ratioToThreePmremOfExactCube - 1)).toFixed(2)} % against three's PMREM of splitsum's exact cube`);
+    }
+    if (r.sunLight) {
+      const s = r.sunLight;
+      bad(Math.abs(s.litRatio - 1) <= SUN_BARS.sides && Math.abs(s.shadedRatio - 1) <= SUN_BARS.sides,
+        `sun split: diffuse sphere under the residual IBL + sunLight against the full IBL: lit side ${(100 * (s.litRatio - 1)).toFixed(2)} % (${s.litPixels} pixels), shaded side ${(100 * (s.shadedRatio - 1)).toFixed(2)} % (${s.shadedPixels} pixels) (bar ${100 * SUN_BARS.sides} %)`);
+      bad(s.shadow.pixels > 100 && s.shadow.error <= SUN_BARS.shadowDegrees,
+        `sun split: the box's shadow at azimuth ${s.shadow.azimuth.toFixed(2)}°, where the sun puts it ${s.shadow.expectedAzimuth.toFixed(2)}° (${s.shadow.error.toFixed(2)}°, bar ${SUN_BARS.shadowDegrees}°; ${s.shadow.pixels} pixels)`);
     }
     if (r.lightProbe) {
       bad(Math.abs(r.lightProbe.ratio - 1) <= BARS.brightness && r.lightProbe.correlation >= BARS.correlation,
