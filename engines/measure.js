@@ -371,34 +371,70 @@ export function recipeReport(lit, unlit, size) {
   return { sphere: mean(lit, middle), sphereUnlit: mean(unlit, middle), sky: mean(lit, corner) };
 }
 
-// The sun checks (docs/engines.md, "The sun as a light"). The mean luminance of a diffuse
-// unit sphere's pixels (rendered as for maskSphere) on its lit side (n·sun ≥ `edge`) and
-// on its shaded side (n·sun ≤ −`edge`): the pixels near the terminator, where a light and
-// a blurred lobe differ most in shape, are left out of both.
-export function sideMeans(px, eye, ray, size, sun, edge = 0.2) {
-  const lit = [0, 0], shaded = [0, 0];
+// The sun checks (docs/engines.md, "The sun as a light"). The pixels of a unit sphere's
+// render (as for maskSphere) on its lit side (n·sun ≥ `edge`) and on its shaded side
+// (n·sun ≤ −`edge`), each [pixel index, normal]: the pixels near the terminator, where a
+// light and a blurred lobe differ most in shape, are left out of both.
+export function sphereSides(eye, ray, size, sun, edge = 0.2) {
+  const lit = [], shaded = [];
   for (let y = 0; y < size; y++) {
     for (let x = 0; x < size; x++) {
       const hit = sphereHit(eye, ray([x + 0.5, y + 0.5]));
       if (!(hit && hit.depth > 0.15)) continue;
-      const c = dot(normalize(hit.p), sun);
-      const l = luminance(px, 4 * (y * size + x));
-      if (c >= edge) { lit[0] += l; lit[1]++; }
-      if (c <= -edge) { shaded[0] += l; shaded[1]++; }
+      const n = normalize(hit.p);
+      const c = dot(n, sun);
+      if (c >= edge) lit.push([y * size + x, n]);
+      if (c <= -edge) shaded.push([y * size + x, n]);
     }
   }
-  return { lit: lit[0] / lit[1], shaded: shaded[0] / shaded[1], litPixels: lit[1], shadedPixels: shaded[1] };
+  return { lit, shaded };
 }
 
-// A box floating above a floor at y = 0, lit by the sun alone and seen from straight
-// above by an orthographic camera spanning ±`extent` in x and z (`size`² image, row 0 at
-// the bottom, pixel x along +x and pixel y along −z): its shadow is the floor's pixels
-// darker than half the lit floor's median. Returns the shadow's centroid (x, z), how many
-// pixels it holds, and its azimuth about the box's foot, atan2(z, x) in degrees, against
-// where `sun` (toward the sun) puts the shadow of the box's centre at `height`: the
-// shadow of a centrally symmetric solid under parallel light is centrally symmetric about
-// the shadow of its centre, so the two centroids coincide.
-export function shadowAzimuth(px, size, extent, sun, height) {
+// The mean luminance of a render's pixels on each side (sphereSides) of a diffuse sphere.
+export function sideMeans(px, eye, ray, size, sun, edge = 0.2) {
+  const sides = sphereSides(eye, ray, size, sun, edge);
+  const mean = (side) => side.reduce((m, [i]) => m + luminance(px, 4 * i), 0) / side.length;
+  return { lit: mean(sides.lit), shaded: mean(sides.shaded), litPixels: sides.lit.length, shadedPixels: sides.shaded.length };
+}
+
+// What a white Lambertian sphere shows on each side (sphereSides) under the radiance cube
+// `level0` (n², as GL reads it back) and `lights` (sun.json's, each E⊥ max(n·l, 0)),
+// E(n)/π's luminance averaged over the side's normals: the brute-force truth, from the
+// cube box-averaged to at most 64² first (the cosine lobe is ~60× wider than a 64² texel).
+export function sideTruth(level0, n, lights, eye, ray, size, sun, edge = 0.2) {
+  let m = n, faces = level0;
+  while (m > 64) {
+    const half = m / 2;
+    faces = faces.map((face) => {
+      const out = new Float32Array(4 * half * half);
+      for (let j = 0; j < half; j++) {
+        for (let i = 0; i < half; i++) {
+          for (let c = 0; c < 4; c++) {
+            const at = (jj, ii) => face[4 * (jj * m + ii) + c] || 0;
+            out[4 * (j * half + i) + c] = 0.25 * (at(2 * j, 2 * i) + at(2 * j, 2 * i + 1) + at(2 * j + 1, 2 * i) + at(2 * j + 1, 2 * i + 1));
+          }
+        }
+      }
+      return out;
+    });
+    m = half;
+  }
+  const sides = sphereSides(eye, ray, size, sun, edge);
+  const direct = (normal) => lights.reduce((e, l) => e + (l.illuminance * Math.max(0, dot(normal, l.direction))) / Math.PI, 0);
+  const mean = (side) => bruteIrradiance(faces, m, side.map(([, normal]) => normal))
+    .reduce((sum, e, k) => sum + luminance(e, 0) + direct(side[k][1]), 0) / side.length;
+  return { lit: mean(sides.lit), shaded: mean(sides.shaded) };
+}
+
+// A box floating above a floor at y = 0, lit by the sun alone and seen from above
+// (`size`² image; `floorAt` gives the floor point [x, z] a pixel position shows): its
+// shadow is the pixels darker than half the lit floor's median. Returns the shadow's
+// centroid (x, z), how many pixels it holds, and its azimuth about the box's foot,
+// atan2(z, x) in degrees, against where `sun` (toward the sun) puts the shadow of the
+// box's centre at `height`: the shadow of a centrally symmetric solid under parallel
+// light is centrally symmetric about the shadow of its centre, so the two centroids
+// coincide.
+export function shadowAzimuth(px, size, floorAt, sun, height) {
   const lums = [];
   for (let i = 0; i < size * size; i++) lums.push(luminance(px, 4 * i));
   const sorted = lums.filter((l) => l > 0).sort((a, b) => a - b);
@@ -407,8 +443,9 @@ export function shadowAzimuth(px, size, extent, sun, height) {
   for (let y = 0; y < size; y++) {
     for (let x = 0; x < size; x++) {
       if (!(lums[y * size + x] < 0.5 * median)) continue;
-      sx += ((2 * (x + 0.5)) / size - 1) * extent;
-      sz += -((2 * (y + 0.5)) / size - 1) * extent;
+      const [fx, fz] = floorAt([x + 0.5, y + 0.5]);
+      sx += fx;
+      sz += fz;
       count++;
     }
   }
@@ -418,4 +455,10 @@ export function shadowAzimuth(px, size, extent, sun, height) {
   let error = Math.abs(azimuth(centre) - azimuth(expected));
   error = Math.min(error, 360 - error);
   return { centre, expected, pixels: count, azimuth: azimuth(centre), expectedAzimuth: azimuth(expected), error };
+}
+
+// The floor point (y = 0) [x, z] the ray along `d` from `eye` meets.
+export function floorPoint(eye, d) {
+  const t = -eye[1] / d[1];
+  return [eye[0] + t * d[0], eye[2] + t * d[2]];
 }

@@ -1,5 +1,5 @@
-// The sphere the engine checks render, as the engines load models: a glTF binary.
-// A UV sphere of radius 1 at the origin with one white metallic-roughness material, as a
+// The models the engine checks render, as the engines load models: glTF binaries.
+// The sphere: a UV sphere of radius 1 at the origin with one white metallic-roughness material, as a
 // GLB (glTF 2.0 binary) for the engines' own glTF loaders.
 export function sphereGlb(metallic, roughness) {
   const rings = 96, segments = 192;
@@ -17,25 +17,68 @@ export function sphereGlb(metallic, roughness) {
       idx.push(a, a + 1, b, a + 1, b + 1, b);
     }
   }
+  return meshGlb(pos, pos, idx, metallic, roughness);
+}
+
+// A floor (the square y = 0 of half-size `extent`, facing up) and a unit box centred at
+// (0, `height`, 0), both white diffuse (metallic 0, roughness 1), as one GLB: the shadow
+// scene of the sun checks (engines/measure.js, shadowAzimuth).
+export function shadowSceneGlb(extent, height) {
+  const pos = [], nor = [], idx = [];
+  const quad = (corners, n) => {
+    const base = pos.length / 3;
+    for (const c of corners) { pos.push(...c); nor.push(...n); }
+    idx.push(base, base + 1, base + 2, base, base + 2, base + 3);
+  };
+  const e = extent;
+  quad([[-e, 0, -e], [-e, 0, e], [e, 0, e], [e, 0, -e]], [0, 1, 0]);
+  // The box's six faces, each counter-clockwise seen from outside.
+  for (const [axis, sign] of [[0, 1], [0, -1], [1, 1], [1, -1], [2, 1], [2, -1]]) {
+    const n = [0, 0, 0];
+    n[axis] = sign;
+    const [u, v] = [(axis + 1) % 3, (axis + 2) % 3];
+    const corner = (a, b) => {
+      const c = [0, 0, 0];
+      c[axis] = 0.5 * sign;
+      c[u] = a;
+      c[v] = b;
+      return [c[0], c[1] + height, c[2]];
+    };
+    const h = 0.5;
+    const corners = [corner(-h, -h), corner(h, -h), corner(h, h), corner(-h, h)];
+    quad(sign > 0 ? corners : corners.reverse(), n);
+  }
+  return meshGlb(pos, nor, idx, 0, 1);
+}
+
+// One mesh of `positions`, `normals` (flat xyz arrays) and triangle `indices`, with one
+// white metallic-roughness material, as a GLB.
+function meshGlb(pos, nor, idx, metallic, roughness) {
   const positions = new Float32Array(pos);
+  const normals = new Float32Array(nor);
   const indices = new Uint16Array(idx);
-  const bin = new Uint8Array(positions.byteLength + indices.byteLength + 3 & ~3);
+  const min = [0, 1, 2].map((k) => Math.min(...positions.filter((_, i) => i % 3 === k)));
+  const max = [0, 1, 2].map((k) => Math.max(...positions.filter((_, i) => i % 3 === k)));
+  const bin = new Uint8Array(positions.byteLength + normals.byteLength + indices.byteLength + 3 & ~3);
   bin.set(new Uint8Array(positions.buffer), 0);
-  bin.set(new Uint8Array(indices.buffer), positions.byteLength);
+  bin.set(new Uint8Array(normals.buffer), positions.byteLength);
+  bin.set(new Uint8Array(indices.buffer), positions.byteLength + normals.byteLength);
   const json = {
     asset: { version: '2.0' },
     scene: 0,
     scenes: [{ nodes: [0] }],
     nodes: [{ mesh: 0 }],
-    meshes: [{ primitives: [{ attributes: { POSITION: 0, NORMAL: 0 }, indices: 1, material: 0 }] }],
+    meshes: [{ primitives: [{ attributes: { POSITION: 0, NORMAL: 1 }, indices: 2, material: 0 }] }],
     materials: [{ pbrMetallicRoughness: { baseColorFactor: [1, 1, 1, 1], metallicFactor: metallic, roughnessFactor: roughness } }],
     accessors: [
-      { bufferView: 0, componentType: 5126, count: positions.length / 3, type: 'VEC3', min: [-1, -1, -1], max: [1, 1, 1] },
-      { bufferView: 1, componentType: 5123, count: indices.length, type: 'SCALAR' },
+      { bufferView: 0, componentType: 5126, count: positions.length / 3, type: 'VEC3', min, max },
+      { bufferView: 1, componentType: 5126, count: normals.length / 3, type: 'VEC3' },
+      { bufferView: 2, componentType: 5123, count: indices.length, type: 'SCALAR' },
     ],
     bufferViews: [
       { buffer: 0, byteOffset: 0, byteLength: positions.byteLength, target: 34962 },
-      { buffer: 0, byteOffset: positions.byteLength, byteLength: indices.byteLength, target: 34963 },
+      { buffer: 0, byteOffset: positions.byteLength, byteLength: normals.byteLength, target: 34962 },
+      { buffer: 0, byteOffset: positions.byteLength + normals.byteLength, byteLength: indices.byteLength, target: 34963 },
     ],
     buffers: [{ byteLength: bin.byteLength }],
   };

@@ -39,10 +39,15 @@ function pixelRay([x, y], size) {
   return normalize([p.x - camera.position.x, p.y - camera.position.y, p.z - camera.position.z]);
 }
 
-// Renders `meshes` size² into a float target with the environment scaled by `e`; returns
+// Renders `meshes` size² into a float target with the environment (and scaledLights)
+// scaled by `e`; returns
 // linear radiance (alpha: coverage) and the largest value written.
+// Lights scaled with the environment: [light, its intensity at e = 1].
+const scaledLights = [];
+
 async function renderAt(meshes, size, e) {
   scene.environmentIntensity = e;
+  for (const [light, intensity] of scaledLights) light.intensity = intensity * e;
   // Shaders compile asynchronously: wait until every mesh and its material can draw.
   for (let tries = 0; !meshes.every((m) => m.isReady(true)); tries++) {
     if (tries > 3000) throw new Error('a material never compiled');
@@ -91,7 +96,7 @@ const ready = (texture) => new Promise((ok, fail) => {
   setTimeout(() => fail(new Error(`${texture.name} did not load`)), 120000);
 });
 
-window.runCheck = async function ({ hdrUrl, exactUrl, envUrl, controlUrl, roughness }) {
+window.runCheck = async function ({ hdrUrl, exactUrl, envUrl, controlUrl, roughness, split }) {
   const own = await ready(new B.HDRCubeTexture(hdrUrl, scene, 256, false, true, false, true));
   // Babylon's own path from splitsum's exact cube (engines/panorama.mjs): its SH and its
   // prefiltering of the cube splitsum bakes from, with the clamp its SH projection puts on
@@ -193,8 +198,100 @@ window.runCheck = async function ({ hdrUrl, exactUrl, envUrl, controlUrl, roughn
     .map(({ metallic, roughness: r, px }, k) => ({ metallic, roughness: r, ...measure.compareSpheres(ourSpheres[k].px, px, SIZE) }));
   out.vsOwn = await compareWith(own, 'babylon', ownStats.mean);
   out.vsOwnExact = await compareWith(ownExact, 'babylon_exact', ownExactStats.mean);
+  if (split) out.sunLight = await sunLight(ours, split, images);
   out.renderer = engine.description;
   return { out, images };
 };
+
+// The sun of a split bake's sun.json as a Babylon DirectionalLight, as the README recipe
+// builds it: shining along −direction, diffuse and specular colour E / illuminance,
+// intensity illuminance (Babylon shades it with colour × intensity, the environment with
+// its radiance, both × 1/π for a Lambertian surface), from 50 units away for its shadows.
+function sunLightFrom(sun) {
+  const light = new B.DirectionalLight('sun', new B.Vector3(...scale(sun.direction, -1)), scene);
+  const color = new B.Color3(...sun.irradiance.map((c) => c / sun.illuminance));
+  light.diffuse = color;
+  light.specular = color;
+  light.intensity = sun.illuminance;
+  light.position = new B.Vector3(...scale(sun.direction, 50));
+  return light;
+}
+
+// The sun as a light (`split`: a `--sun split` bake's .env and sun.json, beside `full`, the
+// kept bake): a white Lambertian PBR sphere lit by the full IBL against the residual IBL
+// plus the DirectionalLight, seen 90° from the sun (half lit, half shaded); then a box
+// floating above a floor, lit by the sun alone with a ShadowGenerator, seen from above.
+async function sunLight(full, split, images) {
+  const residual = await ready(new B.CubeTexture(split.env, scene));
+  const sun = await (await fetch(split.sun)).json();
+  const toSun = sun.direction;
+  const light = sunLightFrom(sun);
+  light.setEnabled(false);
+  scaledLights.push([light, light.intensity]);
+  const eye = scale(measure.turnedFrom(toSun, 90), SPHERE_DISTANCE);
+  const sphere = B.MeshBuilder.CreateSphere('sun sphere', { diameter: 2, segments: 96 }, scene);
+  const material = new B.PBRMaterial('diffuse', scene);
+  material.albedoColor = new B.Color3(1, 1, 1);
+  material.metallic = 0;
+  material.roughness = 1;
+  // Lambertian and no specular (F0 = 0, and with it F90, fresnelGrazingReflectance): what
+  // the truth computes.
+  material.baseDiffuseModel = B.Constants.MATERIAL_DIFFUSE_MODEL_LAMBERT;
+  material.metallicF0Factor = 0;
+  sphere.material = material;
+  const sides = async (texture, withSun, tag) => {
+    scene.environmentTexture = texture;
+    light.setEnabled(withSun);
+    aim(eye, [0, 0, 0], SPHERE_FOV);
+    const px = await render([sphere], SIZE, 0.5);
+    images[`sun_sphere_${tag}`] = measure.toPng(px, SIZE);
+    return measure.sideMeans(px, eye, (p) => pixelRay(p, SIZE), SIZE, toSun);
+  };
+  const want = await sides(full, false, 'full_ibl');
+  const got = await sides(residual, true, 'split');
+  sphere.dispose();
+  // The truth: the residual's level 0 as Babylon holds it, brute force, plus the lights
+  // shaded exactly (Babylon holds the full environment's sun, ~64 000, past half floats;
+  // residual + lights = the environment's irradiance within 0.2 %, tests/irradiance.rs).
+  const lights = [sun, ...(sun.additional_lights ?? [])];
+  const truth = measure.sideTruth(await faces(residual), residual.getSize().width, lights, eye, (p) => pixelRay(p, SIZE), SIZE, toSun);
+
+  // The shadow: the sun alone (no environment).
+  const HEIGHT = 1, EXTENT = 10, TOP = 40;
+  scene.environmentTexture = null;
+  const white = new B.PBRMaterial('white', scene);
+  white.albedoColor = new B.Color3(1, 1, 1);
+  white.metallic = 0;
+  white.roughness = 1;
+  const floor = B.MeshBuilder.CreateGround('floor', { width: 4 * EXTENT, height: 4 * EXTENT }, scene);
+  floor.material = white;
+  floor.receiveShadows = true;
+  const box = B.MeshBuilder.CreateBox('box', { size: 1 }, scene);
+  box.position = new B.Vector3(0, HEIGHT, 0);
+  box.material = white;
+  const shadows = new B.ShadowGenerator(2048, light);
+  shadows.addShadowCaster(box);
+  light.setEnabled(true);
+  aim([0, TOP, 0], [0, 0, 0], (2 * Math.atan(EXTENT / TOP) * 180) / Math.PI);
+  const px = await render([floor, box], SIZE, 1);
+  images.sun_shadow = measure.toPng(px, SIZE);
+  const shadow = measure.shadowAzimuth(px, SIZE, (p) => measure.floorPoint([0, TOP, 0], pixelRay(p, SIZE)), toSun, HEIGHT);
+  shadows.dispose();
+  for (const m of [floor, box, white, material]) m.dispose();
+  light.dispose();
+  scaledLights.length = 0;
+  return {
+    direction: toSun,
+    litRatio: got.lit / want.lit,
+    shadedRatio: got.shaded / want.shaded,
+    litPixels: got.litPixels,
+    shadedPixels: got.shadedPixels,
+    truth: {
+      split: { lit: got.lit / truth.lit, shaded: got.shaded / truth.shaded },
+      full: { lit: want.lit / truth.lit, shaded: want.shaded / truth.shaded },
+    },
+    shadow,
+  };
+}
 
 window.checkReady = true;

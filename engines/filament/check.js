@@ -9,7 +9,7 @@
 // radiance. A self-check renders the same view at two exposures and requires the decoded
 // radiance to agree, so a non-linear output would fail the check rather than skew it.
 import * as measure from '/engines/measure.js';
-import { sphereGlb } from '/engines/sphere.js';
+import { shadowSceneGlb, sphereGlb } from '/engines/sphere.js';
 import { drawFrames } from '/engines/filament/frames.js';
 
 const { SIZE, MIRROR_SIZE, SPHERE_DISTANCE, SPHERE_FOV, SKY_FOV, add, scale, degrees, pinhole, pixelRay } = measure;
@@ -132,7 +132,7 @@ async function loadPath({ ibl, sky }) {
   return { light, withSh, skybox: engine.createSkyFromKtx1(skyBytes), stats: skyStats(skyBytes), sh: light.shfloats };
 }
 
-window.runCheck = async function ({ splitsum, cmgen, fromCmgenCube, cmgenOfExact, control, roughness }) {
+window.runCheck = async function ({ splitsum, cmgen, fromCmgenCube, cmgenOfExact, control, roughness, split }) {
   const ours = await loadPath(splitsum);
   const ref = await loadPath(cmgen);
   const sun = ref.stats.sun; // the sun as Filament's own path (cmgen) places it
@@ -231,8 +231,83 @@ window.runCheck = async function ({ splitsum, cmgen, fromCmgenCube, cmgenOfExact
   // splitsum's bake of the HDRI against cmgen's bake of splitsum's exact cube of it
   // (engines/panorama.mjs): cmgen's prefiltering and SH of the cube splitsum bakes from.
   out.vsCmgenOfExact = compare(ourRenders, await renderPath(await loadPath(cmgenOfExact), 'cmgen_of_exact'));
+  if (split) out.sunLight = await sunLight(ours, split, images);
   out.renderer = gl.getParameter(gl.VERSION);
   return { out, images };
 };
+
+// The sun of a split bake's sun.json as Filament's SUN light, as the README recipe builds
+// it: towards −direction, colour E / illuminance, intensity illuminance × the IBL's
+// intensity in lux (Filament shades a directional light with colour × intensity, the IBL
+// with radiance × intensity), the sun's disc radius, casting shadows.
+function sunEntity(sun) {
+  const entity = Filament.EntityManager.get().create();
+  const lum = sun.illuminance;
+  Filament.LightManager.Builder(Filament.LightManager$Type.SUN)
+    .color(sun.irradiance.map((c) => c / lum))
+    .intensity(lum * INTENSITY)
+    .direction(scale(sun.direction, -1))
+    .sunAngularRadius(sun.angular_radius_deg)
+    .castShadows(true)
+    .build(engine, entity);
+  return entity;
+}
+
+// The sun as a light (`split`: a `--sun split` bake's files, beside `full`, the kept
+// bake): a white diffuse sphere (gltfio, metallic 0, roughness 1) lit by the full IBL
+// against the residual IBL plus the SUN light, seen 90° from the sun (half lit, half
+// shaded); then a box floating above a floor, lit by the sun alone with its shadow, seen
+// from above.
+async function sunLight(full, split, images) {
+  const path = await loadPath(split);
+  const sun = await (await fetch(split.sun)).json();
+  const light = sunEntity(sun);
+  const toSun = sun.direction;
+  const eye = scale(measure.turnedFrom(toSun, 90), SPHERE_DISTANCE);
+  const cam = pinhole(eye, [0, 0, 0], SPHERE_FOV);
+  const sides = async (ibl, withSun, tag) => {
+    const asset = await loadSphere(0, 1);
+    scene.addEntities(asset.getEntities());
+    scene.setIndirectLight(ibl);
+    if (withSun) scene.addEntity(light);
+    const { px } = await render(cam, SIZE, 0.5);
+    if (withSun) scene.remove(light);
+    scene.removeEntities(asset.getEntities());
+    assetLoader.destroyAsset(asset);
+    images[`sun_sphere_${tag}`] = measure.toPng(px, SIZE);
+    return measure.sideMeans(px, eye, (p) => pixelRay(cam, p, SIZE), SIZE, toSun);
+  };
+  const want = await sides(full.light, false, 'full_ibl');
+  const got = await sides(path.light, true, 'split');
+
+  // The shadow: the sun alone (no IBL), the floor and box casting and receiving shadows.
+  const HEIGHT = 1, EXTENT = 10, TOP = 40;
+  const asset = assetLoader.createAsset(shadowSceneGlb(2 * EXTENT, HEIGHT));
+  await new Promise((ok) => asset.loadResources(ok, null, null, 1));
+  const rm = engine.getRenderableManager();
+  for (const e of asset.getRenderableEntities()) {
+    const instance = rm.getInstance(e);
+    rm.setCastShadows(instance, true);
+    rm.setReceiveShadows(instance, true);
+  }
+  scene.addEntities(asset.getEntities());
+  scene.addEntity(light);
+  scene.setIndirectLight(null);
+  const top = pinhole([0, TOP, 0], [0, 0, 0], (2 * Math.atan(EXTENT / TOP) * 180) / Math.PI);
+  const { px } = await render(top, SIZE, 1);
+  scene.remove(light);
+  scene.removeEntities(asset.getEntities());
+  assetLoader.destroyAsset(asset);
+  engine.destroyEntity(light);
+  images.sun_shadow = measure.toPng(px, SIZE);
+  return {
+    direction: toSun,
+    litRatio: got.lit / want.lit,
+    shadedRatio: got.shaded / want.shaded,
+    litPixels: got.litPixels,
+    shadedPixels: got.shadedPixels,
+    shadow: measure.shadowAzimuth(px, SIZE, (p) => measure.floorPoint(top.eye, pixelRay(top, p, SIZE)), toSun, HEIGHT),
+  };
+}
 
 window.checkReady = true;

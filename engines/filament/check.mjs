@@ -33,6 +33,11 @@ const chromium = process.env.CHROMIUM ?? '/usr/bin/chromium';
 const BARS = { sunDegrees: 1, brightness: 0.05, correlation: 0.98, controlDegrees: 10 };
 const ROUGHNESS = [0.25, 0.5, 1];
 const HDRIS = ['venice_sunset_1k', 'quarry_01_1k'];
+// The sun bars (docs/engines.md, "The sun as a light"): a diffuse sphere under the residual
+// IBL plus the SUN light within 3 % of the full IBL on its lit and shaded sides; the
+// shadow's centre within 2° of the azimuth the sun's direction puts it at.
+const SUN_HDRI = 'quarry_01_1k';
+const SUN_BARS = { sides: 0.03, shadowDegrees: 2 };
 
 requireTools([['splitsum', splitsum], ['chromium', chromium]]);
 
@@ -41,6 +46,12 @@ const rel = (p) => p.slice(root.length);
 execFileSync(
   splitsum,
   ['bake', ...HDRIS.map((h) => `tests/data/${h}.hdr`), '--target', 'filament', '-q', '-o', 'target/engines/filament/splitsum'],
+  { cwd: root, stdio: 'inherit' },
+);
+// The sun as a light: quarry_01 with its sun split out.
+execFileSync(
+  splitsum,
+  ['bake', `tests/data/${SUN_HDRI}.hdr`, '--target', 'filament', '--sun', 'split', '-q', '-o', 'target/engines/filament/split'],
   { cwd: root, stdio: 'inherit' },
 );
 for (const h of HDRIS) {
@@ -128,6 +139,13 @@ await runEngineCheck({
     cmgenOfExact: { ibl: rel(join(out, 'cmgen_of_exact', hdri, `${hdri}_ibl.ktx`)), sky: rel(join(out, 'cmgen_of_exact', hdri, `${hdri}_skybox.ktx`)) },
     control: rel(join(out, 'control', `${hdri}_generic.ktx`)),
     roughness: ROUGHNESS,
+    split: hdri === SUN_HDRI
+      ? {
+        ibl: rel(join(out, 'split', hdri, `${hdri}_ibl.ktx`)),
+        sky: rel(join(out, 'split', hdri, `${hdri}_skybox.ktx`)),
+        sun: rel(join(out, 'split', hdri, 'sun.json')),
+      }
+      : undefined,
   }),
   judge: (r, { bad, note, name: hdri }) => {
     bad(Math.abs(r.linearity - 1) < 0.02, `read-back linearity: radiance at 1/4 the exposure ${(100 * (r.linearity - 1)).toFixed(2)} % off (bar 2 %)`);
@@ -162,5 +180,12 @@ await runEngineCheck({
     // rest is cmgen's r = 1 level, a GGX lobe where the target stores E/π (Filament's web
     // IBL takes diffuse from the last level), and cmgen's sampling of the sun there.
     judge(r.vsCmgenOfExact, "splitsum bake of the HDRI against cmgen's bake of splitsum's exact cube", false);
+    if (r.sunLight) {
+      const s = r.sunLight;
+      bad(Math.abs(s.litRatio - 1) <= SUN_BARS.sides && Math.abs(s.shadedRatio - 1) <= SUN_BARS.sides,
+        `sun split: diffuse sphere under the residual IBL + SUN light against the full IBL: lit side ${(100 * (s.litRatio - 1)).toFixed(2)} % (${s.litPixels} pixels), shaded side ${(100 * (s.shadedRatio - 1)).toFixed(2)} % (${s.shadedPixels} pixels) (bar ${100 * SUN_BARS.sides} %)`);
+      bad(s.shadow.pixels > 100 && s.shadow.error <= SUN_BARS.shadowDegrees,
+        `sun split: the box's shadow at azimuth ${s.shadow.azimuth.toFixed(2)}°, where the sun puts it ${s.shadow.expectedAzimuth.toFixed(2)}° (${s.shadow.error.toFixed(2)}°, bar ${SUN_BARS.shadowDegrees}°; ${s.shadow.pixels} pixels)`);
+    }
   },
 });

@@ -267,7 +267,8 @@ async function sunLight(full, splitDir, images) {
     shadedRatio: got.shaded / want.shaded,
     litPixels: got.litPixels,
     shadedPixels: got.shadedPixels,
-    shadow: measure.shadowAzimuth(px, SHADOW_SIZE, EXTENT, sun, HEIGHT),
+    // The orthographic camera from above: pixel x along +x, pixel y along −z.
+    shadow: measure.shadowAzimuth(px, SHADOW_SIZE, ([x, y]) => [((2 * x) / SHADOW_SIZE - 1) * EXTENT, -((2 * y) / SHADOW_SIZE - 1) * EXTENT], sun, HEIGHT),
   };
 }
 
