@@ -271,3 +271,71 @@ fn splitting_the_sun_cuts_what_a_metal_sphere_is_off_by_three() {
         }
     }
 }
+
+/// The glTF target's `sun.gltf`: one `KHR_lights_punctual` directional light per light
+/// taken out, colour in [0, 1] times intensity = sun.json's E, each node's −Z (where a
+/// directional light shines) pointing away from the light as the Sample Viewer shows it:
+/// sun.json's direction turned by the viewer's default environment rotation, 90° about
+/// +Y, which takes the cube's (x, y, z) to the world's (−z, y, x).
+#[test]
+fn gltf_target_writes_the_lights_as_khr_lights_punctual() {
+    let dir = output_dir("sun_cli_gltf");
+    run_ok(
+        splitsum()
+            .args([
+                "bake",
+                ROYAL,
+                "--target",
+                "gltf",
+                "--sun",
+                "split",
+                "--specular-size",
+                "16",
+                "-o",
+            ])
+            .arg(&dir),
+    );
+    let out = dir.join("royal_esplanade_1k");
+    let gltf = json(&out.join("sun.gltf"));
+    let sun = json(&out.join("sun.json"));
+    assert_eq!(gltf["asset"]["version"], "2.0");
+    assert!(gltf["extensionsUsed"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|e| e == "KHR_lights_punctual"));
+    let lights = gltf["extensions"]["KHR_lights_punctual"]["lights"]
+        .as_array()
+        .unwrap();
+    let expected: Vec<&serde_json::Value> = std::iter::once(&sun)
+        .chain(sun["additional_lights"].as_array().unwrap())
+        .collect();
+    assert_eq!(lights.len(), expected.len());
+    let v3 = |v: &serde_json::Value| [0, 1, 2].map(|i| v[i].as_f64().unwrap());
+    for (k, (light, want)) in lights.iter().zip(&expected).enumerate() {
+        assert_eq!(light["type"], "directional");
+        let color = v3(&light["color"]);
+        let intensity = light["intensity"].as_f64().unwrap();
+        let e = v3(&want["irradiance"]);
+        assert!(color.iter().all(|c| (0.0..=1.0).contains(c)), "{light}");
+        for c in 0..3 {
+            // 1e-6: f32 rounding of E / max(E) × max(E).
+            assert!((color[c] * intensity / e[c] - 1.0).abs() < 1e-6, "{light}");
+        }
+        let node = &gltf["nodes"][k];
+        assert_eq!(node["extensions"]["KHR_lights_punctual"]["light"], k);
+        let q = [0, 1, 2, 3].map(|i| node["rotation"][i].as_f64().unwrap());
+        // −Z rotated by q: the third column of q's matrix, negated.
+        let shines = [
+            -2.0 * (q[0] * q[2] + q[3] * q[1]),
+            -2.0 * (q[1] * q[2] - q[3] * q[0]),
+            -(1.0 - 2.0 * (q[0] * q[0] + q[1] * q[1])),
+        ];
+        let d = v3(&want["direction"]);
+        let world = [-d[2], d[1], d[0]];
+        for c in 0..3 {
+            // 1e-5: f32 quaternion components.
+            assert!((shines[c] + world[c]).abs() < 1e-5, "{node} {world:?}");
+        }
+    }
+}

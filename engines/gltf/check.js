@@ -131,7 +131,7 @@ async function withSplitsumFiles(own, dir, levels) {
   return env;
 }
 
-window.runCheck = async function ({ hdrUrl, dir, controlDir, levels, roughness }) {
+window.runCheck = async function ({ hdrUrl, dir, controlDir, levels, roughness, splitDir }) {
   const luts = { lut_sheen_E_file: `${dir}/lut_sheen_E.png` };
   const own = await loader.loadEnvironment(hdrUrl, luts);
   const ours = await withSplitsumFiles(own, dir, levels);
@@ -244,6 +244,28 @@ window.runCheck = async function ({ hdrUrl, dir, controlDir, levels, roughness }
       images[`sphere_m${metallic}_r${r}_viewer`] = measure.toPng(want, SIZE);
       images[`sphere_m${metallic}_r${r}_splitsum`] = measure.toPng(got, SIZE);
     }
+  }
+  if (splitDir) {
+    // sun.gltf as the viewer loads a glTF, its light as the viewer's renderer builds the
+    // light's uniform (gltfLight.toUniform: the node's world rotation of −Z).
+    const lights = await loader.loadGltf(`${splitDir}/sun.gltf`);
+    const scene = lights.scenes[lights.scene ?? 0];
+    scene.applyTransformHierarchy(lights);
+    const node = lights.nodes[scene.nodes[0]];
+    const light = lights.lights[node.extensions.KHR_lights_punctual.light];
+    const uniform = light.toUniform(node);
+    const json = await (await fetch(`${splitDir}/sun.json`)).json();
+    const [jx, jy, jz] = json.direction;
+    const jsonWorld = [Math.cos(turn) * jx - Math.sin(turn) * jz, jy, Math.sin(turn) * jx + Math.cos(turn) * jz];
+    const from = scale(Array.from(uniform.direction), -1);
+    const e = Array.from(uniform.color).map((c) => c * uniform.intensity);
+    out.sunLight = {
+      lights: lights.lights.length,
+      type: light.type,
+      sunError: degrees(from, sun),
+      jsonError: degrees(from, jsonWorld),
+      irradianceError: Math.max(...e.map((c, i) => Math.abs(c / json.irradiance[i] - 1))),
+    };
   }
   out.renderer = gl.getParameter(gl.VERSION);
   return { out, images };

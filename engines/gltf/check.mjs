@@ -39,6 +39,11 @@ const run = (...args) => execFileSync(splitsum, args, { cwd: root, stdio: 'inher
 run('bake', ...HDRIS.map((h) => `tests/data/${h}.hdr`), '--target', 'gltf', '-q', '-o', 'target/engines/gltf/splitsum');
 // The negative control: the same bake turned a quarter about +Y.
 run('bake', ...HDRIS.map((h) => `tests/data/${h}.hdr`), '--target', 'gltf', '--rotate', '90', '-q', '-o', 'target/engines/gltf/control');
+// The sun as a light: quarry_01 with its sun split out, sun.gltf read by the viewer's
+// glTF loader; its light within 1° of where the viewer shows the sun (the bar of every sun
+// here), its colour × intensity within 1e-5 of sun.json's E.
+const SUN_HDRI = 'quarry_01_1k';
+run('bake', `tests/data/${SUN_HDRI}.hdr`, '--target', 'gltf', '--sun', 'split', '-q', '-o', 'target/engines/gltf/split');
 
 // The README's recipe for this file set as written, given what it takes as given (a WebGL2
 // context `gl`); then each cube it returns is read back level by level, face by face (one
@@ -107,6 +112,7 @@ await runEngineCheck({
     controlDir: `/target/engines/gltf/control/${hdri}`,
     levels: LEVELS,
     roughness: ROUGHNESS,
+    splitDir: hdri === SUN_HDRI ? `/target/engines/gltf/split/${hdri}` : undefined,
   }),
   judge: (r, { bad, note, name: hdri }) => {
     bad(Math.abs(r.linearity - 1) < 0.02, `read-back linearity: radiance at 1/4 the exposure ${(100 * (r.linearity - 1)).toFixed(2)} % off (bar 2 %)`);
@@ -145,6 +151,11 @@ await runEngineCheck({
         bad(Math.abs(e.ratio - 1) <= BARS.brightness && e.correlation >= BARS.correlation,
           `dielectric r = ${s.roughness}: brightness ${(100 * (e.ratio - 1)).toFixed(2)} % against the viewer's own path with a brute-force Lambertian cube, correlation ${e.correlation.toFixed(4)}`);
       }
+    }
+    if (r.sunLight) {
+      const l = r.sunLight;
+      bad(l.type === 'directional' && l.sunError <= BARS.sunDegrees && l.irradianceError <= 1e-5,
+        `sun.gltf through the viewer's glTF loader: ${l.lights} KHR_lights_punctual light(s), the first '${l.type}' shining from ${l.sunError.toFixed(2)}° off where the viewer shows the sun (bar ${BARS.sunDegrees}°; ${l.jsonError.toFixed(3)}° off sun.json's direction turned by the viewer's environment rotation), colour × intensity ${l.irradianceError.toExponential(1)} off sun.json's E`);
     }
   },
 });

@@ -1,6 +1,8 @@
 //! The glTF Sample Viewer (npm `@khronosgroup/gltf-viewer` 1.1) with glTF-IBL-Sampler's
-//! file set: Lambertian, GGX and Charlie sheen cubes in folders, and its three LUTs.
+//! file set: Lambertian, GGX and Charlie sheen cubes in folders, and its three LUTs; with
+//! lights split out, `sun.gltf`, the lights as `KHR_lights_punctual` directional lights.
 
+use crate::environment::sun::Sun;
 use crate::environment::Cubemap;
 use crate::io::cubemap::{encode_cube, Container};
 use crate::io::staging::Staging;
@@ -10,6 +12,7 @@ use crate::plan::lut::LutModel;
 use crate::stages::light::BakedEnvironment;
 use crate::targets::{FileContext, FileSet, LutChannels, LutSpec, Orientation, Target};
 use crate::Result;
+use serde_json::json;
 
 /// The glTF Sample Viewer (npm `@khronosgroup/gltf-viewer` 1.1), with glTF-IBL-Sampler's
 /// file set and its own chain layout.
@@ -75,6 +78,9 @@ pub const FILES: FileSet = FileSet {
 /// Writes [`FILES`].
 fn write(ctx: &FileContext, baked: BakedEnvironment, out: &mut Staging) -> Result<Vec<String>> {
     crate::targets::generic::add_sun_json(ctx, &baked, out);
+    if let Some(gltf) = sun_gltf(baked.split_lights(), ctx.target) {
+        out.add(ctx.dir.join("sun.gltf"), gltf.into_bytes(), ("sun", "gltf", 0, 0));
+    }
     let orientation = ctx.target.orientation;
     let fmt = ctx.encoding.format.name();
     let mut cube = |folder: &str, name: &str, kind: &'static str, cube: Cubemap| -> Result<()> {
@@ -90,4 +96,123 @@ fn write(ctx: &FileContext, baked: BakedEnvironment, out: &mut Staging) -> Resul
         cube("charlie", "sheen", "sheen", sheen)?;
     }
     Ok(Vec::new())
+}
+
+/// The Sample Viewer's default `environmentRotation`, degrees about +Y: it samples every
+/// environment cube at `u_EnvRotation · d`, so the cube's direction c is seen from the
+/// world direction [cos t c_x − sin t c_z, c_y, sin t c_x + cos t c_z].
+pub const VIEWER_ENVIRONMENT_ROTATION_DEG: f32 = 90.0;
+
+/// The world direction from which the Sample Viewer, at its default environment rotation,
+/// shows the cube's direction `c`.
+fn viewer_world(c: [f32; 3]) -> [f32; 3] {
+    let (sin, cos) = VIEWER_ENVIRONMENT_ROTATION_DEG.to_radians().sin_cos();
+    [cos * c[0] - sin * c[2], c[1], sin * c[0] + cos * c[2]]
+}
+
+/// `sun.gltf` of `lights` (generic frame, the sun first) for `target`: a glTF 2.0 scene of
+/// one node per light, each a `KHR_lights_punctual` directional light, for a user to merge
+/// into their scene, in the viewer's world at its default environment rotation
+/// ([`VIEWER_ENVIRONMENT_ROTATION_DEG`]: the lights shine from where it shows the sun; turn
+/// the nodes with the environment at another). A directional light shines along its node's local −Z (the extension's
+/// specification), so each node's rotation takes +Z to the direction toward the light;
+/// the extension's `color` lies in [0, 1], so it is E / max(E) and `intensity` max(E),
+/// colour × intensity = E in the HDRI's radiance units (the specification's lux, at the
+/// environment's scale). `None` for none.
+pub fn sun_gltf(lights: &[Sun], target: &Target) -> Option<String> {
+    if lights.is_empty() {
+        return None;
+    }
+    let name = |k: usize| match k {
+        0 => "sun".to_string(),
+        k => format!("light {k}"),
+    };
+    let punctual: Vec<_> = lights
+        .iter()
+        .enumerate()
+        .map(|(k, l)| {
+            let peak = l.irradiance.iter().fold(0.0f32, |m, &c| m.max(c));
+            let color = match peak > 0.0 {
+                true => l.irradiance.map(|c| c / peak),
+                false => [1.0; 3],
+            };
+            json!({ "type": "directional", "name": name(k), "color": color, "intensity": peak })
+        })
+        .collect();
+    let nodes: Vec<_> = lights
+        .iter()
+        .enumerate()
+        .map(|(k, l)| {
+            let toward = viewer_world(target.orientation.frame.apply(l.direction));
+            json!({
+                "name": name(k),
+                "rotation": rotation_from_z(toward),
+                "extensions": { "KHR_lights_punctual": { "light": k } },
+            })
+        })
+        .collect();
+    let gltf = json!({
+        "asset": { "version": "2.0", "generator": "splitsum" },
+        "extensionsUsed": ["KHR_lights_punctual"],
+        "extensions": { "KHR_lights_punctual": { "lights": punctual } },
+        "scene": 0,
+        "scenes": [{ "name": "splitsum lights", "nodes": (0..lights.len()).collect::<Vec<_>>() }],
+        "nodes": nodes,
+    });
+    Some(crate::io::to_json(&gltf))
+}
+
+/// The unit quaternion [x, y, z, w] (glTF's order) of the shortest rotation taking +Z to
+/// the unit vector `d`: axis +Z × d, angle acos(d_z), as (+Z × d, 1 + d_z) normalised;
+/// for d = −Z, half a turn about +X.
+fn rotation_from_z(d: [f32; 3]) -> [f32; 4] {
+    let q = [-d[1], d[0], 0.0, 1.0 + d[2]];
+    let len = q.iter().map(|c| c * c).sum::<f32>().sqrt();
+    match len > 1e-6 {
+        true => q.map(|c| c / len),
+        false => [1.0, 0.0, 0.0, 0.0],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Rotates `v` by the unit quaternion `q` ([x, y, z, w]).
+    fn rotate(q: [f32; 4], v: [f32; 3]) -> [f32; 3] {
+        let (u, w) = ([q[0], q[1], q[2]], q[3]);
+        let cross = |a: [f32; 3], b: [f32; 3]| {
+            [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ]
+        };
+        let t = cross(u, v).map(|c| 2.0 * c);
+        let ut = cross(u, t);
+        [0, 1, 2].map(|i| v[i] + w * t[i] + ut[i])
+    }
+
+    /// The node's −Z, where the light shines, is −(the direction toward the light), for
+    /// directions all round, the poles and −Z included.
+    #[test]
+    fn a_node_shines_away_from_its_light() {
+        let dirs = [
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, -1.0],
+            [0.0, 1.0, 0.0],
+            [0.79666, 0.17492, 0.57857],
+            [-0.0964, 0.99362, -0.05851],
+            [0.3, -0.4, -0.866],
+        ];
+        for d in dirs {
+            let len = d.iter().map(|c: &f32| c * c).sum::<f32>().sqrt();
+            let d = d.map(|c| c / len);
+            let shines = rotate(rotation_from_z(d), [0.0, 0.0, -1.0]);
+            for i in 0..3 {
+                // 1e-5: single-precision rounding of a unit quaternion's product.
+                assert!((shines[i] + d[i]).abs() < 1e-5, "{d:?} shines along {shines:?}");
+            }
+        }
+    }
 }
