@@ -397,6 +397,12 @@ export function sideMeans(px, eye, ray, size, sun, edge = 0.2) {
   return { lit: mean(sides.lit), shaded: mean(sides.shaded), litPixels: sides.lit.length, shadedPixels: sides.shaded.length };
 }
 
+// The sun checks' comparison of two sideMeans: `got` (the residual IBL and the light) over
+// `want` (the full IBL) on each side, with the pixel counts.
+export function sideRatios(got, want) {
+  return { litRatio: got.lit / want.lit, shadedRatio: got.shaded / want.shaded, litPixels: got.litPixels, shadedPixels: got.shadedPixels };
+}
+
 // What a white Lambertian sphere shows on each side (sphereSides) under the radiance cube
 // `level0` (n², as GL reads it back) and `lights` (sun.json's, each E⊥ max(n·l, 0)),
 // E(n)/π's luminance averaged over the side's normals: the brute-force truth, from the

@@ -282,10 +282,7 @@ async function sunLight(full, split, images) {
   scaledLights.length = 0;
   return {
     direction: toSun,
-    litRatio: got.lit / want.lit,
-    shadedRatio: got.shaded / want.shaded,
-    litPixels: got.litPixels,
-    shadedPixels: got.shadedPixels,
+    ...measure.sideRatios(got, want),
     truth: {
       split: { lit: got.lit / truth.lit, shaded: got.shaded / truth.shaded },
       full: { lit: want.lit / truth.lit, shaded: want.shaded / truth.shaded },

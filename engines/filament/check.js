@@ -302,10 +302,7 @@ async function sunLight(full, split, images) {
   images.sun_shadow = measure.toPng(px, SIZE);
   return {
     direction: toSun,
-    litRatio: got.lit / want.lit,
-    shadedRatio: got.shaded / want.shaded,
-    litPixels: got.litPixels,
-    shadedPixels: got.shadedPixels,
+    ...measure.sideRatios(got, want),
     shadow: measure.shadowAzimuth(px, SIZE, (p) => measure.floorPoint(top.eye, pixelRay(top, p, SIZE)), toSun, HEIGHT),
   };
 }

@@ -263,10 +263,7 @@ async function sunLight(full, splitDir, images) {
   return {
     direction: sun,
     intensity: split.sunLight.intensity,
-    litRatio: got.lit / want.lit,
-    shadedRatio: got.shaded / want.shaded,
-    litPixels: got.litPixels,
-    shadedPixels: got.shadedPixels,
+    ...measure.sideRatios(got, want),
     // The orthographic camera from above: pixel x along +x, pixel y along −z.
     shadow: measure.shadowAzimuth(px, SHADOW_SIZE, ([x, y]) => [((2 * x) / SHADOW_SIZE - 1) * EXTENT, -((2 * y) / SHADOW_SIZE - 1) * EXTENT], sun, HEIGHT),
   };

@@ -16,6 +16,13 @@
 //! Bevy's default exposure (EV100 9.7) and `intensity = brightness = 1 / exposure`
 //! (≈ 998, the README's advice) give radiance on screen as in the HDRI.
 //!
+//! - the sun as a light: quarry_01 baked with `--sun split`, its sun.json as a
+//!   `DirectionalLight` (illuminance max(E) × the `EnvironmentMapLight` intensity, colour
+//!   E / max(E)); a white Lambertian sphere (reflectance 0) under the residual IBL plus the
+//!   light against the full IBL, on its lit and shaded sides, and a unit box above a floor
+//!   lit by the light alone with its shadows, seen from above: the shadow where the sun's
+//!   direction puts it.
+//!
 //! The README's Bevy recipe runs as written (`build.rs` copies it into the check): its
 //! shell lines bake the bundled venice_sunset HDRI as `sky.hdr`, its `setup` spawns its
 //! camera, and that camera, given an image target, the rough sphere's view and layer, is
@@ -65,6 +72,22 @@ const SUN_DEGREES: f32 = 1.0;
 const SKY_LOG_DIFF: f32 = 0.01;
 const DIFFUSE_BRIGHTNESS: f32 = 0.02;
 const DIFFUSE_CORRELATION: f32 = 0.99;
+/// The sun bars (docs/engines.md, "Bevy"): the diffuse sphere under the residual IBL plus
+/// the light within 3 % of the full IBL on its lit side (n·s ≥ SUN_SIDE_EDGE) and its
+/// shaded side (n·s ≤ −SUN_SIDE_EDGE; the pixels near the terminator, where a light and a
+/// blurred lobe differ most in shape, are left out), the shadow's centre within 2° of the
+/// azimuth the sun puts it at.
+const SUN_SIDES: f32 = 0.03;
+const SUN_SIDE_EDGE: f32 = 0.2;
+const SHADOW_DEGREES: f32 = 2.0;
+/// The HDRI the sun case bakes with `--sun split`, and the label of its shots.
+const SUN_HDRI: &str = "quarry_01_1k";
+const SUN_LABEL: &str = "sun_split";
+/// The shadow scene: a unit box centred SHADOW_HEIGHT above the floor y = 0, seen from
+/// SHADOW_CAMERA_HEIGHT straight above, ±SHADOW_EXTENT of floor in view.
+const SHADOW_HEIGHT: f32 = 1.0;
+const SHADOW_EXTENT: f32 = 10.0;
+const SHADOW_CAMERA_HEIGHT: f32 = 40.0;
 
 const HDRIS: [&str; 2] = ["quarry_01_1k", "venice_sunset_1k"];
 /// (pixel format, extra bake arguments): the target's default and the others Bevy reads:
@@ -243,6 +266,12 @@ enum View {
     Sky,
     Mirror,
     Rough,
+    /// The diffuse sphere under the full IBL (the sun kept).
+    SunFull,
+    /// The diffuse sphere under the residual IBL and the sun's light.
+    SunSplit,
+    /// The box above the floor, the sun's light alone, from above.
+    SunShadow,
 }
 
 /// One camera of the scene: which bake it shows, how, and where it looks from.
@@ -295,6 +324,51 @@ struct Check {
     equirects: HashMap<&'static str, Equirect>,
     /// Each HDRI's sun ([`Equirect::sun`]), found once.
     suns: HashMap<&'static str, Vec3>,
+    /// The sun of the split bake's sun.json.
+    sun_light: SunLight,
+}
+
+/// The sun of a `--sun split` bake's sun.json: toward the sun, in Bevy's world, and E.
+#[derive(Clone, Copy)]
+struct SunLight {
+    direction: Vec3,
+    irradiance: Vec3,
+}
+
+impl SunLight {
+    fn read(path: &Path) -> SunLight {
+        let text = match std::fs::read_to_string(path) {
+            Ok(text) => text,
+            Err(e) => panic!("{}: {e}", path.display()),
+        };
+        let json: serde_json::Value =
+            serde_json::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let v = |key: &str| {
+            Vec3::from_array([0, 1, 2].map(|i| json[key][i].as_f64().expect("sun.json") as f32))
+        };
+        SunLight {
+            direction: v("direction"),
+            irradiance: v("irradiance"),
+        }
+    }
+
+    /// Bevy's `DirectionalLight` of this sun, next to an `EnvironmentMapLight` of
+    /// `intensity`: Bevy shades a directional light with colour × illuminance and the
+    /// environment with radiance × intensity, so illuminance = max(E) × intensity and the
+    /// colour E / max(E); it shines along −direction.
+    fn bundle(&self, intensity: f32, shadows: bool) -> (DirectionalLight, Transform) {
+        let peak = self.irradiance.max_element();
+        let c = self.irradiance / peak;
+        (
+            DirectionalLight {
+                color: Color::linear_rgb(c.x, c.y, c.z),
+                illuminance: peak * intensity,
+                shadow_maps_enabled: shadows,
+                ..default()
+            },
+            Transform::IDENTITY.looking_to(-self.direction, Vec3::Y),
+        )
+    }
 }
 
 fn root() -> PathBuf {
@@ -337,6 +411,22 @@ fn bake_everything(splitsum: &Path, bakes: &Path) {
     }
 }
 
+/// Bakes [`SUN_HDRI`] with `--sun split` into `bakes/split/`.
+fn bake_split(splitsum: &Path, bakes: &Path) {
+    run(Command::new(splitsum)
+        .current_dir(root())
+        .args([
+            "bake",
+            &format!("tests/data/{SUN_HDRI}.hdr"),
+            "--target",
+            "bevy",
+            "--sun",
+            "split",
+        ])
+        .args(["-q", "--no-sh", "--no-lut", "-o"])
+        .arg(bakes.join("split")));
+}
+
 fn main() -> AppExit {
     let root = root();
     let out = root.join("target/engines/bevy");
@@ -353,6 +443,8 @@ fn main() -> AppExit {
     );
     std::fs::create_dir_all(&out).unwrap();
     bake_everything(&splitsum, &bakes);
+    bake_split(&splitsum, &bakes);
+    let sun_light = SunLight::read(&bakes.join(format!("split/{SUN_HDRI}/sun.json")));
     run_recipe_commands(&splitsum, &out);
     let equirects: HashMap<&'static str, Equirect> = HDRIS
         .iter()
@@ -385,6 +477,7 @@ fn main() -> AppExit {
         out,
         equirects,
         suns,
+        sun_light,
     })
     .add_systems(Startup, setup)
     .add_systems(PostStartup, aim_recipe_camera)
@@ -470,22 +563,7 @@ fn setup(
                         geometry.sphere_fov,
                     ),
                 };
-                let mut camera = commands.spawn((
-                    CheckCamera,
-                    Camera3d::default(),
-                    Camera {
-                        order: shots.len() as isize,
-                        clear_color: ClearColorConfig::Custom(Color::NONE),
-                        ..default()
-                    },
-                    RenderTarget::Image(target.clone().into()),
-                    Projection::Perspective(PerspectiveProjection { fov, ..default() }),
-                    transform,
-                    Hdr,
-                    Tonemapping::None,
-                    Msaa::Off,
-                    Exposure::default(),
-                ));
+                let mut camera = commands.spawn(check_camera(shots.len(), &target, fov, transform));
                 match view {
                     View::Sky => {
                         camera.insert((
@@ -497,7 +575,8 @@ fn setup(
                             RenderLayers::layer(0),
                         ));
                     }
-                    View::Mirror | View::Rough => {
+                    // The sun views are spawned by sun_shots.
+                    _ => {
                         camera.insert((
                             EnvironmentMapLight {
                                 diffuse_map: diffuse.clone(),
@@ -521,8 +600,157 @@ fn setup(
             }
         }
     }
+    sun_shots(
+        &mut commands,
+        &assets,
+        &mut images,
+        &mut meshes,
+        &mut materials,
+        &check,
+        intensity,
+        &mut shots,
+        &mut handles,
+    );
     check.shots = shots;
     check.assets = handles;
+}
+
+/// A check camera drawn as the `order`-th into the float image `target` with vertical
+/// field of view `fov` (radians): linear radiance (no tone mapping, no MSAA) at Bevy's
+/// default exposure.
+fn check_camera(
+    order: usize,
+    target: &Handle<Image>,
+    fov: f32,
+    transform: Transform,
+) -> impl Bundle {
+    (
+        CheckCamera,
+        Camera3d::default(),
+        Camera {
+            order: order as isize,
+            clear_color: ClearColorConfig::Custom(Color::NONE),
+            ..default()
+        },
+        RenderTarget::Image(target.clone().into()),
+        Projection::Perspective(PerspectiveProjection { fov, ..default() }),
+        transform,
+        Hdr,
+        Tonemapping::None,
+        Msaa::Off,
+        Exposure::default(),
+    )
+}
+
+/// The sun case's scene and cameras. Render layers keep it apart from the other shots and
+/// give each light only the views it belongs to (Bevy skips a directional light in a view
+/// whose layers it does not share, and casts its shadows from the meshes it shares a layer
+/// with): 3 the diffuse sphere, seen by both sphere cameras; 4 the sun's light, in the
+/// split camera's layers only; 5 the floor and box, seen from above; 6 a second light of
+/// the same sun, casting shadows, sharing a layer with the floor, the box and the camera
+/// above.
+#[allow(clippy::too_many_arguments)]
+fn sun_shots(
+    commands: &mut Commands,
+    assets: &AssetServer,
+    images: &mut Assets<Image>,
+    meshes: &mut Assets<Mesh>,
+    materials: &mut Assets<StandardMaterial>,
+    check: &Check,
+    intensity: f32,
+    shots: &mut Vec<Shot>,
+    handles: &mut Vec<UntypedAssetId>,
+) {
+    let geometry = view_geometry();
+    let diffuse_white = materials.add(StandardMaterial {
+        base_color: Color::WHITE,
+        metallic: 0.0,
+        perceptual_roughness: 1.0,
+        // F0 = 0 (and with it Bevy's F90): no specular, the Lambertian term alone.
+        reflectance: 0.0,
+        ..default()
+    });
+    commands.spawn((
+        Mesh3d(meshes.add(Sphere::new(1.0).mesh().uv(128, 64))),
+        MeshMaterial3d(diffuse_white.clone()),
+        RenderLayers::layer(3),
+    ));
+    let sun = check.sun_light;
+    commands.spawn((sun.bundle(intensity, false), RenderLayers::layer(4)));
+    commands.spawn((sun.bundle(intensity, true), RenderLayers::layer(6)));
+    commands.spawn((
+        Mesh3d(
+            meshes.add(
+                Plane3d::default()
+                    .mesh()
+                    .size(4.0 * SHADOW_EXTENT, 4.0 * SHADOW_EXTENT),
+            ),
+        ),
+        MeshMaterial3d(diffuse_white.clone()),
+        RenderLayers::from_layers(&[5, 6]),
+    ));
+    commands.spawn((
+        Mesh3d(meshes.add(Cuboid::new(1.0, 1.0, 1.0))),
+        MeshMaterial3d(diffuse_white),
+        Transform::from_xyz(0.0, SHADOW_HEIGHT, 0.0),
+        RenderLayers::from_layers(&[5, 6]),
+    ));
+
+    // The sphere cameras 90° from the sun: half the sphere lit, half shaded.
+    let toward = sun.direction;
+    let axis = Vec3::Y.cross(toward).normalize();
+    let view_dir = Quat::from_axis_angle(axis, 90f32.to_radians()) * toward;
+    let sphere_transform = Transform::from_translation(view_dir * geometry.sphere_distance)
+        .looking_at(Vec3::ZERO, Vec3::Y);
+    let full = format!("{}/{SUN_HDRI}", FORMATS[0].0);
+    let split = format!("split/{SUN_HDRI}");
+    for (view, dir, layers) in [
+        (View::SunFull, full.as_str(), RenderLayers::layer(3)),
+        (
+            View::SunSplit,
+            split.as_str(),
+            RenderLayers::from_layers(&[3, 4]),
+        ),
+        (View::SunShadow, "", RenderLayers::from_layers(&[5, 6])),
+    ] {
+        let size = geometry.size;
+        let target = images.add(Image::new_target_texture(
+            size,
+            size,
+            TextureFormat::Rgba32Float,
+            None,
+        ));
+        let (transform, fov) = match view {
+            View::SunShadow => (
+                Transform::from_xyz(0.0, SHADOW_CAMERA_HEIGHT, 0.0)
+                    .looking_at(Vec3::ZERO, Vec3::NEG_Z),
+                2.0 * (SHADOW_EXTENT / SHADOW_CAMERA_HEIGHT).atan(),
+            ),
+            _ => (sphere_transform, geometry.sphere_fov),
+        };
+        let mut camera =
+            commands.spawn((check_camera(shots.len(), &target, fov, transform), layers));
+        if view != View::SunShadow {
+            let specular: Handle<Image> = assets.load(format!("{dir}/specular.ktx2"));
+            let diffuse: Handle<Image> = assets.load(format!("{dir}/irradiance.ktx2"));
+            handles.extend([specular.id().untyped(), diffuse.id().untyped()]);
+            camera.insert(EnvironmentMapLight {
+                diffuse_map: diffuse,
+                specular_map: specular,
+                intensity,
+                ..default()
+            });
+        }
+        shots.push(Shot {
+            hdri: SUN_HDRI,
+            format: SUN_LABEL,
+            view,
+            size,
+            transform,
+            fov,
+            target,
+        });
+    }
 }
 
 /// Runs the README recipe's shell lines in `out` on the bundled venice_sunset HDRI, copied
@@ -814,6 +1042,8 @@ fn evaluate(check: &Check, captures: &HashMap<usize, Vec<Vec<f32>>>) -> u8 {
                     format!("{label}: mirror sphere reflects the sun {angle:.2}° from the HDRI's sun (bar {SUN_DEGREES}°)"),
                 );
             }
+            // Measured together in evaluate_sun.
+            View::SunFull | View::SunSplit | View::SunShadow => {}
             View::Rough => {
                 let r = &reduced[shot.hdri];
                 let (mut got, mut want) = (Vec::new(), Vec::new());
@@ -842,8 +1072,117 @@ fn evaluate(check: &Check, captures: &HashMap<usize, Vec<Vec<f32>>>) -> u8 {
             }
         }
     }
+    evaluate_sun(check, captures, &reduced[SUN_HDRI], &mut report);
     let text = lines.join("\n") + "\n";
     std::fs::write(check.out.join("results.txt"), text).unwrap();
     println!("renders and results.txt in {}", check.out.display());
     u8::from(failed)
+}
+
+/// The sun case: the diffuse sphere's sides (the split render against the full one, and
+/// each against E/π of the HDRI, `reduced`), sun.json's direction against the HDRI's own
+/// sun, and the box's shadow.
+fn evaluate_sun(
+    check: &Check,
+    captures: &HashMap<usize, Vec<Vec<f32>>>,
+    reduced: &Equirect,
+    report: &mut impl FnMut(bool, String),
+) {
+    let shot_of = |view: View| {
+        let i = check
+            .shots
+            .iter()
+            .position(|s| s.view == view)
+            .expect("the sun shots");
+        (&check.shots[i], captures[&i].last().unwrap())
+    };
+    let toward = check.sun_light.direction;
+    let angle = toward.angle_between(check.suns[SUN_HDRI]).to_degrees();
+    report(
+        angle <= SUN_DEGREES,
+        format!("{SUN_HDRI} {SUN_LABEL}: sun.json's direction {angle:.2}° from the HDRI's sun (bar {SUN_DEGREES}°)"),
+    );
+    // Mean luminance on the lit and the shaded side: the render's, and E/π's.
+    let sides = |view: View| {
+        let (shot, data) = shot_of(view);
+        let n = shot.size;
+        let (mut lit, mut shaded) = ([0.0f64; 3], [0.0f64; 3]);
+        for y in 0..n {
+            for x in 0..n {
+                let Some((p, d)) = shot.sphere_hit(x as f32, y as f32) else {
+                    continue;
+                };
+                if -d.dot(p) <= 0.2 {
+                    continue;
+                }
+                let c = p.dot(toward);
+                let side = match c {
+                    c if c >= SUN_SIDE_EDGE => &mut lit,
+                    c if c <= -SUN_SIDE_EDGE => &mut shaded,
+                    _ => continue,
+                };
+                side[0] += luminance(pixel(data, n, x, y)) as f64;
+                side[1] += luminance(reduced.irradiance_over_pi(p)) as f64;
+                side[2] += 1.0;
+            }
+        }
+        (lit, shaded)
+    };
+    let (full_lit, full_shaded) = sides(View::SunFull);
+    let (split_lit, split_shaded) = sides(View::SunSplit);
+    let pc = |a: f64, b: f64| 100.0 * (a / b - 1.0);
+    let lit = split_lit[0] / full_lit[0];
+    let shaded = split_shaded[0] / full_shaded[0];
+    report(
+        (lit as f32 - 1.0).abs() <= SUN_SIDES && (shaded as f32 - 1.0).abs() <= SUN_SIDES,
+        format!(
+            "{SUN_HDRI} {SUN_LABEL}: diffuse sphere under the residual IBL + DirectionalLight against the full IBL: lit side {:+.2} % ({} pixels), shaded side {:+.2} % ({} pixels) (bar {:.0} %); against E/π of the HDRI: split {:+.2} / {:+.2} %, full {:+.2} / {:+.2} %",
+            100.0 * (lit - 1.0),
+            split_lit[2],
+            100.0 * (shaded - 1.0),
+            split_shaded[2],
+            100.0 * SUN_SIDES,
+            pc(split_lit[0], split_lit[1]),
+            pc(split_shaded[0], split_shaded[1]),
+            pc(full_lit[0], full_lit[1]),
+            pc(full_shaded[0], full_shaded[1]),
+        ),
+    );
+
+    // The shadow: the floor's pixels darker than half the lit floor's median, their
+    // centroid on the floor against the shadow of the box's centre (the shadow of a
+    // centrally symmetric solid is centrally symmetric about it).
+    let (shot, data) = shot_of(View::SunShadow);
+    let n = shot.size;
+    let lums: Vec<f32> = (0..n * n)
+        .map(|i| luminance(pixel(data, n, i % n, i / n)))
+        .collect();
+    let mut lit: Vec<f32> = lums.iter().copied().filter(|&l| l > 0.0).collect();
+    lit.sort_by(f32::total_cmp);
+    let median = lit.get(lit.len() / 2).copied().unwrap_or(0.0);
+    let (mut sum, mut count) = (Vec2::ZERO, 0u32);
+    for y in 0..n {
+        for x in 0..n {
+            if lums[(y * n + x) as usize] < 0.5 * median {
+                let d = shot.ray(x as f32, y as f32);
+                let o = shot.transform.translation;
+                let floor = o + d * (-o.y / d.y);
+                sum += Vec2::new(floor.x, floor.z);
+                count += 1;
+            }
+        }
+    }
+    let centre = sum / count.max(1) as f32;
+    let expected = Vec2::new(-toward.x, -toward.z) * SHADOW_HEIGHT / toward.y;
+    let azimuth = |v: Vec2| v.y.atan2(v.x).to_degrees();
+    let mut error = (azimuth(centre) - azimuth(expected)).abs();
+    error = error.min(360.0 - error);
+    report(
+        count > 100 && error <= SHADOW_DEGREES,
+        format!(
+            "{SUN_HDRI} {SUN_LABEL}: the box's shadow at azimuth {:.2}°, where the sun puts it {:.2}° ({error:.2}°, bar {SHADOW_DEGREES}°; {count} pixels)",
+            azimuth(centre),
+            azimuth(expected)
+        ),
+    );
 }
