@@ -339,3 +339,48 @@ fn gltf_target_writes_the_lights_as_khr_lights_punctual() {
         }
     }
 }
+
+/// A skybox is seen, not lit by: Filament's `_skybox.ktx` of a split bake keeps the sun
+/// (its flux is the residual's plus the lights'), while the IBL's level 0 is the residual.
+#[test]
+fn filament_skybox_keeps_the_sun_a_split_bake_takes_out() {
+    let dir = output_dir("sun_cli_filament");
+    run_ok(
+        splitsum()
+            .args([
+                "bake",
+                QUARRY,
+                "--target",
+                "filament",
+                "--sun",
+                "split",
+                "--specular-size",
+                "32",
+                "-o",
+            ])
+            .arg(&dir),
+    );
+    let out = dir.join("quarry_01_1k");
+    let cube = |file: &str| {
+        let loaded =
+            splitsum::io::input::load_environment(&out.join(file), &Default::default()).unwrap();
+        match loaded.env {
+            splitsum::Environment::Cube(c) => c,
+            splitsum::Environment::Equirect(_) => unreachable!("a KTX 1 cube"),
+        }
+    };
+    let (sky, ibl) = (
+        cube("quarry_01_1k_skybox.ktx"),
+        cube("quarry_01_1k_ibl.ktx"),
+    );
+    let e = json(&out.join("sun.json"))["irradiance"][1]
+        .as_f64()
+        .unwrap();
+    let (fs, fi) = (cube_flux(&sky)[1], cube_flux(&ibl)[1]);
+    // 2 %: R11F_G11F_B10F keeps 6 mantissa bits (±0.8 % a texel, and the sun's few texels
+    // do not average it away).
+    assert!(
+        ((fs - fi) / e - 1.0).abs() < 0.02,
+        "skybox {fs}, ibl level 0 {fi}, sun {e}"
+    );
+}
