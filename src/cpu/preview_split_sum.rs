@@ -19,6 +19,8 @@ use rayon::prelude::*;
 
 use crate::environment::sample::sample_cube_lod;
 use crate::math::brdf::fresnel_schlick_roughness;
+#[cfg(any(test, feature = "internals"))]
+use crate::math::lookup::SpecularLookup;
 use crate::plan::lut::BrdfLut;
 use crate::plan::material::ShadeMaterial;
 use crate::plan::scene::{
@@ -52,8 +54,26 @@ pub fn sample_lut(lut: &BrdfLut, n_dot_v: f32, roughness: f32) -> [f32; 2] {
 /// The split-sum radiance towards `v` of a point with normal `n`; `n_dot_v` is n·v clamped
 /// away from 0 by the caller (silhouette normals are perpendicular to v).
 pub fn split_sum_shade(light: &SplitSumLight, n: Vec3, v: Vec3, n_dot_v: f32, m: &ShadeMaterial) -> Vec3 {
-    let refl = 2.0 * n.dot(v) * n - v;
-    let prefiltered = Vec3::from(sample_cube_lod(light.specular, refl.into(), m.lod));
+    shade_along(light, n, 2.0 * n.dot(v) * n - v, n_dot_v, m)
+}
+
+/// As [`split_sum_shade`], the chain looked up along `lookup`'s direction instead of R
+/// (the lookup study; `SpecularLookup::Reflect` gives R normalised).
+#[cfg(any(test, feature = "internals"))]
+pub fn split_sum_shade_along(
+    light: &SplitSumLight,
+    n: Vec3,
+    v: Vec3,
+    n_dot_v: f32,
+    m: &ShadeMaterial,
+    lookup: SpecularLookup,
+) -> Vec3 {
+    shade_along(light, n, lookup.direction(n, v, m.roughness), n_dot_v, m)
+}
+
+/// The split-sum radiance with the chain read along `dir`.
+fn shade_along(light: &SplitSumLight, n: Vec3, dir: Vec3, n_dot_v: f32, m: &ShadeMaterial) -> Vec3 {
+    let prefiltered = Vec3::from(sample_cube_lod(light.specular, dir.into(), m.lod));
     let ab = sample_lut(light.lut, n_dot_v, m.roughness);
     let specular = prefiltered * (m.f0 * ab[0] + Vec3::splat(ab[1]));
     let f_r = Vec3::new(
@@ -68,9 +88,34 @@ pub fn split_sum_shade(light: &SplitSumLight, n: Vec3, v: Vec3, n_dot_v: f32, m:
 
 /// The split-sum panel, row-major linear RGB.
 pub fn render_split_sum(scene: &SceneUniform, inputs: &SplitSumInputs) -> Vec<[f32; 3]> {
+    render_with(scene, inputs, |n, v, n_dot_v, m| {
+        split_sum_shade(&inputs.light, n, v, n_dot_v, m)
+    })
+}
+
+/// The split-sum panel with the chain looked up along `lookup` (the lookup study).
+#[cfg(any(test, feature = "internals"))]
+pub fn render_split_sum_along(
+    scene: &SceneUniform,
+    inputs: &SplitSumInputs,
+    lookup: SpecularLookup,
+) -> Vec<[f32; 3]> {
+    render_with(scene, inputs, |n, v, n_dot_v, m| {
+        split_sum_shade_along(&inputs.light, n, v, n_dot_v, m, lookup)
+    })
+}
+
+/// The panel with each sphere pixel shaded by `shade(n, v, n·v clamped, material)` and the
+/// background reading level 0 of the chain.
+fn render_with(
+    scene: &SceneUniform,
+    inputs: &SplitSumInputs,
+    shade: impl Fn(Vec3, Vec3, f32, &ShadeMaterial) -> Vec3 + Sync,
+) -> Vec<[f32; 3]> {
     (0..scene.height)
         .into_par_iter()
         .flat_map_iter(|y| {
+            let shade = &shade;
             (0..scene.width).map(move |x| match pixel_geometry(scene, x, y) {
                 PixelGeometry::Background { dir } => {
                     sample_cube_lod(inputs.light.specular, dir.into(), 0.0)
@@ -82,7 +127,7 @@ pub fn render_split_sum(scene: &SceneUniform, inputs: &SplitSumInputs) -> Vec<[f
                     column,
                 } => {
                     let m = preview_material(inputs.columns, inputs.materials, material, column);
-                    split_sum_shade(&inputs.light, n, v, n.dot(v).max(MIN_N_DOT_V), &m).into()
+                    shade(n, v, n.dot(v).max(MIN_N_DOT_V), &m).into()
                 }
             })
         })
