@@ -1,25 +1,30 @@
 //! The lookup study: where should a shader read the prefiltered chain? For each bundled
 //! HDRI, with the sun kept and split (`--sun`), and the environment turned to four azimuths
-//! (four views of it), the preview's spheres are shaded with each
-//! [`SpecularLookup`] and compared with the preview's ground truth (the full reflectance
-//! integral, which does not depend on the lookup), sphere by sphere: the energy-weighted
-//! relative difference of the light each sends to the camera (`preview --json`'s `mean`).
-//! Prints a Markdown table per HDRI and mode: for each lookup and roughness, the mean over
-//! the six materials and four views, and the worst sphere.
+//! (four views of it), the preview's spheres are shaded with each [`SpecularLookup`] and
+//! compared with the preview's ground truth (the full reflectance integral, which does not
+//! depend on the lookup), sphere by sphere: the energy-weighted relative difference of the
+//! light each sends to the camera (`preview --json`'s `mean`). Prints a Markdown table per
+//! HDRI and mode: for each lookup and roughness, the mean over the six materials and four
+//! views, and the worst sphere.
 //!
-//! `cargo run --release --example lookup_study [-- CELL TRUTH_SAMPLES]` (defaults 32 and
-//! 1024: a quarter of the preview's pixels and half its points, enough for figures to the
-//! tenth of a per cent); docs/accuracy.md holds its output.
+//! `cargo run --release --example lookup_study [-- fit]`: with `fit`, instead, the
+//! [`BlendFit`] family on a grid against FIT_HDRIS with the sun split (what a person
+//! should use: the kept sun's tens of per cent are the split-sum's own, no lookup mends
+//! them), minimising the mean figure of the spheres with r ≥ 0.25 (what
+//! `math::lookup::FITTED` holds). 32-pixel cells and 1024
+//! truth points: a quarter of the preview's pixels and half its points, enough for figures
+//! to the tenth of a per cent. docs/accuracy.md holds the output.
 
 use splitsum::backend::CpuBackend;
 use splitsum::bake::{bake_environment, BakeOptions};
 use splitsum::cpu::preview_split_sum::render_split_sum_along;
-use splitsum::math::lookup::SpecularLookup;
+use splitsum::math::lookup::{BlendFit, SpecularLookup};
+use splitsum::plan::lut::BrdfLut;
 use splitsum::plan::scene::{material_table, Scene, SplitSumInputs, SplitSumLight, ROUGHNESS};
 use splitsum::stages::preview::{
     add_sun_light, column_table, compare, render_preview, BakedLight, PreviewOptions,
 };
-use splitsum::SunMode;
+use splitsum::{BakedEnvironment, SunMode};
 
 /// The bundled HDRIs (venice_sunset once: its EXR is the same picture).
 const HDRIS: [&str; 6] = [
@@ -30,61 +35,137 @@ const HDRIS: [&str; 6] = [
     "studio_small_03_1k.hdr",
     "blender_studiolight_interior.exr",
 ];
+/// What the blend is fitted on: a hard low sun and a sunset without one; the other four
+/// HDRIs check it.
+const FIT_HDRIS: [&str; 2] = ["quarry_01_1k.hdr", "venice_sunset_1k.hdr"];
 /// The four views: the environment turned about +Y.
 const AZIMUTHS: [f32; 4] = [0.0, 90.0, 180.0, 270.0];
+/// The preview's pixels and truth points the study renders with.
+const OPTS: PreviewOptions = PreviewOptions {
+    cell: 32,
+    exposure_ev: None,
+    truth_samples: 1024,
+};
+
+/// One view of one HDRI in one mode: its bake and the preview's ground truth.
+struct View {
+    baked: BakedEnvironment,
+    truth: Vec<[f32; 3]>,
+}
+
+/// The views of `name` with `sun`.
+fn views(name: &str, sun: SunMode, lut: &BrdfLut) -> Result<Vec<View>, splitsum::Error> {
+    let cpu = CpuBackend;
+    let path = std::path::Path::new("tests/data").join(name);
+    let env = splitsum::io::input::load_input(&path, &Default::default())?.env;
+    AZIMUTHS
+        .iter()
+        .map(|&azimuth| {
+            let opts = BakeOptions {
+                sun,
+                rotate_degrees: azimuth,
+                ..BakeOptions::default()
+            };
+            let baked = bake_environment(&cpu, env.clone(), &opts, &mut |_| {}, &mut Vec::new())?;
+            let truth = render_preview(&cpu, &BakedLight::of(name, &baked, lut), &OPTS)?.truth;
+            Ok(View { baked, truth })
+        })
+        .collect()
+}
+
+/// Each sphere's figure (materials in row order, roughness in column order) of `view`
+/// shaded with the chain looked up along `lookup`.
+fn figures(
+    view: &View,
+    lut: &BrdfLut,
+    lookup: impl Fn(glam::Vec3, glam::Vec3, f32) -> glam::Vec3 + Sync,
+) -> Vec<f32> {
+    let scene = Scene { cell: OPTS.cell }.uniform();
+    let light = BakedLight::of("", &view.baked, lut);
+    let columns = column_table(light.chain);
+    let materials = material_table();
+    let inputs = SplitSumInputs {
+        light: SplitSumLight {
+            specular: light.specular,
+            irradiance: light.irradiance,
+            lut,
+        },
+        columns: &columns,
+        materials: &materials,
+    };
+    let mut panel = render_split_sum_along(&scene, &inputs, lookup);
+    for sun in light.lights {
+        add_sun_light(&scene, &columns, &materials, sun, &mut panel);
+    }
+    compare(&scene, &panel, &view.truth)
+        .1
+        .iter()
+        .map(|s| s.mean_relative)
+        .collect()
+}
+
+/// The mean figure of the spheres with r ≥ 0.25 over `views` with `fit`.
+fn fit_objective(views: &[View], lut: &BrdfLut, fit: BlendFit) -> f32 {
+    let mut sum = 0.0;
+    let mut count = 0;
+    for view in views {
+        for (i, e) in figures(view, lut, |n, v, r| fit.direction(n, v, r))
+            .iter()
+            .enumerate()
+        {
+            if ROUGHNESS[i % ROUGHNESS.len()] >= 0.25 {
+                sum += e;
+                count += 1;
+            }
+        }
+    }
+    sum / count as f32
+}
+
+fn fit(lut: &BrdfLut) -> Result<(), splitsum::Error> {
+    let mut all = Vec::new();
+    for name in FIT_HDRIS {
+        all.extend(views(name, SunMode::Split, lut)?);
+    }
+    let mut best = (f32::INFINITY, None);
+    for a in [0.8, 0.9, 1.0, 1.1, 1.2, 1.3, 1.4, 1.5] {
+        for p in [1.0, 1.25, 1.5, 1.75, 2.0, 2.5] {
+            for b in [0.0, 0.25, 0.5, 1.0] {
+                let f = BlendFit { a, p, b };
+                let e = fit_objective(&all, lut, f);
+                if e < best.0 {
+                    best = (e, Some(f));
+                }
+            }
+        }
+    }
+    println!(
+        "best on {FIT_HDRIS:?}: {:?}, mean {:.2} % over the spheres with r >= 0.25",
+        best.1,
+        100.0 * best.0
+    );
+    Ok(())
+}
 
 fn main() -> Result<(), splitsum::Error> {
-    let args: Vec<u32> = std::env::args()
-        .skip(1)
-        .filter_map(|a| a.parse().ok())
-        .collect();
-    let opts = PreviewOptions {
-        cell: args.first().copied().unwrap_or(32),
-        truth_samples: args.get(1).copied().unwrap_or(1024),
-        ..PreviewOptions::default()
-    };
-    let cpu = CpuBackend;
-    let lut = splitsum::backend::Backend::brdf_lut(&cpu, 512, 512)?;
-    let scene = Scene { cell: opts.cell }.uniform();
-    let materials = material_table();
+    let lut = splitsum::backend::Backend::brdf_lut(&CpuBackend, 512, 512)?;
+    if std::env::args().any(|a| a == "fit") {
+        return fit(&lut);
+    }
     for name in HDRIS {
-        let path = std::path::Path::new("tests/data").join(name);
-        let env = splitsum::io::input::load_input(&path, &Default::default())?.env;
         for sun in [SunMode::Keep, SunMode::Split] {
+            let views = views(name, sun, &lut)?;
             // errors[lookup][column]: every (material, view) sphere's figure.
             let mut errors = vec![vec![Vec::new(); ROUGHNESS.len()]; SpecularLookup::ALL.len()];
-            let mut lights = 0;
-            for azimuth in AZIMUTHS {
-                let bake_opts = BakeOptions {
-                    sun,
-                    rotate_degrees: azimuth,
-                    ..BakeOptions::default()
-                };
-                let baked =
-                    bake_environment(&cpu, env.clone(), &bake_opts, &mut |_| {}, &mut Vec::new())?;
-                let light = BakedLight::of(name, &baked, &lut);
-                lights = light.lights.len();
-                let truth = render_preview(&cpu, &light, &opts)?.truth;
-                let columns = column_table(light.chain);
+            for view in &views {
                 for (k, lookup) in SpecularLookup::ALL.into_iter().enumerate() {
-                    let inputs = SplitSumInputs {
-                        light: SplitSumLight {
-                            specular: light.specular,
-                            irradiance: light.irradiance,
-                            lut: light.lut,
-                        },
-                        columns: &columns,
-                        materials: &materials,
-                    };
-                    let mut panel = render_split_sum_along(&scene, &inputs, lookup);
-                    for sun in light.lights {
-                        add_sun_light(&scene, &columns, &materials, sun, &mut panel);
-                    }
-                    for (i, s) in compare(&scene, &panel, &truth).1.iter().enumerate() {
-                        errors[k][i % ROUGHNESS.len()].push(s.mean_relative);
+                    let f = figures(view, &lut, |n, v, r| lookup.direction(n, v, r));
+                    for (i, e) in f.into_iter().enumerate() {
+                        errors[k][i % ROUGHNESS.len()].push(e);
                     }
                 }
             }
+            let lights = views[0].baked.split_lights().len();
             let mode = match (sun, lights) {
                 (SunMode::Keep, _) => "sun kept".to_string(),
                 (SunMode::Split, 0) => "split: no light found (as kept)".to_string(),
@@ -92,7 +173,12 @@ fn main() -> Result<(), splitsum::Error> {
                     format!("sun split ({n} light{})", if n > 1 { "s" } else { "" })
                 }
             };
-            println!("\n### {name}, {mode}\n");
+            let fitted = if FIT_HDRIS.contains(&name) {
+                ", fitted on"
+            } else {
+                ""
+            };
+            println!("\n### {name}, {mode}{fitted}\n");
             print!("| lookup |");
             ROUGHNESS.iter().for_each(|r| print!(" r = {r} |"));
             println!("\n|---|{}", "---|".repeat(ROUGHNESS.len()));

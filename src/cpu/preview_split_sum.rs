@@ -19,8 +19,6 @@ use rayon::prelude::*;
 
 use crate::environment::sample::sample_cube_lod;
 use crate::math::brdf::fresnel_schlick_roughness;
-#[cfg(any(test, feature = "internals"))]
-use crate::math::lookup::SpecularLookup;
 use crate::plan::lut::BrdfLut;
 use crate::plan::material::ShadeMaterial;
 use crate::plan::scene::{
@@ -54,25 +52,18 @@ pub fn sample_lut(lut: &BrdfLut, n_dot_v: f32, roughness: f32) -> [f32; 2] {
 /// The split-sum radiance towards `v` of a point with normal `n`; `n_dot_v` is n·v clamped
 /// away from 0 by the caller (silhouette normals are perpendicular to v).
 pub fn split_sum_shade(light: &SplitSumLight, n: Vec3, v: Vec3, n_dot_v: f32, m: &ShadeMaterial) -> Vec3 {
-    shade_along(light, n, 2.0 * n.dot(v) * n - v, n_dot_v, m)
+    split_sum_shade_along(light, n, 2.0 * n.dot(v) * n - v, n_dot_v, m)
 }
 
-/// As [`split_sum_shade`], the chain looked up along `lookup`'s direction instead of R
-/// (the lookup study; `SpecularLookup::Reflect` gives R normalised).
-#[cfg(any(test, feature = "internals"))]
+/// The split-sum radiance with the chain read along `dir` (R for [`split_sum_shade`];
+/// another lookup direction in the lookup study).
 pub fn split_sum_shade_along(
     light: &SplitSumLight,
     n: Vec3,
-    v: Vec3,
+    dir: Vec3,
     n_dot_v: f32,
     m: &ShadeMaterial,
-    lookup: SpecularLookup,
 ) -> Vec3 {
-    shade_along(light, n, lookup.direction(n, v, m.roughness), n_dot_v, m)
-}
-
-/// The split-sum radiance with the chain read along `dir`.
-fn shade_along(light: &SplitSumLight, n: Vec3, dir: Vec3, n_dot_v: f32, m: &ShadeMaterial) -> Vec3 {
     let prefiltered = Vec3::from(sample_cube_lod(light.specular, dir.into(), m.lod));
     let ab = sample_lut(light.lut, n_dot_v, m.roughness);
     let specular = prefiltered * (m.f0 * ab[0] + Vec3::splat(ab[1]));
@@ -93,15 +84,16 @@ pub fn render_split_sum(scene: &SceneUniform, inputs: &SplitSumInputs) -> Vec<[f
     })
 }
 
-/// The split-sum panel with the chain looked up along `lookup` (the lookup study).
+/// The split-sum panel with the chain looked up along `lookup(n, v, roughness)` (the
+/// lookup study: `math::lookup`).
 #[cfg(any(test, feature = "internals"))]
 pub fn render_split_sum_along(
     scene: &SceneUniform,
     inputs: &SplitSumInputs,
-    lookup: SpecularLookup,
+    lookup: impl Fn(Vec3, Vec3, f32) -> Vec3 + Sync,
 ) -> Vec<[f32; 3]> {
     render_with(scene, inputs, |n, v, n_dot_v, m| {
-        split_sum_shade_along(&inputs.light, n, v, n_dot_v, m, lookup)
+        split_sum_shade_along(&inputs.light, n, lookup(n, v, m.roughness), n_dot_v, m)
     })
 }
 
