@@ -11,7 +11,8 @@
 //! [`BlendFit`] family on a grid against FIT_HDRIS with the sun split (what a person
 //! should use: the kept sun's tens of per cent are the split-sum's own, no lookup mends
 //! them), minimising the mean figure of the spheres with r ≥ 0.25 (what
-//! `math::lookup::FITTED` holds). 32-pixel cells and 1024
+//! `math::lookup::FITTED` holds). With `lod`, whether the chain suits the lookup:
+//! Frostbite's lookup reading each roughness at a scaled lod. 32-pixel cells and 1024
 //! truth points: a quarter of the preview's pixels and half its points, enough for figures
 //! to the tenth of a per cent. docs/accuracy.md holds the output.
 
@@ -80,9 +81,20 @@ fn figures(
     lut: &BrdfLut,
     lookup: impl Fn(glam::Vec3, glam::Vec3, f32) -> glam::Vec3 + Sync,
 ) -> Vec<f32> {
+    figures_at(view, lut, lookup, 1.0)
+}
+
+/// As [`figures`], each roughness read at `lod_scale` × the chain's lod for it.
+fn figures_at(
+    view: &View,
+    lut: &BrdfLut,
+    lookup: impl Fn(glam::Vec3, glam::Vec3, f32) -> glam::Vec3 + Sync,
+    lod_scale: f32,
+) -> Vec<f32> {
     let scene = Scene { cell: OPTS.cell }.uniform();
     let light = BakedLight::of("", &view.baked, lut);
-    let columns = column_table(light.chain);
+    let mut columns = column_table(light.chain);
+    columns.iter_mut().for_each(|c| c[1] *= lod_scale);
     let materials = material_table();
     let inputs = SplitSumInputs {
         light: SplitSumLight {
@@ -147,10 +159,48 @@ fn fit(lut: &BrdfLut) -> Result<(), splitsum::Error> {
     Ok(())
 }
 
+/// Whether the chain's levels suit the lookup: Frostbite's lookup with each roughness read
+/// at a scaled lod (a level of another lobe width), mean figure per roughness over
+/// LOD_HDRIS with the sun split.
+fn lod(lut: &BrdfLut) -> Result<(), splitsum::Error> {
+    const LOD_HDRIS: [&str; 3] = [
+        "quarry_01_1k.hdr",
+        "royal_esplanade_1k.hdr",
+        "venice_sunset_1k.hdr",
+    ];
+    const SCALES: [f32; 6] = [0.7, 0.8, 0.9, 1.0, 1.1, 1.2];
+    let mut all = Vec::new();
+    for name in LOD_HDRIS {
+        all.extend(views(name, SunMode::Split, lut)?);
+    }
+    print!("| lod × |");
+    ROUGHNESS[1..].iter().for_each(|r| print!(" r = {r} |"));
+    println!("\n|---|{}", "---|".repeat(ROUGHNESS.len() - 1));
+    for scale in SCALES {
+        let mut sums = vec![(0.0f32, 0u32); ROUGHNESS.len()];
+        for view in &all {
+            let lookup = |n, v, r| SpecularLookup::Frostbite.direction(n, v, r);
+            for (i, e) in figures_at(view, lut, lookup, scale).iter().enumerate() {
+                let s = &mut sums[i % ROUGHNESS.len()];
+                *s = (s.0 + e, s.1 + 1);
+            }
+        }
+        print!("| {scale} |");
+        sums[1..]
+            .iter()
+            .for_each(|(e, n)| print!(" {:.2} % |", 100.0 * e / *n as f32));
+        println!();
+    }
+    Ok(())
+}
+
 fn main() -> Result<(), splitsum::Error> {
     let lut = splitsum::backend::Backend::brdf_lut(&CpuBackend, 512, 512)?;
     if std::env::args().any(|a| a == "fit") {
         return fit(&lut);
+    }
+    if std::env::args().any(|a| a == "lod") {
+        return lod(&lut);
     }
     for name in HDRIS {
         for sun in [SunMode::Keep, SunMode::Split] {
