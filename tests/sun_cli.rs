@@ -16,6 +16,17 @@ fn json(path: &Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
 
+/// A cube file a bake wrote, read back.
+fn load_cube(path: &Path) -> splitsum::Cubemap {
+    match splitsum::io::input::load_environment(path, &Default::default())
+        .unwrap()
+        .env
+    {
+        splitsum::Environment::Cube(c) => c,
+        splitsum::Environment::Equirect(_) => panic!("{}: not a cube", path.display()),
+    }
+}
+
 fn stderr(o: &std::process::Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
@@ -105,14 +116,7 @@ fn bake_split_writes_the_lights_and_records_them() {
         .unwrap()
         .iter()
         .any(|o| o["file"] == "background.ktx2" && o["kind"] == "background"));
-    let cube = |file: &str| {
-        let loaded =
-            splitsum::io::input::load_environment(&out.join(file), &Default::default()).unwrap();
-        match loaded.env {
-            splitsum::Environment::Cube(c) => c,
-            splitsum::Environment::Equirect(_) => unreachable!("a KTX2 cube"),
-        }
-    };
+    let cube = |file: &str| load_cube(&out.join(file));
     let (background, specular) = (cube("background.ktx2"), cube("specular.ktx2"));
     assert_eq!(background.size, specular.size);
     let lights_e: f64 = manifest["sun"]["lights"]
@@ -361,14 +365,7 @@ fn filament_skybox_keeps_the_sun_a_split_bake_takes_out() {
             .arg(&dir),
     );
     let out = dir.join("quarry_01_1k");
-    let cube = |file: &str| {
-        let loaded =
-            splitsum::io::input::load_environment(&out.join(file), &Default::default()).unwrap();
-        match loaded.env {
-            splitsum::Environment::Cube(c) => c,
-            splitsum::Environment::Equirect(_) => unreachable!("a KTX 1 cube"),
-        }
-    };
+    let cube = |file: &str| load_cube(&out.join(file));
     let (sky, ibl) = (
         cube("quarry_01_1k_skybox.ktx"),
         cube("quarry_01_1k_ibl.ktx"),
