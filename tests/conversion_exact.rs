@@ -10,9 +10,9 @@
 mod common;
 
 use std::collections::HashMap;
+use std::f64::consts::PI;
 
 use common::{cube_flux, texel_solid_angle};
-use std::f64::consts::PI;
 
 use splitsum::environment::walk::texel_centres;
 use splitsum::environment::{Cubemap, Environment, Equirect};

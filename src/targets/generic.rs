@@ -6,7 +6,7 @@
 use serde::Serialize;
 
 use crate::environment::sun::Sun;
-use crate::io::cubemap::{encode_cube, Container};
+use crate::io::cubemap::Container;
 use crate::io::staging::Staging;
 use crate::io::{to_json, PixelFormat};
 use crate::math::sh::{sinc_window, SH_ORDER};
@@ -59,35 +59,19 @@ pub fn write_standard(
     out: &mut Staging,
 ) -> Result<Vec<String>> {
     add_sun_json(ctx, &baked, out);
-    let target = ctx.target;
     let enc = &ctx.encoding;
     let fmt = match enc.container {
         Container::Exr => "rgb32f (OpenEXR cross)",
         _ => enc.format.name(),
     };
     let ext = enc.container.extension();
-    let specular = target.orientation.apply(baked.specular);
-    let path = ctx.dir.join(format!("specular.{ext}"));
-    out.add_cube(encode_cube(&path, &specular, enc)?, "specular", fmt, &specular);
+    let path = |name: &str| ctx.dir.join(format!("{name}.{ext}"));
+    ctx.add_cube(out, &path("specular"), "specular", fmt, baked.specular)?;
     if let Some(background) = baked.background {
-        let background = target.orientation.apply(background);
-        let path = ctx.dir.join(format!("background.{ext}"));
-        out.add_cube(
-            encode_cube(&path, &background, enc)?,
-            "background",
-            fmt,
-            &background,
-        );
+        ctx.add_cube(out, &path("background"), "background", fmt, background)?;
     }
-    if target.irradiance {
-        let irradiance = target.orientation.apply(baked.irradiance);
-        let path = ctx.dir.join(format!("irradiance.{ext}"));
-        out.add_cube(
-            encode_cube(&path, &irradiance, enc)?,
-            "irradiance",
-            fmt,
-            &irradiance,
-        );
+    if ctx.target.irradiance {
+        ctx.add_cube(out, &path("irradiance"), "irradiance", fmt, baked.irradiance)?;
     }
     if let Some(sh) = &baked.sh {
         out.add(

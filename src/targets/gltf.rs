@@ -3,8 +3,8 @@
 //! lights split out, `sun.gltf`, the lights as `KHR_lights_punctual` directional lights.
 
 use crate::environment::sun::Sun;
-use crate::environment::Cubemap;
-use crate::io::cubemap::{encode_cube, Container};
+use crate::io::cubemap::Container;
+use crate::math::cubemap::rotate_y;
 use crate::io::staging::Staging;
 use crate::io::PixelFormat;
 use crate::plan::chain::MipRoughness;
@@ -81,19 +81,13 @@ fn write(ctx: &FileContext, baked: BakedEnvironment, out: &mut Staging) -> Resul
     if let Some(gltf) = sun_gltf(baked.split_lights(), ctx.target) {
         out.add(ctx.dir.join("sun.gltf"), gltf.into_bytes(), ("sun", "gltf", 0, 0));
     }
-    let orientation = ctx.target.orientation;
     let fmt = ctx.encoding.format.name();
-    let mut cube = |folder: &str, name: &str, kind: &'static str, cube: Cubemap| -> Result<()> {
-        let cube = orientation.apply(cube);
-        let path = ctx.dir.join(folder).join(format!("{name}.ktx2"));
-        out.add_cube(encode_cube(&path, &cube, &ctx.encoding)?, kind, fmt, &cube);
-        Ok(())
-    };
-    let specular = baked.specular;
-    cube("lambertian", "diffuse", "irradiance", baked.irradiance)?;
-    cube("ggx", "specular", "specular", specular)?;
+    let path = |folder: &str, name: &str| ctx.dir.join(folder).join(format!("{name}.ktx2"));
+    let irradiance = path("lambertian", "diffuse");
+    ctx.add_cube(out, &irradiance, "irradiance", fmt, baked.irradiance)?;
+    ctx.add_cube(out, &path("ggx", "specular"), "specular", fmt, baked.specular)?;
     if let Some(sheen) = baked.sheen {
-        cube("charlie", "sheen", "sheen", sheen)?;
+        ctx.add_cube(out, &path("charlie", "sheen"), "sheen", fmt, sheen)?;
     }
     Ok(Vec::new())
 }
@@ -104,10 +98,10 @@ fn write(ctx: &FileContext, baked: BakedEnvironment, out: &mut Staging) -> Resul
 pub const VIEWER_ENVIRONMENT_ROTATION_DEG: f32 = 90.0;
 
 /// The world direction from which the Sample Viewer, at its default environment rotation,
-/// shows the cube's direction `c`.
+/// shows the cube's direction `c`: `c` turned by −t with the environment's turn about +Y.
 fn viewer_world(c: [f32; 3]) -> [f32; 3] {
     let (sin, cos) = VIEWER_ENVIRONMENT_ROTATION_DEG.to_radians().sin_cos();
-    [cos * c[0] - sin * c[2], c[1], sin * c[0] + cos * c[2]]
+    rotate_y(c, cos, -sin)
 }
 
 /// `sun.gltf` of `lights` (generic frame, the sun first) for `target`: a glTF 2.0 scene of

@@ -25,7 +25,7 @@ pub use gltf::GLTF;
 pub use three::THREE;
 
 use crate::environment::Cubemap;
-use crate::io::cubemap::{Container, CubeEncoding};
+use crate::io::cubemap::{encode_cube, Container, CubeEncoding};
 use crate::io::lut::{encode_lut, LutWriteOptions};
 use crate::io::staging::Staging;
 use crate::io::PixelFormat;
@@ -178,6 +178,23 @@ pub struct FileContext<'a> {
     /// How the cubes are encoded (the container applies to [`FileSet::fixed_container`]
     /// `None` sets; the others use their engine's own).
     pub encoding: CubeEncoding<'a>,
+}
+
+impl FileContext<'_> {
+    /// Stages `cube` (in the generic orientation) at `path` in the target's orientation
+    /// and the bake's encoding, recorded in the manifest as `kind` in format `fmt`.
+    pub fn add_cube(
+        &self,
+        out: &mut Staging,
+        path: &Path,
+        kind: &'static str,
+        fmt: &str,
+        cube: Cubemap,
+    ) -> Result<()> {
+        let cube = self.target.orientation.apply(cube);
+        out.add_cube(encode_cube(path, &cube, &self.encoding)?, kind, fmt, &cube);
+        Ok(())
+    }
 }
 
 /// Writes a file set: stages the files of `baked` (in the generic orientation; the writer

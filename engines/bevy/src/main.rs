@@ -546,12 +546,7 @@ fn setup(
                 } else {
                     geometry.size
                 };
-                let target = images.add(Image::new_target_texture(
-                    size,
-                    size,
-                    TextureFormat::Rgba32Float,
-                    None,
-                ));
+                let target = float_target(&mut images, size);
                 let (transform, fov) = match view {
                     View::Sky => (
                         Transform::IDENTITY.looking_to(sun, Vec3::Y),
@@ -613,6 +608,16 @@ fn setup(
     );
     check.shots = shots;
     check.assets = handles;
+}
+
+/// A `size`² RGBA float image for a check camera to render into and the check to read.
+fn float_target(images: &mut Assets<Image>, size: u32) -> Handle<Image> {
+    images.add(Image::new_target_texture(
+        size,
+        size,
+        TextureFormat::Rgba32Float,
+        None,
+    ))
 }
 
 /// A check camera drawn as the `order`-th into the float image `target` with vertical
@@ -714,12 +719,7 @@ fn sun_shots(
         (View::SunShadow, "", RenderLayers::from_layers(&[5, 6])),
     ] {
         let size = geometry.size;
-        let target = images.add(Image::new_target_texture(
-            size,
-            size,
-            TextureFormat::Rgba32Float,
-            None,
-        ));
+        let target = float_target(images, size);
         let (transform, fov) = match view {
             View::SunShadow => (
                 Transform::from_xyz(0.0, SHADOW_CAMERA_HEIGHT, 0.0)
@@ -796,12 +796,7 @@ fn aim_recipe_camera(
     let transform = Transform::from_translation(view_dir * geometry.sphere_distance)
         .looking_at(Vec3::ZERO, Vec3::Y);
     let size = geometry.size;
-    let target = images.add(Image::new_target_texture(
-        size,
-        size,
-        TextureFormat::Rgba32Float,
-        None,
-    ));
+    let target = float_target(&mut images, size);
     commands.entity(entity).insert((
         Camera {
             order: check.shots.len() as isize,
