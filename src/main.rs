@@ -32,9 +32,9 @@ fn main() -> ExitCode {
         Command::Lut(args) => cli::commands::lut(args),
         Command::Cubemap(args) => cli::commands::cubemap(args),
         Command::Bake(args) => cli::commands::bake(args),
-        Command::Preview(args) => cli::commands::preview(args),
+        Command::Preview(args) => cli::preview::preview(args),
         Command::Verify(args) => cli::commands::verify(args),
-        Command::Inspect(args) => cli::commands::inspect(args),
+        Command::Inspect(args) => cli::inspect::inspect(args),
         Command::View(args) => cli::commands::view(args),
     };
     match result {

@@ -1,8 +1,13 @@
-//! The command line: argument definitions ([`args`]), the commands ([`commands`]), and
-//! what turns the library's errors into messages that name the flags the user typed.
+//! The command line: argument definitions ([`args`], with the values the flags take in
+//! `values`), the commands ([`commands`], [`preview`], [`inspect`], sharing `shared`),
+//! and what turns the library's errors into messages that name the flags the user typed.
 
 pub mod args;
 pub mod commands;
+pub mod inspect;
+pub mod preview;
+mod shared;
+mod values;
 
 use std::ffi::OsString;
 

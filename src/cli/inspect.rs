@@ -1,0 +1,120 @@
+//! `splitsum inspect`: what is in an environment (size, radiance, bad texels, the sun and
+//! further compact lights), for a person or, with `--json`, for a script.
+
+use splitsum::{BakeOptions, Baker, MIN_SUN_SHARE};
+
+use super::args::InspectArgs;
+use super::for_user;
+use super::shared::warn;
+
+/// `splitsum inspect`.
+pub fn inspect(args: InspectArgs) -> anyhow::Result<()> {
+    let opts = BakeOptions {
+        rotate_degrees: args.input_opts.rotate,
+        exposure_ev: args.input_opts.exposure,
+        backend: splitsum::BackendChoice::Cpu,
+        ..BakeOptions::default()
+    };
+    let baker = Baker::new(opts).map_err(|e| for_user("inspect", e))?;
+    let loaded = baker.load(&args.input, None)?;
+    let inventory = splitsum::inventory(&loaded.env);
+    let lights: Vec<splitsum::Sun> = splitsum::find_lights(&loaded.env)
+        .into_iter()
+        .map(|s| s.rotated(args.input_opts.rotate))
+        .collect();
+    let light_out = |sun: &splitsum::Sun| LightOut {
+        sun: *sun,
+        illuminance: sun.illuminance(),
+        azimuth_deg: sun.azimuth_deg(),
+        elevation_deg: sun.elevation_deg(),
+    };
+    if args.json {
+        #[derive(serde::Serialize)]
+        struct Out<'a> {
+            input: String,
+            #[serde(flatten)]
+            inventory: &'a splitsum::Inventory,
+            sun: Option<LightOut>,
+            additional_lights: Vec<LightOut>,
+            warnings: &'a [String],
+        }
+        let out = Out {
+            input: args.input.display().to_string(),
+            inventory: &inventory,
+            sun: lights.first().map(light_out),
+            additional_lights: lights.iter().skip(1).map(light_out).collect(),
+            warnings: &loaded.warnings,
+        };
+        println!("{}", serde_json::to_string_pretty(&out)?);
+        return Ok(());
+    }
+    warn(loaded.warnings);
+    let i = &inventory;
+    println!("{}", args.input.display());
+    match i.layout {
+        "cube" => println!("  size          cube, 6 × {0}×{0} texels", i.width),
+        _ => println!("  size          {}×{} {}", i.width, i.height, i.layout),
+    }
+    println!(
+        "  mean          {:.4} (R {:.4}, G {:.4}, B {:.4}); peak {:.4}; dynamic range {:.3e}",
+        i.mean_luminance, i.mean[0], i.mean[1], i.mean[2], i.peak_luminance, i.dynamic_range
+    );
+    if i.non_finite + i.negative > 0 {
+        println!(
+            "  bad texels    {} non-finite, {} negative",
+            i.non_finite, i.negative
+        );
+    }
+    if lights.is_empty() {
+        println!(
+            "  sun           none (no compact source holds {:.0} % of the light)",
+            100.0 * MIN_SUN_SHARE
+        );
+    }
+    for (k, s) in lights.iter().enumerate() {
+        let label = if k == 0 {
+            "sun".to_string()
+        } else {
+            format!("light {}", k + 1)
+        };
+        println!(
+            "  {label:<14}azimuth {:.2}°, elevation {:.2}°, direction ({:.5}, {:.5}, {:.5})",
+            s.azimuth_deg(),
+            s.elevation_deg(),
+            s.direction[0],
+            s.direction[1],
+            s.direction[2]
+        );
+        println!(
+            "                irradiance E (facing it) {:.4} (R {:.4}, G {:.4}, B {:.4}), {:.1} % of the light",
+            s.illuminance(),
+            s.irradiance[0],
+            s.irradiance[1],
+            s.irradiance[2],
+            100.0 * s.share
+        );
+        println!(
+            "                angular radius {:.3}°, solid angle {:.3e} sr, {} texels{}",
+            s.angular_radius_deg,
+            s.solid_angle_sr,
+            s.texels,
+            if s.clipped {
+                "; clipped (its core is a plateau: the camera saturated, so E is a lower bound)"
+            } else {
+                ""
+            }
+        );
+    }
+    Ok(())
+}
+
+/// A light as `inspect --json` writes it: its figures with its illuminance, azimuth and
+/// elevation.
+#[derive(serde::Serialize)]
+struct LightOut {
+    #[serde(flatten)]
+    sun: splitsum::Sun,
+    illuminance: f32,
+    azimuth_deg: f32,
+    elevation_deg: f32,
+}
