@@ -1,6 +1,7 @@
 //! The lookup study: where should a shader read the prefiltered chain? For each bundled
 //! HDRI, with the sun kept and split (`--sun`), and the environment turned to four azimuths
 //! (four views of it), the preview's spheres are shaded with each [`SpecularLookup`] and
+//! the fitted blend ([`FITTED`]), and
 //! compared with the preview's ground truth (the full reflectance integral, which does not
 //! depend on the lookup), sphere by sphere: the energy-weighted relative difference of the
 //! light each sends to the camera (`preview --json`'s `mean`). Prints a Markdown table per
@@ -19,7 +20,7 @@
 use splitsum::backend::CpuBackend;
 use splitsum::bake::{bake_environment, BakeOptions};
 use splitsum::cpu::preview_split_sum::render_split_sum_along;
-use splitsum::math::lookup::{BlendFit, SpecularLookup};
+use splitsum::math::lookup::{BlendFit, SpecularLookup, FITTED};
 use splitsum::plan::lut::BrdfLut;
 use splitsum::plan::scene::{material_table, Scene, SplitSumInputs, SplitSumLight, ROUGHNESS};
 use splitsum::stages::preview::{
@@ -39,6 +40,8 @@ const HDRIS: [&str; 6] = [
 /// What the blend is fitted on: a hard low sun and a sunset without one; the other four
 /// HDRIs check it.
 const FIT_HDRIS: [&str; 2] = ["quarry_01_1k.hdr", "venice_sunset_1k.hdr"];
+/// The table's rows: every [`SpecularLookup`], then the fitted blend.
+const ROWS: usize = SpecularLookup::ALL.len() + 1;
 /// The four views: the environment turned about +Y.
 const AZIMUTHS: [f32; 4] = [0.0, 90.0, 180.0, 270.0];
 /// The preview's pixels and truth points the study renders with.
@@ -46,6 +49,7 @@ const OPTS: PreviewOptions = PreviewOptions {
     cell: 32,
     exposure_ev: None,
     truth_samples: 1024,
+    lookup: SpecularLookup::GENERIC,
 };
 
 /// One view of one HDRI in one mode: its bake and the preview's ground truth.
@@ -93,7 +97,7 @@ fn figures_at(
 ) -> Vec<f32> {
     let scene = Scene { cell: OPTS.cell }.uniform();
     let light = BakedLight::of("", &view.baked, lut);
-    let mut columns = column_table(light.chain);
+    let mut columns = column_table(light.chain, SpecularLookup::Reflect);
     columns.iter_mut().for_each(|c| c[1] *= lod_scale);
     let materials = material_table();
     let inputs = SplitSumInputs {
@@ -206,12 +210,15 @@ fn main() -> Result<(), splitsum::Error> {
         for sun in [SunMode::Keep, SunMode::Split] {
             let views = views(name, sun, &lut)?;
             // errors[lookup][column]: every (material, view) sphere's figure.
-            let mut errors = vec![vec![Vec::new(); ROUGHNESS.len()]; SpecularLookup::ALL.len()];
+            let mut errors = vec![vec![Vec::new(); ROUGHNESS.len()]; ROWS];
             for view in &views {
-                for (k, lookup) in SpecularLookup::ALL.into_iter().enumerate() {
-                    let f = figures(view, &lut, |n, v, r| lookup.direction(n, v, r));
+                for (k, errors) in errors.iter_mut().enumerate() {
+                    let f = match SpecularLookup::ALL.get(k) {
+                        Some(lookup) => figures(view, &lut, |n, v, r| lookup.direction(n, v, r)),
+                        None => figures(view, &lut, |n, v, r| FITTED.direction(n, v, r)),
+                    };
                     for (i, e) in f.into_iter().enumerate() {
-                        errors[k][i % ROUGHNESS.len()].push(e);
+                        errors[i % ROUGHNESS.len()].push(e);
                     }
                 }
             }
@@ -232,9 +239,12 @@ fn main() -> Result<(), splitsum::Error> {
             print!("| lookup |");
             ROUGHNESS.iter().for_each(|r| print!(" r = {r} |"));
             println!("\n|---|{}", "---|".repeat(ROUGHNESS.len()));
-            for (k, lookup) in SpecularLookup::ALL.into_iter().enumerate() {
-                print!("| {} |", lookup.name());
-                for e in &errors[k] {
+            for (k, errors) in errors.iter().enumerate() {
+                let name = SpecularLookup::ALL
+                    .get(k)
+                    .map_or("fitted blend", |l| l.name());
+                print!("| {name} |");
+                for e in errors {
                     let mean = e.iter().sum::<f32>() / e.len() as f32;
                     let worst = e.iter().copied().fold(0.0f32, f32::max);
                     print!(" {:.1} % ({:.1}) |", 100.0 * mean, 100.0 * worst);

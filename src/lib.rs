@@ -115,6 +115,7 @@ pub use io::input::input_stem;
 pub use io::lut::{check_lut_path, png_clip_warning, write_lut, LutWriteOptions};
 pub use io::staging::OutputRecord;
 pub use io::PixelFormat;
+pub use math::lookup::SpecularLookup;
 pub use plan::bc6h::Bc6hQuality;
 pub use plan::chain::{MipRoughness, SpecularChain};
 pub use plan::lut::{BrdfLut, LutModel, DEFAULT_LUT_SIZE, MAX_LUT_SIZE};

@@ -21,6 +21,7 @@ use glam::Vec3;
 use splitsum::cpu::preview_split_sum::split_sum_shade;
 use splitsum::plan::material::ShadeMaterial;
 use splitsum::plan::scene::SplitSumLight;
+use splitsum::SpecularLookup;
 
 /// Relative bar per channel (see the module documentation).
 const TOLERANCE: f32 = 0.01;
@@ -222,6 +223,7 @@ fn readme_wgsl_shades_as_the_preview() {
                 albedo,
                 roughness,
                 lod: roughness * (levels - 1) as f32,
+                bend: SpecularLookup::GENERIC.bend(roughness),
             };
             reference.push(split_sum_shade(&light, n, v, n.dot(v).max(0.0), &m));
         }

@@ -7,6 +7,7 @@ struct ShadeMaterial {
     albedo: vec3<f32>,  // linear-RGB diffuse albedo c (Lambert c/pi)
     roughness: f32,     // perceptual roughness r (alpha = r^2)
     lod: f32,           // the specular chain's lod for r (the split-sum lookup)
+    bend: f32,          // how far the lookup leans from R toward n for r (0: R, 1: n)
 }
 
 // Fresnel-Schlick per channel: F0 + (1 - F0)(1 - v.h)^5.

@@ -1,6 +1,8 @@
 // Split-sum shading of one surface point, exactly as the README tells an engine to:
-// L = prefiltered(reflect(-v, n), lod(r)) (F0 A + B) + E/pi(n) albedo kD,
-// kD = (1 - F_r(n.v))(1 - metallic), F_r Lagarde's roughness-aware Fresnel.
+// L = prefiltered(d, lod(r)) (F0 A + B) + E/pi(n) albedo kD,
+// kD = (1 - F_r(n.v))(1 - metallic), F_r Lagarde's roughness-aware Fresnel, and
+// d = normalize(mix(R, n, bend(r))) the lookup direction, R = reflect(-v, n) bent toward
+// the normal (math::lookup: Frostbite's dominant direction for the generic target).
 // CPU mirror: src/cpu/preview_split_sum.rs (same function names).
 //
 // The including kernel declares the baked light as module globals:
@@ -43,11 +45,18 @@ fn sample_lut(n_dot_v: f32, roughness: f32) -> vec2<f32> {
     return (a * (1.0 - fx) + b * fx) * (1.0 - fy) + (c * (1.0 - fx) + d * fx) * fy;
 }
 
+// normalize(mix(R, n, bend)) with R = reflect(-v, n); with n.v > 0, R.n = n.v > 0, so the
+// blend never vanishes. Mirror of math::lookup::bent_reflection.
+fn bent_reflection(n: vec3<f32>, v: vec3<f32>, bend: f32) -> vec3<f32> {
+    let refl = 2.0 * dot(n, v) * n - v;
+    return normalize(mix(refl, n, bend));
+}
+
 // The split-sum radiance towards v of a point with normal n; n_dot_v is n.v clamped
 // away from 0 by the caller (silhouette normals are perpendicular to v).
 fn split_sum_shade(n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, m: ShadeMaterial) -> vec3<f32> {
-    let refl = 2.0 * dot(n, v) * n - v;
-    let prefiltered = sample_cube_lod(specular, light.specular_size, light.specular_levels, refl, m.lod);
+    let dir = bent_reflection(n, v, m.bend);
+    let prefiltered = sample_cube_lod(specular, light.specular_size, light.specular_levels, dir, m.lod);
     let ab = sample_lut(n_dot_v, m.roughness);
     let spec = prefiltered * (m.f0 * ab.x + vec3<f32>(ab.y));
     let f_r = vec3<f32>(

@@ -10,6 +10,7 @@ fn unpack_material(m: array<vec4<f32>, 3>) -> ShadeMaterial {
     s.albedo = m[1].xyz;
     s.roughness = m[1].w;
     s.lod = m[2].x;
+    s.bend = m[2].y;
     return s;
 }
 

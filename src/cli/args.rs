@@ -8,7 +8,7 @@ use clap::{Args, Parser, Subcommand};
 use splitsum::{Bc6hQuality, LutModel, PixelFormat, Target};
 
 use super::values::{
-    bc6h_parser, lut_help, lut_model_parser, min_mip_size_help, pixel_format_help,
+    bc6h_parser, lookup_parser, lut_help, lut_model_parser, min_mip_size_help, pixel_format_help,
     pixel_format_parser, sh_help, sun_mode_parser, target_help, target_parser, zstd_help,
 };
 pub use super::values::{BackendArg, ContainerArg, LayoutArg};
@@ -279,6 +279,11 @@ pub struct PreviewRenderArgs {
     /// Edge of one sphere's cell in pixels.
     #[arg(long, default_value_t = splitsum::PreviewOptions::default().cell)]
     pub preview_cell: u32,
+
+    /// Where the split-sum reads the specular chain: the README's recipe bends R toward
+    /// the normal (frostbite); the others are the lookups engines make.
+    #[arg(long, default_value = splitsum::SpecularLookup::GENERIC.id(), value_parser = lookup_parser())]
+    pub lookup: splitsum::SpecularLookup,
 }
 
 /// `splitsum preview`.

@@ -20,6 +20,7 @@ pub(super) fn preview_options(
         cell: render.preview_cell,
         exposure_ev,
         truth_samples: render.truth_samples,
+        lookup: render.lookup,
     }
 }
 
@@ -150,6 +151,7 @@ fn preview_json(input: &Path, baked: &splitsum::BakedEnvironment, p: &Preview) -
     struct Out<'a> {
         input: String,
         sun_mode: &'static str,
+        lookup: &'static str,
         sun: Option<splitsum::Sun>,
         additional_lights: &'a [splitsum::Sun],
         exposure: f32,
@@ -159,6 +161,7 @@ fn preview_json(input: &Path, baked: &splitsum::BakedEnvironment, p: &Preview) -
     let out = Out {
         input: input.display().to_string(),
         sun_mode: baked.sun_mode.name(),
+        lookup: p.lookup.id(),
         sun: baked.sun().copied(),
         additional_lights: baked.lights.get(1..).unwrap_or_default(),
         exposure: p.exposure,

@@ -4,7 +4,9 @@
 
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::ValueEnum;
-use splitsum::{Bc6hQuality, LutModel, PixelFormat, Target, CUBE_PIXEL_FORMATS, TARGETS};
+use splitsum::{
+    Bc6hQuality, LutModel, PixelFormat, SpecularLookup, Target, CUBE_PIXEL_FORMATS, TARGETS,
+};
 
 /// `--target`'s values: the names of [`TARGETS`], each with its summary.
 pub(super) fn target_parser() -> impl TypedValueParser<Value = &'static Target> {
@@ -39,6 +41,16 @@ pub(super) fn lut_model_parser() -> impl TypedValueParser<Value = LutModel> {
             .map(|m| PossibleValue::new(m.name()).help(m.description())),
     )
     .map(|name| LutModel::by_name(&name).unwrap_or_default())
+}
+
+/// `--lookup`'s values.
+pub(super) fn lookup_parser() -> impl TypedValueParser<Value = SpecularLookup> {
+    PossibleValuesParser::new(
+        SpecularLookup::ALL
+            .iter()
+            .map(|l| PossibleValue::new(l.id()).help(l.description())),
+    )
+    .map(|id| SpecularLookup::by_id(&id).unwrap_or(SpecularLookup::GENERIC))
 }
 
 /// `target: value` for every target, joined.

@@ -5,10 +5,13 @@
 //!
 //! For normal n, view v, roughness r and a material (F0, albedo c, metallic m):
 //!
-//! L = prefiltered(reflect(−v, n), lod(r)) · (F0·A + B) + E/π(n) · c · kD,
+//! L = prefiltered(d, lod(r)) · (F0·A + B) + E/π(n) · c · kD,
 //! kD = (1 − F_r)(1 − m),
 //!
-//! with (A, B) the LUT at uv = (n·v, r) sampled bilinearly with clamp-to-edge,
+//! with d = normalize(mix(R, n, t(r))) the lookup direction, R = reflect(−v, n) bent toward
+//! n by the material's bend t (`math::lookup`: Frostbite's dominant direction for the
+//! generic target, the engines' own in their modes),
+//! (A, B) the LUT at uv = (n·v, r) sampled bilinearly with clamp-to-edge,
 //! prefiltered a seamless trilinear lookup at the chain's lod for r, E/π a seamless
 //! bilinear lookup of the irradiance cube, and F_r Lagarde's roughness-aware Fresnel at n·v
 //! (`brdf::fresnel_schlick_roughness`). Background pixels read level 0 of the chain (the
@@ -19,6 +22,7 @@ use rayon::prelude::*;
 
 use crate::environment::sample::sample_cube_lod;
 use crate::math::brdf::fresnel_schlick_roughness;
+use crate::math::lookup::bent_reflection;
 use crate::plan::lut::BrdfLut;
 use crate::plan::material::ShadeMaterial;
 use crate::plan::scene::{
@@ -52,11 +56,11 @@ pub fn sample_lut(lut: &BrdfLut, n_dot_v: f32, roughness: f32) -> [f32; 2] {
 /// The split-sum radiance towards `v` of a point with normal `n`; `n_dot_v` is n·v clamped
 /// away from 0 by the caller (silhouette normals are perpendicular to v).
 pub fn split_sum_shade(light: &SplitSumLight, n: Vec3, v: Vec3, n_dot_v: f32, m: &ShadeMaterial) -> Vec3 {
-    split_sum_shade_along(light, n, 2.0 * n.dot(v) * n - v, n_dot_v, m)
+    split_sum_shade_along(light, n, bent_reflection(n, v, m.bend), n_dot_v, m)
 }
 
-/// The split-sum radiance with the chain read along `dir` (R for [`split_sum_shade`];
-/// another lookup direction in the lookup study).
+/// The split-sum radiance with the chain read along `dir` (the material's bent reflection
+/// for [`split_sum_shade`]; a lookup that depends on more than r in the lookup study).
 pub fn split_sum_shade_along(
     light: &SplitSumLight,
     n: Vec3,
@@ -85,7 +89,7 @@ pub fn render_split_sum(scene: &SceneUniform, inputs: &SplitSumInputs) -> Vec<[f
 }
 
 /// The split-sum panel with the chain looked up along `lookup(n, v, roughness)` (the
-/// lookup study: `math::lookup`).
+/// lookup study's fitted blend, `math::lookup::FITTED`, depends on n·v too).
 #[cfg(any(test, feature = "internals"))]
 pub fn render_split_sum_along(
     scene: &SceneUniform,

@@ -9,7 +9,8 @@ use glam::Vec3;
 
 use crate::math::brdf::{alpha_from_roughness, d_ggx, fresnel_schlick_weight, g1_schlick_ggx, k_direct};
 
-/// One surface's material and the split-sum lookup's lod for its roughness.
+/// One surface's material and where the split-sum reads the chain for its roughness: the
+/// lod and the lookup direction's bend (`math::lookup`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ShadeMaterial {
     /// Linear-RGB reflectance at normal incidence.
@@ -22,6 +23,9 @@ pub struct ShadeMaterial {
     pub roughness: f32,
     /// The specular chain's lod for `roughness` (`RoughnessMapping::lod`).
     pub lod: f32,
+    /// How far the chain's lookup direction leans from R toward n for `roughness`
+    /// (`math::lookup::SpecularLookup::bend`: 0 along R, 1 along n).
+    pub bend: f32,
 }
 
 /// Fresnel-Schlick per channel: F0 + (1 − F0)(1 − v·h)⁵ (Schlick 1994).

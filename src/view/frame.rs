@@ -12,6 +12,7 @@ use glam::{Mat4, Vec3};
 
 use crate::environment::texels::SourceTexel;
 use crate::environment::Cubemap;
+use crate::math::lookup::SpecularLookup;
 use crate::plan::chain::SpecularChain;
 use crate::plan::lut::BrdfLut;
 use crate::plan::material::{ShadeMaterial, MIN_DIRECT_ALPHA};
@@ -20,7 +21,9 @@ use crate::stages::light::BakedEnvironment;
 use crate::stages::preview::picture::{auto_exposure, HEAT_LOG10_RANGE};
 use crate::stages::preview::truth_environment;
 use crate::view::camera::CameraFrame;
-use crate::view::scene::{PointLight, FIT_HALF_EXTENT, FLOOR_HALF_EXTENT, FLOOR_Y, OBJECT_CENTRE};
+use crate::view::scene::{
+    BaseMaterial, PointLight, FIT_HALF_EXTENT, FLOOR_HALF_EXTENT, FLOOR_Y, OBJECT_CENTRE,
+};
 
 /// A frame before tone mapping, per pixel: the split-sum (radiance, surface id) and the
 /// truth accumulation (radiance × points, points).
@@ -135,6 +138,12 @@ impl ViewLight {
         self.chain.roughness.lod(r, self.chain.levels)
     }
 
+    /// `base` at roughness `r` as the split-sum reads it: the chain's lod for r and the
+    /// generic lookup's bend (`math::lookup::SpecularLookup::GENERIC`).
+    pub fn material(&self, base: &BaseMaterial, r: f32) -> ShadeMaterial {
+        base.shade(r, self.lod(r), SpecularLookup::GENERIC.bend(r))
+    }
+
     /// What the split-sum shading reads.
     pub fn split_sum(&self) -> SplitSumLight<'_> {
         SplitSumLight {
@@ -177,7 +186,7 @@ pub struct FrameUniform {
     pub front: [f32; 4],
     /// World to clip space (column-major).
     pub view_projection: [[f32; 4]; 4],
-    /// The object's material: (F0, metallic), (albedo, roughness), (lod, 0, 0, 0).
+    /// The object's material: (F0, metallic), (albedo, roughness), (lod, bend, 0, 0).
     pub object: [[f32; 4]; 3],
     /// The floor's material, as `object`.
     pub floor: [[f32; 4]; 3],
@@ -191,7 +200,7 @@ fn pack(m: &ShadeMaterial) -> [[f32; 4]; 3] {
     [
         m.f0.extend(m.metallic).into(),
         m.albedo.extend(m.roughness).into(),
-        [m.lod, 0.0, 0.0, 0.0],
+        [m.lod, m.bend, 0.0, 0.0],
     ]
 }
 
@@ -203,6 +212,7 @@ pub fn unpack_material(m: &[[f32; 4]; 3]) -> ShadeMaterial {
         albedo: Vec3::from_slice(&m[1][..3]),
         roughness: m[1][3],
         lod: m[2][0],
+        bend: m[2][1],
     }
 }
 

@@ -181,10 +181,8 @@ impl Viewer {
     /// The uniform block of a `size` frame of the current state (truth index 0).
     pub fn frame_uniform(&self, size: (u32, u32)) -> FrameUniform {
         let s = &self.state;
-        let object = s
-            .base_material()
-            .shade(s.roughness, self.light.lod(s.roughness));
-        let floor = floor_material().shade(FLOOR_ROUGHNESS, self.light.lod(FLOOR_ROUGHNESS));
+        let object = self.light.material(s.base_material(), s.roughness);
+        let floor = self.light.material(&floor_material(), FLOOR_ROUGHNESS);
         let lights = if s.lights {
             POINT_LIGHTS.len() as u32
         } else {

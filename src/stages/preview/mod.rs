@@ -24,6 +24,7 @@ use crate::cpu::preview_truth::hot_texels_shade;
 use crate::environment::sun::Sun;
 use crate::environment::texels::SourceTexel;
 use crate::environment::Cubemap;
+use crate::math::lookup::SpecularLookup;
 use crate::plan::chain::SpecularChain;
 use crate::plan::lut::{BrdfLut, DEFAULT_LUT_SIZE};
 use crate::plan::scene::{
@@ -69,6 +70,9 @@ pub struct PreviewOptions {
     /// Quasi-Monte Carlo points per lobe and pixel of the ground truth (0 ..= 65536; 0
     /// renders the split-sum alone, without the truth, the heat map or the stats).
     pub truth_samples: u32,
+    /// Where the split-sum reads the specular chain ([`SpecularLookup::GENERIC`], the
+    /// README's recipe, by default).
+    pub lookup: SpecularLookup,
 }
 
 impl Default for PreviewOptions {
@@ -77,6 +81,7 @@ impl Default for PreviewOptions {
             cell: DEFAULT_CELL,
             exposure_ev: None,
             truth_samples: DEFAULT_TRUTH_SAMPLES,
+            lookup: SpecularLookup::GENERIC,
         }
     }
 }
@@ -121,6 +126,8 @@ pub struct Preview {
     pub truth_seconds: f64,
     /// The lights shaded beside the IBL (`--sun split`), the sun first.
     pub lights: Vec<Sun>,
+    /// Where the split-sum read the specular chain.
+    pub lookup: SpecularLookup,
 }
 
 impl PreviewOptions {
@@ -156,11 +163,12 @@ pub fn validate_options(opts: &PreviewOptions) -> Result<()> {
     Ok(())
 }
 
-/// The per-column table of the kernels: (roughness, the chain's lod for it, 0, 0).
-pub fn column_table(chain: SpecularChain) -> Vec<[f32; 4]> {
+/// The per-column table of the kernels: (roughness, the chain's lod for it, `lookup`'s
+/// bend for it, 0).
+pub fn column_table(chain: SpecularChain, lookup: SpecularLookup) -> Vec<[f32; 4]> {
     ROUGHNESS
         .iter()
-        .map(|&r| [r, chain.roughness.lod(r, chain.levels), 0.0, 0.0])
+        .map(|&r| [r, chain.roughness.lod(r, chain.levels), lookup.bend(r), 0.0])
         .collect()
 }
 
@@ -278,7 +286,7 @@ pub fn render_preview(
     validate_options(opts)?;
     let scene = Scene { cell: opts.cell };
     let uniform = scene.uniform();
-    let columns = column_table(light.chain);
+    let columns = column_table(light.chain, opts.lookup);
     let materials = material_table();
 
     let t = Instant::now();
@@ -362,6 +370,7 @@ pub fn render_preview(
         split_sum_seconds,
         truth_seconds,
         lights: light.lights.to_vec(),
+        lookup: opts.lookup,
     })
 }
 
