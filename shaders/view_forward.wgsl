@@ -18,6 +18,8 @@
 @group(0) @binding(5) var irradiance: texture_2d_array<f32>;
 @group(0) @binding(6) var lut: texture_2d<f32>;
 @group(0) @binding(7) var<storage, read> lights: array<vec4<f32>>;
+@group(0) @binding(8) var<storage, read> sun_texels: array<vec4<f32>>;
+@group(0) @binding(9) var shadow_map: texture_2d<f32>;
 
 // The displayed split-sum colour of surface `s` at the pixel centred at `centre`.
 fn shade_fragment(centre: vec2<f32>, s: Surface) -> vec4<f32> {

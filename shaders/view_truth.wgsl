@@ -1,7 +1,9 @@
 // The viewer's ground truth, one more estimate per call: each object or floor pixel's full
 // reflectance integral (`truth_shade`, common/truth.wgsl, the preview's function) with
 // truth.point_count points rotated by a hash of the pixel and frame.truth_frame, plus the
-// point lights on; background pixels read the environment. Accumulates (radiance x
+// point lights on and the discs of the lights taken out of the environment (the sun's
+// through the same shadow map as the split-sum's, common/view_sun.wgsl); background pixels
+// read the environment. Accumulates (radiance x
 // points, points) per pixel, restarting at truth_frame 0. CPU mirror: src/view/cpu.rs.
 
 @group(0) @binding(0) var<uniform> frame: FrameParams;
@@ -14,6 +16,8 @@
 @group(0) @binding(7) var gbuffer_position: texture_2d<f32>;
 @group(0) @binding(8) var gbuffer_normal: texture_2d<f32>;
 @group(0) @binding(9) var<storage, read_write> accum: array<vec4<f32>>;
+@group(0) @binding(10) var<storage, read> sun_texels: array<vec4<f32>>;
+@group(0) @binding(11) var shadow_map: texture_2d<f32>;
 
 @compute @workgroup_size(WORKGROUP_X, WORKGROUP_Y, WORKGROUP_Z)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -27,7 +31,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         c = sample_cube_lod(env, truth.env_size, 1u, px.dir, 0.0);
     } else {
         let shift = pixel_shift(pixel + frame.truth_frame * frame.width * frame.height);
-        c = truth_shade(px.s.n, px.v, px.n_dot_v, px.m, shift) + direct_lights(px);
+        c = truth_shade(px.s.n, px.v, px.n_dot_v, px.m, shift) + direct_lights(px)
+            + sun_texels_shade(px, frame.sun.x, frame.sun.y);
     }
     let w = f32(truth.point_count);
     let estimate = vec4<f32>(c * w, w);

@@ -270,7 +270,9 @@ fn viewer_shaders_validate_and_match_rust() {
                 object,
                 floor,
                 sphere,
-                floor_plane
+                floor_plane,
+                sun,
+                shadow
             ]
         );
     }

@@ -224,7 +224,15 @@ fn preview_means(input: &str, mode: &str, dir: &Path) -> Vec<(String, f64, f64)>
     let json_path = dir.join(format!("{mode}.json"));
     run_ok(
         splitsum()
-            .args(["preview", input, "--lookup", "reflect", "--sun", mode, "-o"])
+            .args([
+                "preview",
+                input,
+                "--lookup",
+                "reflect",
+                "--preview-cell",
+                "32",
+            ])
+            .args(["--sun", mode, "-o"])
             .arg(dir.join(format!("{mode}.png")))
             .arg("--json")
             .arg(&json_path),
@@ -255,9 +263,10 @@ fn splitting_the_sun_cuts_what_a_metal_sphere_is_off_by_three() {
     // third of the one with it kept, both read along R, so the figure is what splitting
     // buys alone (the bent lookup mends the kept sun's rough spheres too, and its own
     // gain is held by tests/specular_lookup.rs) (measured: 4–8× less on quarry_01, 3.3–4.1× on
-    // royal_esplanade, docs/accuracy.md), at the preview's default 2048 truth samples, as
-    // `splitsum preview` prints them (at 512 the truth's own noise moves royal_esplanade's
-    // rough spheres by 2 % of their figure, as much as the margin).
+    // royal_esplanade, docs/accuracy.md), at the preview's default 2048 truth samples
+    // (at 512 the truth's own noise moves royal_esplanade's rough spheres by 2 % of their
+    // figure, as much as the margin) on 32-pixel cells, a quarter of the default's pixels
+    // and of its time.
     let dir = output_dir("sun_cli_preview");
     for input in [QUARRY, ROYAL] {
         let keep = preview_means(input, "keep", &dir);

@@ -363,6 +363,7 @@ fn a_dropped_file_that_is_not_an_image_is_one_clear_line() {
     let err = load_light(
         &LightSource::File(notes),
         splitsum::BackendChoice::Cpu,
+        splitsum::SunMode::Split,
         &mut |_| {},
     )
     .unwrap_err()

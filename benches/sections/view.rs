@@ -2,8 +2,9 @@
 //! the window draws them (into a texture, waiting for the device; no readback), with the
 //! camera turning every frame (the GPU renderer's forward pass, and its deferred passes:
 //! G-buffer, kernels, present, as the truth and heat views draw) and still (the present
-//! pass alone), the ground truth's samples per second, and the CPU renderer; the GPU
-//! renderer on the adapter wgpu finds.
+//! pass alone), the ground truth's samples per second, the forward pass with quarry_01's
+//! sun split out and its shadow, and the CPU renderer; the GPU renderer on the adapter
+//! wgpu finds.
 
 use splitsum::gpu::GpuContext;
 use splitsum::view::frame::Mode;
@@ -40,7 +41,13 @@ fn row(renderer: &str, frame: &str, (wall, cpu): (f64, f64), truth_rate: Option<
 
 pub fn benchmarks() {
     println!("\n## The viewer at 1280×720 with Spot (median of {FRAMES} frames)\n");
-    let light = load_light(&LightSource::Bundled, BackendChoice::Auto, &mut |_| {}).unwrap();
+    let light = load_light(
+        &LightSource::Bundled,
+        BackendChoice::Auto,
+        splitsum::SunMode::Split,
+        &mut |_| {},
+    )
+    .unwrap();
     let models = splitsum::view::model::Model::bundled().unwrap();
     let size = DEFAULT_SIZE;
     let pixels = (size.0 * size.1) as f64;
@@ -91,6 +98,32 @@ pub fn benchmarks() {
                 );
             }
         }
+        // The sun split out of quarry_01 and shaded with its shadow map.
+        let sunny = load_light(
+            &LightSource::File("tests/data/quarry_01_1k.hdr".into()),
+            BackendChoice::Auto,
+            splitsum::SunMode::Split,
+            &mut |_| {},
+        )
+        .unwrap();
+        let renderer = GpuRenderer::new(ctx.device.clone(), ctx.queue.clone()).unwrap();
+        let mut v = Viewer::new(
+            sunny,
+            models.clone(),
+            Renderer::Gpu(Box::new(renderer)),
+            "gpu",
+        )
+        .unwrap();
+        let moving = time(FRAMES, |i| {
+            v.state.camera.yaw_deg = 0.05 * i as f32;
+            v.render_to(size, (&view, format)).unwrap();
+        });
+        row(
+            &name,
+            "camera turning (forward), quarry_01's sun split with its shadow",
+            moving,
+            None,
+        );
     }
     let mut v = Viewer::new(light, models, Renderer::Cpu(CpuFrame::default()), "cpu").unwrap();
     let moving = time(FRAMES / 4, |i| {

@@ -16,6 +16,40 @@ fn fresnel3(f0: vec3<f32>, v_dot_h: f32) -> vec3<f32> {
     return f0 * (1.0 - w) + vec3<f32>(w);
 }
 
+// A light's shading split into its specular part and its diffuse part per unit albedo.
+struct LightShade {
+    spec: vec3<f32>,
+    diff: vec3<f32>,
+}
+
+// What a light of irradiance e (L times its solid angle) from unit direction l sends
+// towards v off a point with normal n, e f(l, v) (n.l) with the truth's BRDF: GGX D,
+// Schlick-GGX G1 with k = alpha/2 for l and v, Fresnel-Schlick at v.h, plus Lambert
+// weighted by (1 - F)(1 - metallic); at alpha 0 no specular (a mirror shows a direction's
+// light as a point: the mirror lookup's). The truth's hot texels and the lights taken out
+// of the environment are shaded by it. Mirror of plan::material::directional_light.
+fn directional_light(n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, alpha: f32, f0: vec3<f32>, metallic: f32, l: vec3<f32>, e: vec3<f32>) -> LightShade {
+    var out: LightShade;
+    out.spec = vec3<f32>(0.0);
+    out.diff = vec3<f32>(0.0);
+    let n_dot_l = dot(n, l);
+    if (n_dot_l <= 0.0) {
+        return out;
+    }
+    let k = 0.5 * alpha;
+    let h = normalize(l + v);
+    let f = fresnel3(f0, max(dot(v, h), 0.0));
+    if (alpha > 0.0) {
+        // f (n.l) = D F G1(n.l) (G1(n.v)/(n.v)) / 4
+        let w = d_ggx(max(dot(n, h), 0.0), alpha) * g1_schlick_ggx(n_dot_l, k) * g1_over_n_dot_v(n_dot_v, k) * 0.25;
+        out.spec = e * f * w;
+    }
+    if (metallic < 1.0) {
+        out.diff = e * (vec3<f32>(1.0) - f) * ((1.0 - metallic) * n_dot_l / PI);
+    }
+    return out;
+}
+
 // The radiance towards v that a point light (position, intensity) sends off the point p
 // with normal n: Cook-Torrance with GGX D (alpha = max(r^2, min_alpha)), Schlick-GGX G1
 // with k = (r + 1)^2 / 8 for l and v, Fresnel-Schlick at v.h, plus Lambert c/pi weighted

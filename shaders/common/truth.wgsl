@@ -40,35 +40,16 @@ fn shifted_disk_point(p: vec4<f32>, shift: vec3<f32>) -> vec2<f32> {
     return vec2<f32>(r * c, r * s);
 }
 
-struct HotShade {
-    spec: vec3<f32>,
-    diff: vec3<f32>,
-}
-
 // Sum of L Omega f (n.l) over the hot texels: (specular, diffuse / albedo).
-fn hot_texels_shade(n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, alpha: f32, f0: vec3<f32>, metallic: f32) -> HotShade {
-    let k = 0.5 * alpha;
-    var out: HotShade;
+fn hot_texels_shade(n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, alpha: f32, f0: vec3<f32>, metallic: f32) -> LightShade {
+    var out: LightShade;
     out.spec = vec3<f32>(0.0);
     out.diff = vec3<f32>(0.0);
     for (var i = 0u; i < truth.hot_count; i++) {
         let t = hot[2u * i];
-        let l = t.xyz;
-        let n_dot_l = dot(n, l);
-        if (n_dot_l <= 0.0) {
-            continue;
-        }
-        let radiance = hot[2u * i + 1u].rgb * t.w;
-        let h = normalize(l + v);
-        let f = fresnel3(f0, max(dot(v, h), 0.0));
-        if (alpha > 0.0) {
-            // f (n.l) = D F G1(n.l) (G1(n.v)/(n.v)) / 4
-            let w = d_ggx(max(dot(n, h), 0.0), alpha) * g1_schlick_ggx(n_dot_l, k) * g1_over_n_dot_v(n_dot_v, k) * 0.25;
-            out.spec += radiance * f * w;
-        }
-        if (metallic < 1.0) {
-            out.diff += radiance * (vec3<f32>(1.0) - f) * ((1.0 - metallic) * n_dot_l / PI);
-        }
+        let s = directional_light(n, v, n_dot_v, alpha, f0, metallic, t.xyz, hot[2u * i + 1u].rgb * t.w);
+        out.spec += s.spec;
+        out.diff += s.diff;
     }
     return out;
 }

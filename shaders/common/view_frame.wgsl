@@ -12,10 +12,16 @@ struct FrameParams {
     up: vec4<f32>,         // w: half extent y
     front: vec4<f32>,      // w: smallest n.v of the shading
     view_projection: mat4x4<f32>,
-    object: array<vec4<f32>, 3>, // (F0, metallic), (albedo, roughness), (lod, 0, 0, 0)
+    object: array<vec4<f32>, 3>, // (F0, metallic), (albedo, roughness), (lod, bend, 0, 0)
     floor: array<vec4<f32>, 3>,
     sphere: vec4<f32>,     // (centre, radius)
     floor_plane: vec4<f32>, // (height, half extent, smallest alpha of the point lights, 0)
+    // The lights taken out of the environment: (split-sum entries, truth disc cells after
+    // them, 1 when the sun casts its shadow, the shadow map's edge in texels).
+    sun: vec4<u32>,
+    // The sun's shadow map: (origin, half extent), (right, depth bias), (up, normal
+    // offset), (front, 0) (src/view/shadow.rs).
+    shadow: array<vec4<f32>, 4>,
 }
 
 struct Ray {

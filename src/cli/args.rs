@@ -167,6 +167,11 @@ pub struct ViewArgs {
     #[arg(long, default_value_t = 1)]
     pub frames: u32,
 
+    /// An HDRI's sun at start: split out as a light with its shadow, or kept in the IBL
+    /// (U swaps; an HDRI with a sun is baked both ways).
+    #[arg(long, value_name = "MODE", default_value = "split", value_parser = sun_mode_parser())]
+    pub sun: splitsum::SunMode,
+
     #[command(flatten)]
     pub common: CommonArgs,
 }

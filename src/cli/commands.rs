@@ -301,6 +301,7 @@ pub fn view(args: ViewArgs) -> anyhow::Result<()> {
         screenshot: args.screenshot.clone(),
         keys,
         frames: args.frames,
+        sun: args.sun,
     };
     opts.validate().map_err(|e| for_user("view", e))?;
     let Some(path) = args.screenshot else {

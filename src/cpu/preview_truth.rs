@@ -31,12 +31,12 @@ use rayon::prelude::*;
 use crate::environment::sample::sample_cube_lod;
 use crate::environment::texels::SourceTexel;
 use crate::math::brdf::{
-    alpha_from_roughness, d_ggx, g1_over_n_dot_v, g1_schlick_ggx, g1_smith_ggx, k_ibl,
+    alpha_from_roughness, g1_schlick_ggx, g1_smith_ggx, k_ibl,
 };
 use crate::math::sampling::{
     cosine_hemisphere_from_disk, pcg_hash, sample_ggx_vndf, tangent_frame, unit_float,
 };
-use crate::plan::material::{fresnel3, ShadeMaterial};
+use crate::plan::material::{directional_light, fresnel3, ShadeMaterial};
 use crate::plan::scene::{
     pixel_geometry, preview_material, PixelGeometry, SceneUniform, TruthInputs, TruthLight,
     MIN_N_DOT_V,
@@ -79,31 +79,12 @@ pub fn hot_texels_shade(
     f0: Vec3,
     metallic: f32,
 ) -> (Vec3, Vec3) {
-    let k = 0.5 * alpha;
-    let (mut spec, mut diff) = (Vec3::ZERO, Vec3::ZERO);
-    for t in hot {
+    hot.iter().fold((Vec3::ZERO, Vec3::ZERO), |(spec, diff), t| {
         let l = Vec3::from_slice(&t.dir_omega[..3]);
-        let n_dot_l = n.dot(l);
-        if n_dot_l <= 0.0 {
-            continue;
-        }
-        let radiance = Vec3::from_slice(&t.radiance[..3]) * t.dir_omega[3];
-        let h = (l + v).normalize();
-        let f = fresnel3(f0, v.dot(h).max(0.0));
-        if alpha > 0.0 {
-            // f (n·l) = D F G1(n·l) (G1(n·v)/(n·v)) / 4
-            let w = d_ggx(n.dot(h).max(0.0), alpha)
-                * g1_schlick_ggx(n_dot_l, k)
-                * g1_over_n_dot_v(n_dot_v, k)
-                * 0.25;
-            spec += radiance * f * w;
-        }
-        if metallic < 1.0 {
-            diff +=
-                radiance * (Vec3::ONE - f) * ((1.0 - metallic) * n_dot_l / std::f32::consts::PI);
-        }
-    }
-    (spec, diff)
+        let e = Vec3::from_slice(&t.radiance[..3]) * t.dir_omega[3];
+        let (s, d) = directional_light(n, v, n_dot_v, alpha, f0, metallic, l, e);
+        (spec + s, diff + d)
+    })
 }
 
 /// One estimate of the radiance towards `v` of a point with normal `n`, its quadrature

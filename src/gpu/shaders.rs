@@ -83,7 +83,7 @@ pub const PREVIEW_TRUTH: &str = kernel_source!(
 );
 
 /// `shaders/view_split_sum.wgsl` with brdf, cubemap, cube_fetch_bordered, cube_sample,
-/// material, split_sum, view_frame, view_surface, view_gbuffer_read, view_shade.
+/// material, split_sum, view_frame, view_surface, view_sun, view_gbuffer_read, view_shade.
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub const VIEW_SPLIT_SUM: &str = kernel_source!(
     "view_split_sum.wgsl",
@@ -96,13 +96,14 @@ pub const VIEW_SPLIT_SUM: &str = kernel_source!(
         "split_sum.wgsl",
         "view_frame.wgsl",
         "view_surface.wgsl",
+        "view_sun.wgsl",
         "view_gbuffer_read.wgsl",
         "view_shade.wgsl"
     ]
 );
 
 /// `shaders/view_truth.wgsl` with brdf, sampling, cubemap, cube_fetch_bordered,
-/// cube_sample, material, truth, view_frame, view_surface, view_gbuffer_read.
+/// cube_sample, material, truth, view_frame, view_surface, view_sun, view_gbuffer_read.
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub const VIEW_TRUTH: &str = kernel_source!(
     "view_truth.wgsl",
@@ -116,6 +117,7 @@ pub const VIEW_TRUTH: &str = kernel_source!(
         "truth.wgsl",
         "view_frame.wgsl",
         "view_surface.wgsl",
+        "view_sun.wgsl",
         "view_gbuffer_read.wgsl"
     ]
 );
@@ -133,7 +135,7 @@ pub const VIEW_GBUFFER: &str = render_source!(
 pub const VIEW_PRESENT_BODY: &str = render_source!("view_present.wgsl", ["view_display.wgsl"]);
 
 /// `shaders/view_forward.wgsl` with brdf, cubemap, cube_fetch_bordered, cube_sample,
-/// material, split_sum, view_frame, view_surface, view_shade, view_raster, view_display,
+/// material, split_sum, view_frame, view_surface, view_sun, view_shade, view_raster, view_display,
 /// without the constants the viewer writes before it (`view::gpu::forward_source`).
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub const VIEW_FORWARD_BODY: &str = render_source!(
@@ -147,6 +149,7 @@ pub const VIEW_FORWARD_BODY: &str = render_source!(
         "split_sum.wgsl",
         "view_frame.wgsl",
         "view_surface.wgsl",
+        "view_sun.wgsl",
         "view_shade.wgsl",
         "view_raster.wgsl",
         "view_display.wgsl"

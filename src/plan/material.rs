@@ -7,7 +7,9 @@
 
 use glam::Vec3;
 
-use crate::math::brdf::{alpha_from_roughness, d_ggx, fresnel_schlick_weight, g1_schlick_ggx, k_direct};
+use crate::math::brdf::{
+    alpha_from_roughness, d_ggx, fresnel_schlick_weight, g1_over_n_dot_v, g1_schlick_ggx, k_direct,
+};
 
 /// One surface's material and where the split-sum reads the chain for its roughness: the
 /// lod and the lookup direction's bend (`math::lookup`).
@@ -32,6 +34,47 @@ pub struct ShadeMaterial {
 pub fn fresnel3(f0: Vec3, v_dot_h: f32) -> Vec3 {
     let w = fresnel_schlick_weight(v_dot_h);
     f0 * (1.0 - w) + Vec3::splat(w)
+}
+
+/// What a light of irradiance `e` (L times its solid angle) from unit direction `l` sends
+/// towards `v` off a point with normal `n`, e f(l, v) (n·l) with the truth's BRDF, as
+/// (specular, diffuse per unit albedo): GGX D, Schlick-GGX G1 with k = α/2 for l and v,
+/// Fresnel-Schlick at v·h, plus Lambert weighted by (1 − F)(1 − metallic); at α = 0 no
+/// specular (a mirror shows a direction's light as a point: the mirror lookup's). The
+/// truth's hot texels and the lights taken out of the environment are shaded by it.
+/// Mirror of `directional_light` in `shaders/common/material.wgsl`.
+#[allow(clippy::too_many_arguments)]
+pub fn directional_light(
+    n: Vec3,
+    v: Vec3,
+    n_dot_v: f32,
+    alpha: f32,
+    f0: Vec3,
+    metallic: f32,
+    l: Vec3,
+    e: Vec3,
+) -> (Vec3, Vec3) {
+    let n_dot_l = n.dot(l);
+    if n_dot_l <= 0.0 {
+        return (Vec3::ZERO, Vec3::ZERO);
+    }
+    let k = 0.5 * alpha;
+    let h = (l + v).normalize();
+    let f = fresnel3(f0, v.dot(h).max(0.0));
+    let mut spec = Vec3::ZERO;
+    if alpha > 0.0 {
+        // f (n·l) = D F G1(n·l) (G1(n·v)/(n·v)) / 4
+        let w = d_ggx(n.dot(h).max(0.0), alpha)
+            * g1_schlick_ggx(n_dot_l, k)
+            * g1_over_n_dot_v(n_dot_v, k)
+            * 0.25;
+        spec = e * f * w;
+    }
+    let mut diff = Vec3::ZERO;
+    if metallic < 1.0 {
+        diff = e * (Vec3::ONE - f) * ((1.0 - metallic) * n_dot_l / std::f32::consts::PI);
+    }
+    (spec, diff)
 }
 
 /// The radiance towards `v` that a point light at `light_position` of intensity

@@ -13,12 +13,14 @@ use rayon::prelude::*;
 use crate::cpu::preview_split_sum::split_sum_shade;
 use crate::cpu::preview_truth::{pixel_shift, truth_shade};
 use crate::environment::sample::sample_cube_lod;
+use crate::math::brdf::alpha_from_roughness;
 use crate::math::color::linear_to_srgb;
-use crate::plan::material::{point_light, ShadeMaterial};
+use crate::plan::material::{directional_light, point_light, ShadeMaterial};
 use crate::stages::preview::picture::{luminance, pbr_neutral, HEAT_BACKGROUND};
 use crate::view::camera::CameraFrame;
 use crate::view::frame::{unpack_material, FrameUniform, Mode, PresentUniform, Surface, ViewLight};
 use crate::view::raster::GBuffer;
+use crate::view::shadow;
 
 /// What a shading pass sees at pixel `k` (`PixelView` in view_surface.wgsl): its ray's
 /// direction, the G-buffer's surface, position and normal there, the view direction
@@ -89,12 +91,50 @@ fn direct_lights(frame: &FrameUniform, lights: &[[f32; 4]], px: &PixelView) -> V
         .sum()
 }
 
+/// The entries `first` .. first + count of the light's sun texels shading the surface a
+/// pixel sees, light 0's through the sun's visibility in `shadow` (the map's texels;
+/// `sun_texels_shade` in view_sun.wgsl).
+fn sun_texels_shade(
+    frame: &FrameUniform,
+    texels: &[[f32; 4]],
+    shadow: &[f32],
+    px: &PixelView,
+    (first, count): (u32, u32),
+) -> Vec3 {
+    if count == 0 {
+        return Vec3::ZERO;
+    }
+    let visibility = if frame.sun[2] == 0 {
+        1.0
+    } else {
+        shadow::visibility(&frame.shadow, frame.sun[3], shadow, px.p, px.n)
+    };
+    let alpha = alpha_from_roughness(px.m.roughness);
+    (first..first + count)
+        .map(|i| {
+            let (t, r) = (texels[2 * i as usize], texels[2 * i as usize + 1]);
+            let e = Vec3::from_slice(&r[..3]) * t[3];
+            let l = Vec3::from_slice(&t[..3]);
+            let (spec, diff) =
+                directional_light(px.n, px.v, px.n_dot_v, alpha, px.m.f0, px.m.metallic, l, e);
+            let c = spec + diff * px.m.albedo;
+            if r[3] < 0.5 {
+                c * visibility
+            } else {
+                c
+            }
+        })
+        .sum()
+}
+
 /// The split-sum pass: per pixel (radiance, surface id), the background's and the
-/// surfaces' as `background_radiance` and `surface_radiance` in view_shade.wgsl.
+/// surfaces' as `background_radiance` and `surface_radiance` in view_shade.wgsl; `shadow`
+/// holds the sun's shadow map's texels (read when `frame.sun` says so).
 pub fn shade_split_sum(
     frame: &FrameUniform,
     light: &ViewLight,
     lights: &[[f32; 4]],
+    shadow: &[f32],
     g: &GBuffer,
 ) -> Vec<[f32; 4]> {
     let camera = frame.camera();
@@ -108,6 +148,7 @@ pub fn shade_split_sum(
             } else {
                 split_sum_shade(&split, px.n, px.v, px.n_dot_v, &px.m)
                     + direct_lights(frame, lights, &px)
+                    + sun_texels_shade(frame, &light.sun_texels, shadow, &px, (0, frame.sun[0]))
             };
             c.extend(px.surface as u32 as f32).into()
         })
@@ -115,12 +156,13 @@ pub fn shade_split_sum(
 }
 
 /// One truth estimate with `points`, accumulated into `accum` (restarted at
-/// `frame.truth_frame` 0).
+/// `frame.truth_frame` 0); `shadow` as for [`shade_split_sum`].
 pub fn shade_truth(
     frame: &FrameUniform,
     light: &ViewLight,
     points: &[[f32; 4]],
     lights: &[[f32; 4]],
+    shadow: &[f32],
     g: &GBuffer,
     accum: &mut [[f32; 4]],
 ) {
@@ -140,6 +182,13 @@ pub fn shade_truth(
             );
             truth_shade(&truth, px.n, px.v, px.n_dot_v, &px.m, pixel_shift(seed))
                 + direct_lights(frame, lights, &px)
+                + sun_texels_shade(
+                    frame,
+                    &light.sun_texels,
+                    shadow,
+                    &px,
+                    (frame.sun[0], frame.sun[1]),
+                )
         };
         let estimate = [c.x * weight, c.y * weight, c.z * weight, weight];
         if frame.truth_frame == 0 {

@@ -10,6 +10,7 @@
 
 use glam::{Mat4, Vec3};
 
+use crate::environment::sun::{Sun, SunMode};
 use crate::environment::texels::SourceTexel;
 use crate::environment::Cubemap;
 use crate::math::lookup::SpecularLookup;
@@ -19,11 +20,12 @@ use crate::plan::material::{ShadeMaterial, MIN_DIRECT_ALPHA};
 use crate::plan::scene::{SplitSumLight, TruthLight, MIN_N_DOT_V};
 use crate::stages::light::BakedEnvironment;
 use crate::stages::preview::picture::{auto_exposure, HEAT_LOG10_RANGE};
-use crate::stages::preview::truth_environment;
+use crate::stages::preview::{sun_texels, truth_environment};
 use crate::view::camera::CameraFrame;
 use crate::view::scene::{
     BaseMaterial, PointLight, FIT_HALF_EXTENT, FLOOR_HALF_EXTENT, FLOOR_Y, OBJECT_CENTRE,
 };
+use crate::view::shadow::ShadowMap;
 
 /// A frame before tone mapping, per pixel: the split-sum (radiance, surface id) and the
 /// truth accumulation (radiance × points, points).
@@ -87,12 +89,45 @@ pub struct ViewLight {
     pub hot: Vec<SourceTexel>,
     /// The preview's default exposure of this environment (a linear scale).
     pub exposure: f32,
+    /// Whether the lights were taken out of the environment (`--sun split`).
+    pub sun_mode: SunMode,
+    /// The lights found in the environment, the sun first (kept in it or split out).
+    pub found: Vec<Sun>,
+    /// The lights taken out, as the shading passes read them ([`sun_texel_table`]): one
+    /// entry per light for the split-sum, then each light's disc for the truth.
+    pub sun_texels: Vec<[f32; 4]>,
+    /// The same environment baked in the other sun mode, when that differs (an HDRI
+    /// with a sun): what the viewer's U key swaps in.
+    pub alternate: Option<Box<ViewLight>>,
+}
+
+/// The entries of [`ViewLight::sun_texels`]: (unit direction, solid angle), (radiance,
+/// light index), the sun being light 0 (the one with a shadow). First one per light, its
+/// irradiance E⊥ from its direction (what the split-sum view shades, as the preview
+/// does); then each light's disc of `stages::preview::SUN_DISC_RINGS` rings (what the truth
+/// integrates, as the preview's truth does). Returns the table and the count of the first
+/// part.
+pub fn sun_texel_table(lights: &[Sun]) -> (Vec<[f32; 4]>, u32) {
+    let mut table = Vec::new();
+    for (i, sun) in lights.iter().enumerate() {
+        let (d, e) = (sun.direction, sun.irradiance);
+        table.push([d[0], d[1], d[2], 1.0]);
+        table.push([e[0], e[1], e[2], i as f32]);
+    }
+    for (i, sun) in lights.iter().enumerate() {
+        for t in sun_texels(sun) {
+            table.push(t.dir_omega);
+            table.push([t.radiance[0], t.radiance[1], t.radiance[2], i as f32]);
+        }
+    }
+    (table, lights.len() as u32)
 }
 
 impl ViewLight {
     /// The viewer's light from a bake and its LUT.
     pub fn new(name: impl Into<String>, baked: &BakedEnvironment, lut: BrdfLut) -> ViewLight {
         let (env, split) = truth_environment(&baked.specular);
+        let (sun_texels, _) = sun_texel_table(baked.split_lights());
         ViewLight {
             name: name.into(),
             exposure: auto_exposure(&baked.specular),
@@ -103,7 +138,29 @@ impl ViewLight {
             env,
             cold: split.rest,
             hot: split.hot,
+            sun_mode: baked.sun_mode,
+            found: baked.lights.clone(),
+            sun_texels,
+            alternate: None,
         }
+    }
+
+    /// The lights taken out of the environment, the sun first (none with the sun kept).
+    pub fn split_lights(&self) -> &[Sun] {
+        match self.sun_mode {
+            SunMode::Split => &self.found,
+            SunMode::Keep => &[],
+        }
+    }
+
+    /// How many lights the split-sum view shades (the first part of `sun_texels`).
+    pub fn sun_count(&self) -> u32 {
+        self.split_lights().len() as u32
+    }
+
+    /// How many disc cells the truth view integrates (the rest of `sun_texels`).
+    pub fn sun_cell_count(&self) -> u32 {
+        (self.sun_texels.len() / 2) as u32 - self.sun_count()
     }
 
     /// A black environment, shown while the first bake runs.
@@ -130,6 +187,10 @@ impl ViewLight {
             cold: black(4, 3),
             hot: Vec::new(),
             exposure: 1.0,
+            sun_mode: SunMode::Keep,
+            found: Vec::new(),
+            sun_texels: Vec::new(),
+            alternate: None,
         }
     }
 
@@ -194,6 +255,12 @@ pub struct FrameUniform {
     pub sphere: [f32; 4],
     /// (floor height, half extent, smallest α of the point lights, 0).
     pub floor_plane: [f32; 4],
+    /// The lights taken out of the environment: (entries the split-sum view shades, disc
+    /// cells the truth view integrates after them, 1 when the sun casts its shadow, the
+    /// shadow map's edge in texels).
+    pub sun: [u32; 4],
+    /// The sun's shadow map ([`crate::view::shadow::ShadowMap::uniform`]).
+    pub shadow: [[f32; 4]; 4],
 }
 
 fn pack(m: &ShadeMaterial) -> [[f32; 4]; 3] {
@@ -244,7 +311,21 @@ impl FrameUniform {
             floor: pack(floor),
             sphere: Vec3::from(OBJECT_CENTRE).extend(FIT_HALF_EXTENT).into(),
             floor_plane: [FLOOR_Y, FLOOR_HALF_EXTENT, MIN_DIRECT_ALPHA, 0.0],
+            sun: [0; 4],
+            shadow: [[0.0; 4]; 4],
         }
+    }
+
+    /// The frame with `light`'s split-out lights on and, when given, the sun's `shadow`.
+    pub fn with_sun(mut self, light: &ViewLight, shadow: Option<&ShadowMap>) -> FrameUniform {
+        self.sun = [
+            light.sun_count(),
+            light.sun_cell_count(),
+            shadow.is_some() as u32,
+            shadow.map_or(0, |s| s.size),
+        ];
+        self.shadow = shadow.map_or([[0.0; 4]; 4], |s| s.uniform());
+        self
     }
 
     /// The camera basis and projection back.

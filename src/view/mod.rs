@@ -25,6 +25,7 @@ pub mod model;
 pub mod raster;
 pub mod scene;
 pub mod session;
+pub mod shadow;
 pub mod state;
 pub mod window;
 
@@ -34,6 +35,7 @@ use image::RgbaImage;
 
 use crate::backend::BackendChoice;
 use crate::bake::{read_bake_dir, BakeOptions, Baker};
+use crate::environment::sun::SunMode;
 use crate::environment::Environment;
 use crate::gpu::context::GpuContext;
 use crate::plan::lut::{LutModel, DEFAULT_LUT_SIZE};
@@ -79,6 +81,9 @@ pub struct ViewOptions {
     pub keys: Vec<Action>,
     /// Frames rendered offscreen (the truth accumulates one estimate a frame).
     pub frames: u32,
+    /// How an HDRI's sun is baked at start: split out (a light with a shadow, the
+    /// default) or kept in the IBL; U swaps.
+    pub sun: SunMode,
 }
 
 impl Default for ViewOptions {
@@ -91,6 +96,7 @@ impl Default for ViewOptions {
             screenshot: None,
             keys: Vec::new(),
             frames: 1,
+            sun: SunMode::Split,
         }
     }
 }
@@ -143,16 +149,19 @@ impl ViewOptions {
     }
 }
 
-/// The viewer's light from `source`: an HDRI baked in memory with the bake defaults on
-/// `backend` (progress reported as text), or a generic bake folder read as `preview`
+/// The viewer's light from `source`: an HDRI baked in memory with the bake defaults and
+/// `sun` on `backend` (progress reported as text), and when it has a sun, baked in the
+/// other sun mode too (`ViewLight::alternate`); or a generic bake folder read as `preview`
 /// reads it. The LUT is the folder's, or the default model's.
 pub fn load_light(
     source: &LightSource,
     backend: BackendChoice,
+    sun: SunMode,
     progress: &mut dyn FnMut(String),
 ) -> Result<ViewLight> {
     let mut baker = Baker::new(BakeOptions {
         backend,
+        sun,
         ..BakeOptions::default()
     })?;
     let (name, env) = match source {
@@ -183,11 +192,31 @@ pub fn load_light(
             (BUNDLED_NAME.to_string(), Environment::Equirect(e))
         }
     };
-    let baked = baker.bake_environment_with_progress(env, &mut |stage| {
+    let baked = baker.bake_environment_with_progress(env.clone(), &mut |stage| {
         progress(format!("baking {name}: {}", stage.name()));
     })?;
     let lut = baker.lut(LutModel::default(), DEFAULT_LUT_SIZE)?;
-    Ok(ViewLight::new(name, &baked, lut))
+    let mut light = ViewLight::new(&name, &baked, lut.clone());
+    if !baked.lights.is_empty() {
+        let other = match sun {
+            SunMode::Split => SunMode::Keep,
+            SunMode::Keep => SunMode::Split,
+        };
+        let mut baker = Baker::new(BakeOptions {
+            backend,
+            sun: other,
+            ..BakeOptions::default()
+        })?;
+        let baked = baker.bake_environment_with_progress(env, &mut |stage| {
+            progress(format!(
+                "baking {name} with --sun {}: {}",
+                other.name(),
+                stage.name()
+            ));
+        })?;
+        light.alternate = Some(Box::new(ViewLight::new(&name, &baked, lut)));
+    }
+    Ok(light)
 }
 
 /// Writes `img` as a PNG at `path` (a temporary file, then renamed).
@@ -234,7 +263,7 @@ pub fn render_screenshot(
 ) -> Result<RgbaImage> {
     opts.validate()?;
     let models = opts.models()?;
-    let light = load_light(&opts.light_source(), opts.backend, progress)?;
+    let light = load_light(&opts.light_source(), opts.backend, opts.sun, progress)?;
     let (renderer, description) = offscreen_renderer(opts.backend)?;
     let mut viewer = Viewer::new(light, models, renderer, description)?;
     opts.initial_state(&mut viewer)?;

@@ -47,15 +47,21 @@ pub fn scene_vertices(model: &Model) -> Vec<Vertex> {
         .iter()
         .map(|&k| vertex(corners[k], Vec3::Y, Surface::Floor))
         .collect();
-    if let Shape::Mesh(mesh) = &model.shape {
-        out.extend(
-            mesh.positions
-                .iter()
-                .zip(&mesh.normals)
-                .map(|(&p, &n)| vertex(p, n, Surface::Object)),
-        );
-    }
+    out.extend(object_vertices(model));
     out
+}
+
+/// The model's triangles alone (none for the sphere): what casts the sun's shadow.
+pub fn object_vertices(model: &Model) -> Vec<Vertex> {
+    match &model.shape {
+        Shape::Mesh(mesh) => mesh
+            .positions
+            .iter()
+            .zip(&mesh.normals)
+            .map(|(&p, &n)| vertex(p, n, Surface::Object))
+            .collect(),
+        Shape::Sphere => Vec::new(),
+    }
 }
 
 /// The box the GPU rasterises to ray-cast the sphere in (1 % larger than the sphere, 12

@@ -11,6 +11,9 @@ use std::time::Instant;
 
 use image::RgbaImage;
 
+use glam::Vec3;
+
+use crate::environment::sun::SunMode;
 use crate::plan::scene::disk_points;
 use crate::view::cpu::{present, shade_split_sum, shade_truth};
 use crate::view::frame::{
@@ -21,6 +24,7 @@ use crate::view::hud;
 use crate::view::model::{Model, Shape};
 use crate::view::raster::{rasterize, scene_vertices, GBuffer, Vertex};
 use crate::view::scene::{floor_material, FLOOR_ROUGHNESS, POINT_LIGHTS};
+use crate::view::shadow::ShadowMap;
 use crate::view::state::{Action, Change, ViewState, KEYS};
 use crate::{Error, Result};
 
@@ -37,6 +41,8 @@ const MESSAGE_SECONDS: f32 = 8.0;
 /// renderer uploads them once).
 pub struct CpuFrame {
     vertices: Vec<Vertex>,
+    /// The sun's shadow map's texels (empty without one).
+    shadow: Vec<f32>,
     sphere: bool,
     gbuffer: Option<GBuffer>,
     shaded: Vec<[f32; 4]>,
@@ -49,6 +55,7 @@ impl Default for CpuFrame {
     fn default() -> Self {
         Self {
             vertices: Vec::new(),
+            shadow: Vec::new(),
             sphere: false,
             gbuffer: None,
             shaded: Vec::new(),
@@ -73,6 +80,8 @@ pub struct Viewer {
     pub state: ViewState,
     /// The baked light shown.
     pub light: ViewLight,
+    /// The sun's shadow map for the light and model shown (with the sun split out).
+    shadow: Option<ShadowMap>,
     /// The models on keys.
     pub models: Vec<Model>,
     /// Quadrature points per lobe of each truth estimate (1 ..= 256).
@@ -110,6 +119,7 @@ impl Viewer {
         let mut v = Viewer {
             state: ViewState::default(),
             light,
+            shadow: None,
             models,
             points_per_estimate: DEFAULT_POINTS_PER_ESTIMATE,
             renderer,
@@ -140,6 +150,24 @@ impl Viewer {
             }
         }
         self.scene_dirty = true;
+        self.update_shadow()
+    }
+
+    /// Makes the sun's shadow map for the light and model shown (none without a sun split
+    /// out) and hands it to the renderer.
+    fn update_shadow(&mut self) -> Result<()> {
+        let model = &self.models[self.state.model.min(self.models.len() - 1)];
+        self.shadow = self
+            .light
+            .split_lights()
+            .first()
+            .map(|sun| ShadowMap::new(Vec3::from(sun.direction), model));
+        match &mut self.renderer {
+            Renderer::Gpu(g) => g.set_shadow(self.shadow.as_ref())?,
+            Renderer::Cpu(c) => {
+                c.shadow = self.shadow.as_ref().map_or(Vec::new(), |s| s.depth.clone())
+            }
+        }
         Ok(())
     }
 
@@ -150,11 +178,33 @@ impl Viewer {
         }
         self.light = light;
         self.scene_dirty = true;
-        Ok(())
+        self.update_shadow()
+    }
+
+    /// Swaps in the light's other sun mode (`ViewLight::alternate`), or says why not.
+    fn toggle_sun(&mut self) -> Result<Change> {
+        let Some(mut next) = self.light.alternate.take() else {
+            let why = match self.light.found.is_empty() {
+                true => "no sun found in this environment: nothing to split".to_string(),
+                false => format!(
+                    "this bake was made with --sun {}: view the HDRI to switch",
+                    self.light.sun_mode.name()
+                ),
+            };
+            self.message(why);
+            return Ok(Change::Nothing);
+        };
+        let current = std::mem::replace(&mut self.light, ViewLight::blank());
+        next.alternate = Some(Box::new(current));
+        self.set_light(*next)?;
+        Ok(Change::Scene)
     }
 
     /// Applies a user's action.
     pub fn apply(&mut self, action: Action) -> Result<Change> {
+        if action == Action::ToggleSun {
+            return self.toggle_sun();
+        }
         let model = self.state.model;
         let change = self.state.apply(action, self.models.len());
         if self.state.model != model {
@@ -196,6 +246,7 @@ impl Viewer {
             lights,
             0,
         )
+        .with_sun(&self.light, self.shadow.as_ref().filter(|_| s.shadow))
     }
 
     /// The present pass's block for a `size` frame.
@@ -237,6 +288,7 @@ impl Viewer {
                 if s.lights { "on" } else { "off" }
             ),
             format!("view: {view}"),
+            self.sun_line(),
             match self.shown_frame_seconds.0 {
                 t if t > 0.0 => format!("frame {:.1} ms · {}", 1e3 * t, self.backend),
                 _ => format!("frame – · {}", self.backend),
@@ -247,6 +299,27 @@ impl Viewer {
         let shorts: Vec<&str> = KEYS.iter().map(|k| k.3).collect();
         lines.extend(shorts.chunks(KEYS_PER_LINE).map(|c| c.join(" · ")));
         lines
+    }
+
+    /// The HUD's line on the sun: where it is, its share of the light, and whether it is
+    /// split out (with its shadow) or kept in the IBL.
+    fn sun_line(&self) -> String {
+        let Some(sun) = self.light.found.first() else {
+            return "sun: none found (no compact dominant light)".into();
+        };
+        let place = format!(
+            "sun az {:.1}° el {:.1}° · {:.1} % of the light",
+            sun.azimuth_deg(),
+            sun.elevation_deg(),
+            100.0 * sun.share
+        );
+        match self.light.sun_mode {
+            SunMode::Split => format!(
+                "{place} · split, shadow {}",
+                if self.state.shadow { "on" } else { "off" }
+            ),
+            SunMode::Keep => format!("{place} · kept in the IBL"),
+        }
     }
 
     /// The frame's uniform for this call and whether the G-buffer must be redrawn (and the
@@ -357,12 +430,20 @@ impl Viewer {
             Renderer::Cpu(c) => {
                 if changed {
                     let g = rasterize(&frame, &c.vertices, c.sphere);
-                    c.shaded = shade_split_sum(&frame, &self.light, &c.lights, &g);
+                    c.shaded = shade_split_sum(&frame, &self.light, &c.lights, &c.shadow, &g);
                     c.accum = vec![[0.0; 4]; c.shaded.len()];
                     c.gbuffer = Some(g);
                 }
                 if let (Some(p), Some(g)) = (&points, &c.gbuffer) {
-                    shade_truth(&frame, &self.light, p, &c.lights, g, &mut c.accum);
+                    shade_truth(
+                        &frame,
+                        &self.light,
+                        p,
+                        &c.lights,
+                        &c.shadow,
+                        g,
+                        &mut c.accum,
+                    );
                 }
                 let blank;
                 let hud = match &hud {

@@ -35,6 +35,8 @@ pub struct ViewState {
     pub lights: bool,
     /// Whether the HUD is drawn.
     pub hud: bool,
+    /// Whether the sun (split out of the environment) casts its shadow.
+    pub shadow: bool,
     /// The camera.
     pub camera: Camera,
 }
@@ -50,6 +52,7 @@ impl Default for ViewState {
             mode: Mode::SplitSum,
             lights: false,
             hud: true,
+            shadow: true,
             camera: Camera::default(),
         }
     }
@@ -84,6 +87,11 @@ pub enum Action {
     ToggleLights,
     /// HUD on or off.
     ToggleHud,
+    /// The sun split out of the environment (a light with a shadow) or kept in it; the
+    /// viewer swaps its light (the state holds nothing of it).
+    ToggleSun,
+    /// The sun's shadow on or off.
+    ToggleShadow,
     /// A walk of `forward`, `sideways` for a tenth of a second (the `w a s d` tokens).
     Walk(f32, f32),
     /// Save a screenshot.
@@ -144,6 +152,13 @@ pub const KEYS: &[(&str, &str, &str, &str)] = &[
         "H heat map",
     ),
     ("L", "l", "point lights on / off", "L lights"),
+    (
+        "U",
+        "u",
+        "the sun split out as a light or kept in the IBL (an HDRI with a sun)",
+        "U sun split/kept",
+    ),
+    ("O", "o", "the sun's shadow on / off", "O shadow"),
     ("F1", "hud", "HUD on / off", "F1 HUD"),
     (
         "W A S D, mouse",
@@ -177,6 +192,8 @@ pub fn parse_keys(keys: &str) -> Result<Vec<Action>> {
                 "g" => Action::ToggleTruth,
                 "h" => Action::ToggleHeat,
                 "l" => Action::ToggleLights,
+                "u" => Action::ToggleSun,
+                "o" => Action::ToggleShadow,
                 "hud" => Action::ToggleHud,
                 "w" => Action::Walk(1.0, 0.0),
                 "s" => Action::Walk(-1.0, 0.0),
@@ -191,7 +208,7 @@ pub fn parse_keys(keys: &str) -> Result<Vec<Action>> {
                         return Err(Error::InvalidOption {
                             option: "keys",
                             message: format!(
-                                "'{t}' is not a key token (1…6, m1…m4, m+, m-, r+, r-, t, e+, e-, g, h, l, hud, w, a, s, d)"
+                                "'{t}' is not a key token (1…6, m1…m4, m+, m-, r+, r-, t, e+, e-, g, h, l, u, o, hud, w, a, s, d)"
                             ),
                         })
                     }
@@ -241,6 +258,8 @@ impl ViewState {
                 m.metallic = !m.metallic;
             }
             Action::ToggleLights => self.lights = !self.lights,
+            Action::ToggleShadow => self.shadow = !self.shadow,
+            Action::ToggleSun => {}
             Action::Walk(f, s) => self.camera.walk(f, s, TOKEN_STEP_SECONDS),
             Action::Brighter => {
                 self.exposure_ev += EXPOSURE_STEP_EV;

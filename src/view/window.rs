@@ -39,13 +39,13 @@ enum Baking {
 /// Bakes `source` on a thread of its own, reporting on the returned channel.
 fn bake_in_background(source: LightSource, opts: &ViewOptions) -> Receiver<Baking> {
     let (tx, rx) = channel();
-    let backend = opts.backend;
+    let (backend, sun) = (opts.backend, opts.sun);
     std::thread::spawn(move || {
         let progress_tx: Sender<Baking> = tx.clone();
         let mut progress = |what: String| {
             let _ = progress_tx.send(Baking::Progress(what));
         };
-        let message = match load_light(&source, backend, &mut progress) {
+        let message = match load_light(&source, backend, sun, &mut progress) {
             Ok(light) => Baking::Done(Box::new(light)),
             Err(e) => Baking::Failed(e.to_string()),
         };
@@ -187,6 +187,8 @@ impl App {
             KeyCode::KeyG => Action::ToggleTruth,
             KeyCode::KeyH => Action::ToggleHeat,
             KeyCode::KeyL => Action::ToggleLights,
+            KeyCode::KeyU => Action::ToggleSun,
+            KeyCode::KeyO => Action::ToggleShadow,
             KeyCode::F1 => Action::ToggleHud,
             KeyCode::KeyP => Action::Screenshot,
             KeyCode::Escape => Action::Quit,

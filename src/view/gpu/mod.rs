@@ -28,6 +28,7 @@ use crate::view::frame::{heat_table, light_table, FrameUniform, Mode, PresentUni
 use crate::view::model::{Model, Shape};
 use crate::view::raster::{scene_vertices, sphere_box_vertices};
 use crate::view::scene::POINT_LIGHTS;
+use crate::view::shadow::{ShadowMap, EMPTY_DEPTH};
 use crate::{Error, Result};
 
 mod passes;
@@ -57,6 +58,9 @@ struct LightTextures {
     cold: wgpu::TextureView,
     hot: wgpu::Buffer,
     split_sum: wgpu::Buffer,
+    /// `ViewLight::sun_texels` (one zero entry when there are none: a binding is never
+    /// empty).
+    sun_texels: wgpu::Buffer,
     truth_env_size: u32,
     hot_count: u32,
 }
@@ -105,10 +109,38 @@ pub struct GpuRenderer {
     lights: wgpu::Buffer,
     heat: wgpu::Buffer,
     light: Option<LightTextures>,
+    /// The sun's shadow map (a 1 × 1 empty one until one is set).
+    shadow: wgpu::TextureView,
     vertices: Option<(wgpu::Buffer, u32)>,
     sphere_box: wgpu::Buffer,
     sphere: bool,
     targets: Option<Targets>,
+}
+
+/// An r32float texture of `size`² `depth` texels (a shadow map).
+fn shadow_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    size: u32,
+    depth: &[f32],
+) -> Result<wgpu::TextureView> {
+    with_error_scope(device, "uploading the sun's shadow map", || {
+        let texture = create_texture_2d(
+            device,
+            "view shadow map",
+            (size, size, 1),
+            wgpu::TextureFormat::R32Float,
+            wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        );
+        write_texels(
+            queue,
+            &texture,
+            (0, 0),
+            (size, size, 1),
+            bytemuck::cast_slice(depth),
+        );
+        texture.create_view(&Default::default())
+    })
 }
 
 fn gpu_error(stage: &str, message: impl Into<String>) -> Error {
@@ -196,7 +228,9 @@ impl GpuRenderer {
             bytemuck::cast_slice(&sphere_box_vertices()),
             wgpu::BufferUsages::VERTEX,
         );
+        let shadow = shadow_texture(&device, &queue, 1, &[EMPTY_DEPTH])?;
         Ok(GpuRenderer {
+            shadow,
             device,
             queue,
             mesh_pipeline,
@@ -318,12 +352,31 @@ impl GpuRenderer {
                 env: upload_bordered_cube(device, queue, "view environment", &light.env, 1),
                 cold: upload_bordered_cube(device, queue, "view cold texels", &light.cold, 1),
                 hot: storage_buffer(device, "view hot texels", &light.hot),
+                sun_texels: storage_buffer(
+                    device,
+                    "view sun texels",
+                    if light.sun_texels.is_empty() {
+                        &[[0.0; 4]; 2]
+                    } else {
+                        &light.sun_texels[..]
+                    },
+                ),
                 split_sum: uniform_buffer(device, "view split-sum", &split_sum),
                 truth_env_size: light.env.size,
                 hot_count: light.hot.len() as u32,
             }
         })?;
         self.light = Some(textures);
+        Ok(())
+    }
+
+    /// Uploads the sun's shadow map (none: an empty one; the frame's `sun` says whether
+    /// the kernels read it).
+    pub fn set_shadow(&mut self, map: Option<&ShadowMap>) -> Result<()> {
+        self.shadow = match map {
+            Some(m) => shadow_texture(&self.device, &self.queue, m.size, &m.depth)?,
+            None => shadow_texture(&self.device, &self.queue, 1, &[EMPTY_DEPTH])?,
+        };
         Ok(())
     }
 

@@ -67,6 +67,8 @@ impl GpuRenderer {
             wgpu::BindingResource::TextureView(&light.irradiance),
             wgpu::BindingResource::TextureView(&light.lut),
             self.lights.as_entire_binding(),
+            light.sun_texels.as_entire_binding(),
+            wgpu::BindingResource::TextureView(&self.shadow),
         ];
         {
             let mut pass = begin_pass(
@@ -124,6 +126,8 @@ impl GpuRenderer {
                     wgpu::BindingResource::TextureView(&t.position),
                     wgpu::BindingResource::TextureView(&t.normal),
                     t.shaded.as_entire_binding(),
+                    light.sun_texels.as_entire_binding(),
+                    wgpu::BindingResource::TextureView(&self.shadow),
                 ],
                 [t.size.0, t.size.1, 1],
             );
@@ -164,6 +168,8 @@ impl GpuRenderer {
                     wgpu::BindingResource::TextureView(&t.position),
                     wgpu::BindingResource::TextureView(&t.normal),
                     t.accum.as_entire_binding(),
+                    light.sun_texels.as_entire_binding(),
+                    wgpu::BindingResource::TextureView(&self.shadow),
                 ],
                 [t.size.0, t.size.1, 1],
             );
