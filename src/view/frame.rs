@@ -19,17 +19,33 @@ use crate::plan::lut::BrdfLut;
 use crate::plan::material::{ShadeMaterial, MIN_DIRECT_ALPHA};
 use crate::plan::scene::{SplitSumLight, TruthLight, MIN_N_DOT_V};
 use crate::stages::light::BakedEnvironment;
-use crate::stages::preview::picture::{auto_exposure, HEAT_LOG10_RANGE};
+use crate::stages::preview::picture::{auto_exposure, luminance, HEAT_LOG10_RANGE};
 use crate::stages::preview::{sun_texels, truth_environment};
 use crate::view::camera::CameraFrame;
 use crate::view::scene::{
     BaseMaterial, PointLight, FIT_HALF_EXTENT, FLOOR_HALF_EXTENT, FLOOR_Y, OBJECT_CENTRE,
 };
-use crate::view::shadow::ShadowMap;
 
 /// A frame before tone mapping, per pixel: the split-sum (radiance, surface id) and the
 /// truth accumulation (radiance × points, points).
 pub type HdrFrame = (Vec<[f32; 4]>, Vec<[f32; 4]>);
+
+/// The heat map's energy-weighted mean over the object: Σ |Y_split-sum − Y_truth| / Σ
+/// Y_truth over its pixels (the preview's figure of a sphere, `preview --json`'s `mean`),
+/// from a frame's split-sum (radiance, surface id) and truth accumulation; None before the
+/// truth has an estimate or without the object in view.
+pub fn heat_mean(shaded: &[[f32; 4]], accum: &[[f32; 4]]) -> Option<f32> {
+    let (mut diff, mut total) = (0.0f64, 0.0f64);
+    for (s, a) in shaded.iter().zip(accum) {
+        if Surface::from_id(s[3]) != Surface::Object || a[3] <= 0.0 {
+            continue;
+        }
+        let t = luminance([a[0] / a[3], a[1] / a[3], a[2] / a[3]]) as f64;
+        diff += (luminance([s[0], s[1], s[2]]) as f64 - t).abs();
+        total += t;
+    }
+    (total > 0.0).then(|| (diff / total) as f32)
+}
 
 /// What a G-buffer pixel holds (the w of its position texel).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -259,7 +275,7 @@ pub struct FrameUniform {
     /// cells the truth view integrates after them, 1 when the sun casts its shadow, the
     /// shadow map's edge in texels).
     pub sun: [u32; 4],
-    /// The sun's shadow map ([`crate::view::shadow::ShadowMap::uniform`]).
+    /// The sun's shadow map (`view::shadow::ShadowMap::uniform`).
     pub shadow: [[f32; 4]; 4],
 }
 
@@ -316,15 +332,20 @@ impl FrameUniform {
         }
     }
 
-    /// The frame with `light`'s split-out lights on and, when given, the sun's `shadow`.
-    pub fn with_sun(mut self, light: &ViewLight, shadow: Option<&ShadowMap>) -> FrameUniform {
+    /// The frame with `light`'s split-out lights on and, when given, the sun's shadow
+    /// map: its block (`view::shadow::ShadowMap::uniform`) and edge in texels.
+    pub fn with_sun(
+        mut self,
+        light: &ViewLight,
+        shadow: Option<([[f32; 4]; 4], u32)>,
+    ) -> FrameUniform {
         self.sun = [
             light.sun_count(),
             light.sun_cell_count(),
             shadow.is_some() as u32,
-            shadow.map_or(0, |s| s.size),
+            shadow.map_or(0, |s| s.1),
         ];
-        self.shadow = shadow.map_or([[0.0; 4]; 4], |s| s.uniform());
+        self.shadow = shadow.map_or([[0.0; 4]; 4], |s| s.0);
         self
     }
 

@@ -17,7 +17,7 @@ use crate::environment::sun::SunMode;
 use crate::plan::scene::disk_points;
 use crate::view::cpu::{present, shade_split_sum, shade_truth};
 use crate::view::frame::{
-    heat_table, light_table, FrameUniform, HdrFrame, Mode, PresentUniform, ViewLight,
+    heat_mean, heat_table, light_table, FrameUniform, HdrFrame, Mode, PresentUniform, ViewLight,
 };
 use crate::view::gpu::{GpuRenderer, MAX_TRUTH_POINTS};
 use crate::view::hud;
@@ -80,6 +80,8 @@ pub struct Viewer {
     pub state: ViewState,
     /// The baked light shown.
     pub light: ViewLight,
+    /// The heat map's mean over the object, measured after a heat-view frame.
+    heat_mean: Option<f32>,
     /// The sun's shadow map for the light and model shown (with the sun split out).
     shadow: Option<ShadowMap>,
     /// The models on keys.
@@ -119,6 +121,7 @@ impl Viewer {
         let mut v = Viewer {
             state: ViewState::default(),
             light,
+            heat_mean: None,
             shadow: None,
             models,
             points_per_estimate: DEFAULT_POINTS_PER_ESTIMATE,
@@ -246,7 +249,13 @@ impl Viewer {
             lights,
             0,
         )
-        .with_sun(&self.light, self.shadow.as_ref().filter(|_| s.shadow))
+        .with_sun(
+            &self.light,
+            self.shadow
+                .as_ref()
+                .filter(|_| s.shadow)
+                .map(|m| (m.uniform(), m.size)),
+        )
     }
 
     /// The present pass's block for a `size` frame.
@@ -269,8 +278,12 @@ impl Viewer {
             Mode::SplitSum => "split-sum (G: ground truth, H: heat map)".to_string(),
             Mode::Truth => format!("ground truth, {} samples a pixel", self.truth_samples),
             Mode::Heat => format!(
-                "heat map |split-sum − truth| / truth, 0.1 % … 100 %, {} samples",
-                self.truth_samples
+                "heat map |split-sum − truth| / truth, 0.1 % … 100 %, {} samples{}",
+                self.truth_samples,
+                self.heat_mean.map_or(String::new(), |m| format!(
+                    " · object Σ|ΔY|/ΣY {:.2} %",
+                    100.0 * m
+                ))
             ),
         };
         let mut lines = vec![
@@ -330,6 +343,7 @@ impl Viewer {
         if changed {
             self.truth_frame = 0;
             self.truth_samples = 0;
+            self.heat_mean = None;
             self.last_frame = Some(frame);
             self.scene_dirty = false;
         }
@@ -349,14 +363,34 @@ impl Viewer {
         }
     }
 
-    fn finish_frame(&mut self, points: &Option<Vec<[f32; 4]>>, started: Instant) {
+    /// Counts the frame; refreshes the HUD's frame time a few times a second and, in the
+    /// heat view, its mean (from a readback of the frame: every frame with `every_frame`,
+    /// else when the frame time refreshes).
+    fn finish_frame(
+        &mut self,
+        points: &Option<Vec<[f32; 4]>>,
+        started: Instant,
+        every_frame: bool,
+    ) -> Result<()> {
         if points.is_some() {
             self.truth_frame += 1;
         }
         self.frame_seconds = started.elapsed().as_secs_f32();
-        if self.shown_frame_seconds.1.elapsed().as_secs_f32() > HUD_REFRESH_SECONDS {
+        let refresh = self.shown_frame_seconds.1.elapsed().as_secs_f32() > HUD_REFRESH_SECONDS;
+        if refresh {
             self.shown_frame_seconds = (self.frame_seconds, Instant::now());
         }
+        if self.state.mode == Mode::Heat && (every_frame || refresh) {
+            let (shaded, accum) = self.hdr()?;
+            self.heat_mean = heat_mean(&shaded, &accum);
+        }
+        Ok(())
+    }
+
+    /// The heat map's energy-weighted mean over the object as the HUD shows it (the
+    /// preview's figure of a sphere), measured after the last heat-view frame.
+    pub fn heat_mean(&self) -> Option<f32> {
+        self.heat_mean
     }
 
     /// The HUD image when its lines or the frame's size changed since the last upload.
@@ -406,8 +440,7 @@ impl Viewer {
             target,
         )?;
         g.wait()?;
-        self.finish_frame(&points, started);
-        Ok(())
+        self.finish_frame(&points, started, false)
     }
 
     /// Renders one frame of `size` and returns the picture (8-bit sRGB).
@@ -456,7 +489,7 @@ impl Viewer {
                 present(&present_block, &c.heat, &c.shaded, &c.accum, hud)
             }
         };
-        self.finish_frame(&points, started);
+        self.finish_frame(&points, started, true)?;
         Ok(image)
     }
 
