@@ -8,7 +8,8 @@
 //! the keys 2 (copper), R (rougher), 8 (the sphere), G (ground truth) the HUD's material
 //! line and the object are what the same keys give offscreen (`--keys "2 r+ m2 g"`), and
 //! differ from before the keys; a 1 × 1 window, an unmapped and remapped one do not stop
-//! it; Escape ends it with exit code 0.
+//! it; Escape ends it with exit code 0. On quarry_01 (a sun, split out at start), the keys
+//! O and U change the HUD's sun line as `--keys "o"` and `--keys "o u"` do offscreen.
 
 mod common;
 
@@ -142,23 +143,117 @@ fn capture(display: &str, window: &str, path: &Path) -> RgbImage {
     image::open(path).unwrap().to_rgb8()
 }
 
-/// The same view offscreen, with `keys`.
-fn offscreen(dir: &Path, name: &str, keys: &str, frames: u32) -> RgbImage {
+/// The same view offscreen, with `keys` (`input` before them: an HDRI, or nothing for
+/// the bundled one).
+fn offscreen(dir: &Path, name: &str, input: &[&str], keys: &str, frames: u32) -> RgbImage {
     let path: PathBuf = dir.join(name);
     run_ok(
         splitsum()
-            .args([
-                "view",
-                "--size",
-                &format!("{}x{}", SIZE.0, SIZE.1),
-                "--keys",
-                keys,
-            ])
+            .arg("view")
+            .args(input)
+            .args(["--size", &format!("{}x{}", SIZE.0, SIZE.1), "--keys", keys])
             .args(["--frames", &frames.to_string(), "--screenshot"])
             .arg(&path),
     );
     image::open(&path).unwrap().to_rgb8()
 }
+
+/// Whether the window tools are here; without them the test passes saying so, unless
+/// `SPLITSUM_REQUIRE_WINDOW=1`.
+fn window_tools() -> bool {
+    let required = std::env::var("SPLITSUM_REQUIRE_WINDOW").is_ok_and(|v| v == "1");
+    let missing: Vec<&str> = ["Xvfb", "xdotool", "xwd", "convert"]
+        .into_iter()
+        .filter(|t| !have(t))
+        .collect();
+    if !missing.is_empty() {
+        assert!(
+            !required,
+            "SPLITSUM_REQUIRE_WINDOW=1 but {missing:?} missing"
+        );
+        eprintln!("skipping the window test: {missing:?} not installed");
+        return false;
+    }
+    true
+}
+
+/// A viewer window of `input` (nothing: the bundled HDRI) on a new X server, once its
+/// title names `title` (the bake is shown): (display, the server, the viewer, the
+/// window). A start the X server refuses (the display unreachable, no window granted) is
+/// the server's doing, not the viewer's, and is tried again on a new server, at most
+/// twice; any other early exit fails the test.
+fn open_window(dir: &Path, input: &[&str], title: &str) -> (String, Reaped, Reaped, String) {
+    let mut attempts = 0;
+    loop {
+        attempts += 1;
+        let (display, xvfb) = start_xvfb(&dir.join(format!("xvfb_{attempts}.log")));
+        let mut viewer = Reaped(
+            splitsum()
+                .arg("view")
+                .args(input)
+                .args(["--size", &format!("{}x{}", SIZE.0, SIZE.1)])
+                .env("DISPLAY", &display)
+                .stdout(Stdio::null())
+                .stderr(Stdio::piped())
+                .spawn()
+                .unwrap(),
+        );
+        match wait_for_window(&display, title, &mut viewer.0, 300) {
+            Ok(window) => return (display, xvfb, viewer, window),
+            Err(message) => {
+                let refused_by_the_server = message.contains("cannot reach the display")
+                    || message.contains("cannot open a window");
+                assert!(refused_by_the_server && attempts < 3, "{message}");
+                eprintln!("trying again on a new X server: {message}");
+            }
+        }
+    }
+}
+
+/// Escape ends the viewer with exit code 0.
+fn escape_ends(display: &str, window: &str, viewer: &mut Reaped) {
+    xdotool(display, &["windowfocus", "--sync", window]);
+    xdotool(display, &["key", "Escape"]);
+    let started = Instant::now();
+    let status = loop {
+        if let Some(s) = viewer.0.try_wait().unwrap() {
+            break s;
+        }
+        assert!(
+            started.elapsed() < Duration::from_secs(30),
+            "Escape did not end the viewer"
+        );
+        std::thread::sleep(Duration::from_millis(100));
+    };
+    assert!(
+        status.success(),
+        "exit {status}: {}",
+        stderr_of(&mut viewer.0)
+    );
+}
+
+/// The window tests take turns: each starts an X server on the first free display number,
+/// and two starting at once could pick the same one.
+static ONE_SERVER_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+/// How many pixels of a box differ by more than [`GLYPH_STEPS`] in a channel: the edges
+/// of the glyphs where two lines of text differ (the same text drawn by the window and
+/// offscreen differs by a few steps of rounding at most).
+fn glyph_differences(a: &RgbImage, b: &RgbImage, (x, y, w, h): (u32, u32, u32, u32)) -> usize {
+    let mut n = 0;
+    for yy in y..y + h {
+        for xx in x..x + w {
+            let (p, q) = (a.get_pixel(xx, yy).0, b.get_pixel(xx, yy).0);
+            if (0..3).any(|c| p[c].abs_diff(q[c]) > GLYPH_STEPS) {
+                n += 1;
+            }
+        }
+    }
+    n
+}
+
+/// A difference no rounding makes: a glyph's edge against the HUD's background.
+const GLYPH_STEPS: u8 = 40;
 
 /// Mean absolute difference per channel over a box, 8-bit steps.
 fn box_difference(a: &RgbImage, b: &RgbImage, (x, y, w, h): (u32, u32, u32, u32)) -> f64 {
@@ -174,46 +269,15 @@ fn box_difference(a: &RgbImage, b: &RgbImage, (x, y, w, h): (u32, u32, u32, u32)
 
 #[test]
 fn keys_change_the_window() {
-    let required = std::env::var("SPLITSUM_REQUIRE_WINDOW").is_ok_and(|v| v == "1");
-    let missing: Vec<&str> = ["Xvfb", "xdotool", "xwd", "convert"]
-        .into_iter()
-        .filter(|t| !have(t))
-        .collect();
-    if !missing.is_empty() {
-        assert!(
-            !required,
-            "SPLITSUM_REQUIRE_WINDOW=1 but {missing:?} missing"
-        );
-        eprintln!("skipping the window test: {missing:?} not installed");
+    if !window_tools() {
         return;
     }
+    let _turn = ONE_SERVER_AT_A_TIME
+        .lock()
+        .unwrap_or_else(|e| e.into_inner());
     let dir = output_dir("view_window");
-    // The title names the HDRI once its bake is shown. A start the X server refuses (the
-    // display unreachable, no window granted) is the server's doing, not the viewer's, and
-    // is tried again on a new server, at most twice; any other early exit fails the test.
-    let mut attempts = 0;
-    let (display, _xvfb, mut viewer, window) = loop {
-        attempts += 1;
-        let (display, xvfb) = start_xvfb(&dir.join(format!("xvfb_{attempts}.log")));
-        let mut viewer = Reaped(
-            splitsum()
-                .args(["view", "--size", &format!("{}x{}", SIZE.0, SIZE.1)])
-                .env("DISPLAY", &display)
-                .stdout(Stdio::null())
-                .stderr(Stdio::piped())
-                .spawn()
-                .unwrap(),
-        );
-        match wait_for_window(&display, "venice_sunset", &mut viewer.0, 300) {
-            Ok(window) => break (display, xvfb, viewer, window),
-            Err(message) => {
-                let refused_by_the_server = message.contains("cannot reach the display")
-                    || message.contains("cannot open a window");
-                assert!(refused_by_the_server && attempts < 3, "{message}");
-                eprintln!("trying again on a new X server: {message}");
-            }
-        }
-    };
+    // The title names the HDRI once its bake is shown.
+    let (display, _xvfb, mut viewer, window) = open_window(&dir, &[], "venice_sunset");
     std::thread::sleep(Duration::from_secs(2));
     let before = capture(&display, &window, &dir.join("before.png"));
     assert_eq!(before.dimensions(), SIZE);
@@ -223,8 +287,8 @@ fn keys_change_the_window() {
     std::thread::sleep(Duration::from_secs(6));
     let after = capture(&display, &window, &dir.join("after.png"));
 
-    let expected_before = offscreen(&dir, "expected_before.png", "", 1);
-    let expected_after = offscreen(&dir, "expected_after.png", "2 r+ m2 g", 4);
+    let expected_before = offscreen(&dir, "expected_before.png", &[], "", 1);
+    let expected_after = offscreen(&dir, "expected_after.png", &[], "2 r+ m2 g", 4);
     let material_line = splitsum::view::hud::line_box(1, SIZE.0);
     // The HUD's material line: as offscreen with the same keys (a few steps of rounding
     // between the two present passes), and changed by the keys.
@@ -276,22 +340,52 @@ fn keys_change_the_window() {
         panic!("the viewer stopped: {status}: {}", stderr_of(&mut viewer.0));
     }
 
-    xdotool(&display, &["windowfocus", "--sync", &window]);
-    xdotool(&display, &["key", "Escape"]);
-    let started = Instant::now();
-    let status = loop {
-        if let Some(s) = viewer.0.try_wait().unwrap() {
-            break s;
+    escape_ends(&display, &window, &mut viewer);
+}
+
+#[test]
+fn sun_keys_change_the_window() {
+    // quarry_01 starts with its sun split out and its shadow on; the keys O (shadow off)
+    // and U (the sun kept in the IBL) change the HUD's sun line to what the same tokens
+    // give offscreen, waiting (polling the window) until the line shows it.
+    if !window_tools() {
+        return;
+    }
+    let _turn = ONE_SERVER_AT_A_TIME
+        .lock()
+        .unwrap_or_else(|e| e.into_inner());
+    let dir = output_dir("view_window_sun");
+    let quarry = ["tests/data/quarry_01_1k.hdr"];
+    let (display, _xvfb, mut viewer, window) = open_window(&dir, &quarry, "quarry_01");
+    let sun_line = splitsum::view::hud::line_box(4, SIZE.0);
+    let expected = [
+        offscreen(&dir, "expected_start.png", &quarry, "", 1),
+        offscreen(&dir, "expected_o.png", &quarry, "o", 1),
+        offscreen(&dir, "expected_o_u.png", &quarry, "o u", 1),
+    ];
+    // The line as offscreen (no glyph differs; the two present passes round a few steps
+    // apart), and each line's text apart from the one before (measured: 30 glyph pixels
+    // for "shadow on" → "shadow off", 509 for split → kept; bar 10).
+    for (k, key) in ["", "o", "u"].into_iter().enumerate() {
+        if k > 0 {
+            let apart = glyph_differences(&expected[k], &expected[k - 1], sun_line);
+            assert!(
+                apart > 10,
+                "key '{key}' changed {apart} glyph pixels of the line"
+            );
+            xdotool(&display, &["windowfocus", "--sync", &window]);
+            xdotool(&display, &["key", key]);
         }
-        assert!(
-            started.elapsed() < Duration::from_secs(30),
-            "Escape did not end the viewer"
+        let started = Instant::now();
+        let mut d = usize::MAX;
+        while d > 0 && started.elapsed() < Duration::from_secs(60) {
+            let shot = capture(&display, &window, &dir.join(format!("after_{k}.png")));
+            d = glyph_differences(&shot, &expected[k], sun_line);
+        }
+        assert_eq!(
+            d, 0,
+            "after key '{key}': {d} glyph pixels of the sun line differ"
         );
-        std::thread::sleep(Duration::from_millis(100));
-    };
-    assert!(
-        status.success(),
-        "exit {status}: {}",
-        stderr_of(&mut viewer.0)
-    );
+    }
+    escape_ends(&display, &window, &mut viewer);
 }

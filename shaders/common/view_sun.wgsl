@@ -41,10 +41,14 @@ fn sun_visibility(p: vec3<f32>, n: vec3<f32>) -> f32 {
 // light 0's through the sun's visibility.
 fn sun_texels_shade(px: PixelView, first: u32, count: u32) -> vec3<f32> {
     var sum = vec3<f32>(0.0);
-    if (count == 0u) {
-        return sum;
+    // The sun's visibility, looked up in a loop that runs once when there are entries and
+    // not at all when there are none: a software rasteriser (lavapipe) runs both sides of
+    // an `if` on every lane, but skips a loop no lane enters, so a frame without lights
+    // pays nothing for the map's nine loads.
+    var visibility = 1.0;
+    for (var once = 0u; once < min(count, 1u); once++) {
+        visibility = sun_visibility(px.s.p, px.s.n);
     }
-    let visibility = sun_visibility(px.s.p, px.s.n);
     let alpha = alpha_from_roughness(px.m.roughness);
     for (var i = first; i < first + count; i++) {
         let t = sun_texels[2u * i];
