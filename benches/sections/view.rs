@@ -7,7 +7,7 @@
 //! wgpu finds.
 
 use splitsum::gpu::GpuContext;
-use splitsum::view::frame::Mode;
+use splitsum::view::frame::{Mode, ViewLight};
 use splitsum::view::gpu::GpuRenderer;
 use splitsum::view::session::{CpuFrame, Renderer, Viewer};
 use splitsum::view::{load_light, LightSource, DEFAULT_SIZE};
@@ -67,20 +67,23 @@ pub fn benchmarks() {
         // As the window draws the split-sum view (forward while it moves, the present pass
         // alone while it stands still), then with the deferred passes the truth and heat
         // views use, which draw the same picture.
-        for forward in [true, false] {
+        // A GPU viewer of `light` drawing the split-sum view by the forward pass or not.
+        let gpu_viewer = |light: &ViewLight, forward: bool| {
             let mut renderer = GpuRenderer::new(ctx.device.clone(), ctx.queue.clone()).unwrap();
             renderer.set_forward(forward);
-            let mut v = Viewer::new(
-                light.clone(),
-                models.clone(),
-                Renderer::Gpu(Box::new(renderer)),
-                "gpu",
-            )
-            .unwrap();
-            let moving = time(FRAMES, |i| {
+            let renderer = Renderer::Gpu(Box::new(renderer));
+            Viewer::new(light.clone(), models.clone(), renderer, "gpu").unwrap()
+        };
+        // The frames of `v` with the camera turning.
+        let turning = |v: &mut Viewer| {
+            time(FRAMES, |i| {
                 v.state.camera.yaw_deg = 0.05 * i as f32;
                 v.render_to(size, (&view, format)).unwrap();
-            });
+            })
+        };
+        for forward in [true, false] {
+            let mut v = gpu_viewer(&light, forward);
+            let moving = turning(&mut v);
             if forward {
                 row(&name, "camera turning (forward pass)", moving, None);
                 let still = time(FRAMES, |_| v.render_to(size, (&view, format)).unwrap());
@@ -106,18 +109,7 @@ pub fn benchmarks() {
             &mut |_| {},
         )
         .unwrap();
-        let renderer = GpuRenderer::new(ctx.device.clone(), ctx.queue.clone()).unwrap();
-        let mut v = Viewer::new(
-            sunny,
-            models.clone(),
-            Renderer::Gpu(Box::new(renderer)),
-            "gpu",
-        )
-        .unwrap();
-        let moving = time(FRAMES, |i| {
-            v.state.camera.yaw_deg = 0.05 * i as f32;
-            v.render_to(size, (&view, format)).unwrap();
-        });
+        let moving = turning(&mut gpu_viewer(&sunny, true));
         row(
             &name,
             "camera turning (forward), quarry_01's sun split with its shadow",
