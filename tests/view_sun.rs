@@ -30,6 +30,17 @@ fn quarry() -> ViewLight {
     .unwrap()
 }
 
+/// A viewer of `light` on `model` alone, drawn by the CPU renderer.
+fn cpu_viewer(light: ViewLight, model: Model) -> Viewer {
+    Viewer::new(
+        light,
+        vec![model],
+        Renderer::Cpu(CpuFrame::default()),
+        "test",
+    )
+    .unwrap()
+}
+
 /// Looking straight down (1° off, where the camera's basis is defined) on the floor
 /// around the object, orthographic, 18 m across: quarry_01's sun at 10° casts the
 /// sphere's shadow up to 8.5 m from the point below it.
@@ -95,13 +106,7 @@ fn shadow_falls_away_from_the_sun() {
     let size = (200, 200);
     for model in [Model::sphere(), Model::spot().unwrap()] {
         let name = model.name.clone();
-        let mut v = Viewer::new(
-            light.clone(),
-            vec![model],
-            Renderer::Cpu(CpuFrame::default()),
-            "test",
-        )
-        .unwrap();
+        let mut v = cpu_viewer(light.clone(), model);
         v.state.camera = overhead();
         v.state.hud = false;
         v.render_image(size).unwrap();
@@ -142,13 +147,7 @@ fn sun_keys_and_hud() {
     // U swaps the light baked with the sun kept in and back; the HUD says which; O the
     // shadow. On an HDRI without a sun, U changes nothing and says why.
     let light = quarry();
-    let mut v = Viewer::new(
-        light,
-        vec![Model::sphere()],
-        Renderer::Cpu(CpuFrame::default()),
-        "test",
-    )
-    .unwrap();
+    let mut v = cpu_viewer(light, Model::sphere());
     let sun_line = |v: &mut Viewer| {
         v.hud_lines()
             .into_iter()
@@ -181,13 +180,7 @@ fn sun_keys_and_hud() {
         &mut |_| {},
     )
     .unwrap();
-    let mut v = Viewer::new(
-        venice,
-        vec![Model::sphere()],
-        Renderer::Cpu(CpuFrame::default()),
-        "test",
-    )
-    .unwrap();
+    let mut v = cpu_viewer(venice, Model::sphere());
     assert_eq!(v.apply(Action::ToggleSun).unwrap(), Change::Nothing);
     assert!(v.hud_lines().iter().any(|l| l.contains("no sun found")));
 }

@@ -158,9 +158,10 @@ fn offscreen(dir: &Path, name: &str, input: &[&str], keys: &str, frames: u32) ->
     image::open(&path).unwrap().to_rgb8()
 }
 
-/// Whether the window tools are here; without them the test passes saying so, unless
-/// `SPLITSUM_REQUIRE_WINDOW=1`.
-fn window_tools() -> bool {
+/// The window tools are here (without them the test passes saying so, unless
+/// `SPLITSUM_REQUIRE_WINDOW=1`): this test's turn at starting an X server, held until
+/// it ends.
+fn window_turn() -> Option<std::sync::MutexGuard<'static, ()>> {
     let required = std::env::var("SPLITSUM_REQUIRE_WINDOW").is_ok_and(|v| v == "1");
     let missing: Vec<&str> = ["Xvfb", "xdotool", "xwd", "convert"]
         .into_iter()
@@ -172,9 +173,13 @@ fn window_tools() -> bool {
             "SPLITSUM_REQUIRE_WINDOW=1 but {missing:?} missing"
         );
         eprintln!("skipping the window test: {missing:?} not installed");
-        return false;
+        return None;
     }
-    true
+    Some(
+        ONE_SERVER_AT_A_TIME
+            .lock()
+            .unwrap_or_else(|e| e.into_inner()),
+    )
 }
 
 /// A viewer window of `input` (nothing: the bundled HDRI) on a new X server, once its
@@ -269,12 +274,9 @@ fn box_difference(a: &RgbImage, b: &RgbImage, (x, y, w, h): (u32, u32, u32, u32)
 
 #[test]
 fn keys_change_the_window() {
-    if !window_tools() {
+    let Some(_turn) = window_turn() else {
         return;
-    }
-    let _turn = ONE_SERVER_AT_A_TIME
-        .lock()
-        .unwrap_or_else(|e| e.into_inner());
+    };
     let dir = output_dir("view_window");
     // The title names the HDRI once its bake is shown.
     let (display, _xvfb, mut viewer, window) = open_window(&dir, &[], "venice_sunset");
@@ -348,12 +350,9 @@ fn sun_keys_change_the_window() {
     // quarry_01 starts with its sun split out and its shadow on; the keys O (shadow off)
     // and U (the sun kept in the IBL) change the HUD's sun line to what the same tokens
     // give offscreen, waiting (polling the window) until the line shows it.
-    if !window_tools() {
+    let Some(_turn) = window_turn() else {
         return;
-    }
-    let _turn = ONE_SERVER_AT_A_TIME
-        .lock()
-        .unwrap_or_else(|e| e.into_inner());
+    };
     let dir = output_dir("view_window_sun");
     let quarry = ["tests/data/quarry_01_1k.hdr"];
     let (display, _xvfb, mut viewer, window) = open_window(&dir, &quarry, "quarry_01");

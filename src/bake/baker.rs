@@ -9,6 +9,7 @@ use std::path::Path;
 
 use crate::backend::{create_backend, Backend, BackendChoice, CpuBackend};
 use crate::bake::{bake, bake_environment, BakeOptions, BakeReport};
+use crate::environment::sun::SunMode;
 use crate::environment::{Cubemap, Environment};
 use crate::io::cubemap::{clip_warning, write_cubemap_with, Container, CubeWriteOptions};
 use crate::io::input::{load_faces, load_input, InputOptions, LoadedEnvironment};
@@ -66,6 +67,12 @@ impl Baker {
     /// The options.
     pub fn options(&self) -> &BakeOptions {
         &self.opts
+    }
+
+    /// Bakes from now on with the sun `sun` (valid with every other option), on the same
+    /// backend.
+    pub fn set_sun(&mut self, sun: SunMode) {
+        self.opts.sun = sun;
     }
 
     /// What the backend is, in words ("cpu (rayon, 2 threads)", "gpu: … (Vulkan)"): what

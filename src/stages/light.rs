@@ -148,10 +148,7 @@ impl BakedEnvironment {
     /// The lights to shade beside the IBL: those taken out of it (none with
     /// [`SunMode::Keep`]).
     pub fn split_lights(&self) -> &[Sun] {
-        match self.sun_mode {
-            SunMode::Split => &self.lights,
-            SunMode::Keep => &[],
-        }
+        self.sun_mode.split_out(&self.lights)
     }
 }
 

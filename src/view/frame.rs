@@ -121,9 +121,8 @@ pub struct ViewLight {
 /// light index), the sun being light 0 (the one with a shadow). First one per light, its
 /// irradiance E⊥ from its direction (what the split-sum view shades, as the preview
 /// does); then each light's disc of `stages::preview::SUN_DISC_RINGS` rings (what the truth
-/// integrates, as the preview's truth does). Returns the table and the count of the first
-/// part.
-pub fn sun_texel_table(lights: &[Sun]) -> (Vec<[f32; 4]>, u32) {
+/// integrates, as the preview's truth does).
+pub fn sun_texel_table(lights: &[Sun]) -> Vec<[f32; 4]> {
     let mut table = Vec::new();
     for (i, sun) in lights.iter().enumerate() {
         let (d, e) = (sun.direction, sun.irradiance);
@@ -136,14 +135,14 @@ pub fn sun_texel_table(lights: &[Sun]) -> (Vec<[f32; 4]>, u32) {
             table.push([t.radiance[0], t.radiance[1], t.radiance[2], i as f32]);
         }
     }
-    (table, lights.len() as u32)
+    table
 }
 
 impl ViewLight {
     /// The viewer's light from a bake and its LUT.
     pub fn new(name: impl Into<String>, baked: &BakedEnvironment, lut: BrdfLut) -> ViewLight {
         let (env, split) = truth_environment(&baked.specular);
-        let (sun_texels, _) = sun_texel_table(baked.split_lights());
+        let sun_texels = sun_texel_table(baked.split_lights());
         ViewLight {
             name: name.into(),
             exposure: auto_exposure(&baked.specular),
@@ -163,10 +162,7 @@ impl ViewLight {
 
     /// The lights taken out of the environment, the sun first (none with the sun kept).
     pub fn split_lights(&self) -> &[Sun] {
-        match self.sun_mode {
-            SunMode::Split => &self.found,
-            SunMode::Keep => &[],
-        }
+        self.sun_mode.split_out(&self.found)
     }
 
     /// How many lights the split-sum view shades (the first part of `sun_texels`).

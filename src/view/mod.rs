@@ -198,15 +198,8 @@ pub fn load_light(
     let lut = baker.lut(LutModel::default(), DEFAULT_LUT_SIZE)?;
     let mut light = ViewLight::new(&name, &baked, lut.clone());
     if !baked.lights.is_empty() {
-        let other = match sun {
-            SunMode::Split => SunMode::Keep,
-            SunMode::Keep => SunMode::Split,
-        };
-        let mut baker = Baker::new(BakeOptions {
-            backend,
-            sun: other,
-            ..BakeOptions::default()
-        })?;
+        let other = sun.other();
+        baker.set_sun(other);
         let baked = baker.bake_environment_with_progress(env, &mut |stage| {
             progress(format!(
                 "baking {name} with --sun {}: {}",

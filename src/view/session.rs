@@ -41,8 +41,6 @@ const MESSAGE_SECONDS: f32 = 8.0;
 /// renderer uploads them once).
 pub struct CpuFrame {
     vertices: Vec<Vertex>,
-    /// The sun's shadow map's texels (empty without one).
-    shadow: Vec<f32>,
     sphere: bool,
     gbuffer: Option<GBuffer>,
     shaded: Vec<[f32; 4]>,
@@ -55,7 +53,6 @@ impl Default for CpuFrame {
     fn default() -> Self {
         Self {
             vertices: Vec::new(),
-            shadow: Vec::new(),
             sphere: false,
             gbuffer: None,
             shaded: Vec::new(),
@@ -157,7 +154,7 @@ impl Viewer {
     }
 
     /// Makes the sun's shadow map for the light and model shown (none without a sun split
-    /// out) and hands it to the renderer.
+    /// out) and uploads it to the GPU renderer (the CPU one reads it from here).
     fn update_shadow(&mut self) -> Result<()> {
         let model = &self.models[self.state.model.min(self.models.len() - 1)];
         self.shadow = self
@@ -165,11 +162,8 @@ impl Viewer {
             .split_lights()
             .first()
             .map(|sun| ShadowMap::new(Vec3::from(sun.direction), model));
-        match &mut self.renderer {
-            Renderer::Gpu(g) => g.set_shadow(self.shadow.as_ref())?,
-            Renderer::Cpu(c) => {
-                c.shadow = self.shadow.as_ref().map_or(Vec::new(), |s| s.depth.clone())
-            }
+        if let Renderer::Gpu(g) = &mut self.renderer {
+            g.set_shadow(self.shadow.as_ref())?;
         }
         Ok(())
     }
@@ -461,22 +455,16 @@ impl Viewer {
                 hud.as_ref(),
             )?,
             Renderer::Cpu(c) => {
+                // The CPU passes read the map's texels where they are.
+                let shadow = self.shadow.as_ref().map_or(&[][..], |s| &s.depth[..]);
                 if changed {
                     let g = rasterize(&frame, &c.vertices, c.sphere);
-                    c.shaded = shade_split_sum(&frame, &self.light, &c.lights, &c.shadow, &g);
+                    c.shaded = shade_split_sum(&frame, &self.light, &c.lights, shadow, &g);
                     c.accum = vec![[0.0; 4]; c.shaded.len()];
                     c.gbuffer = Some(g);
                 }
                 if let (Some(p), Some(g)) = (&points, &c.gbuffer) {
-                    shade_truth(
-                        &frame,
-                        &self.light,
-                        p,
-                        &c.lights,
-                        &c.shadow,
-                        g,
-                        &mut c.accum,
-                    );
+                    shade_truth(&frame, &self.light, p, &c.lights, shadow, g, &mut c.accum);
                 }
                 let blank;
                 let hud = match &hud {

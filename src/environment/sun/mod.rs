@@ -127,6 +127,23 @@ impl SunMode {
     pub fn by_name(name: &str) -> Option<SunMode> {
         SunMode::ALL.into_iter().find(|m| m.name() == name)
     }
+
+    /// The other mode.
+    pub fn other(self) -> SunMode {
+        match self {
+            SunMode::Keep => SunMode::Split,
+            SunMode::Split => SunMode::Keep,
+        }
+    }
+
+    /// Of the lights `found` in an environment, those a bake in this mode takes out of
+    /// it (and a renderer shades as lights): all with split, none with keep.
+    pub fn split_out(self, found: &[Sun]) -> &[Sun] {
+        match self {
+            SunMode::Split => found,
+            SunMode::Keep => &[],
+        }
+    }
 }
 
 /// The sun of an environment, as a light.
