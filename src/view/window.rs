@@ -354,7 +354,11 @@ impl ApplicationHandler for App {
                 }
             }
             WindowEvent::ModifiersChanged(m) => self.modifiers = m.state(),
-            WindowEvent::KeyboardInput { event, .. } => {
+            WindowEvent::KeyboardInput {
+                event,
+                is_synthetic,
+                ..
+            } => {
                 let PhysicalKey::Code(code) = event.physical_key else {
                     return;
                 };
@@ -363,7 +367,10 @@ impl ApplicationHandler for App {
                     return;
                 }
                 self.held.insert(code);
-                if event.repeat {
+                // A synthetic press is a key already down when the window gained focus
+                // (winit reports it, then the key's own press if it was on its way): it
+                // holds a movement key but is not a press, or a toggle would run twice.
+                if event.repeat || is_synthetic {
                     return;
                 }
                 match code {
