@@ -356,14 +356,13 @@ fn keys_change_the_window() {
         &display,
         &["windowsize", "--sync", &window, &size[0], &size[1]],
     );
-    let back = capture_until(&display, &window, &dir.join("back.png"), 60, |s| {
-        s.dimensions() == SIZE && line_matches(s, &expected_after)
-    });
+    let drawn_again = |s: &RgbImage| s.dimensions() == SIZE && line_matches(s, &expected_after);
+    let back = capture_until(&display, &window, &dir.join("back.png"), 60, drawn_again);
     if let Some(status) = viewer.0.try_wait().unwrap() {
         panic!("the viewer stopped: {status}: {}", stderr_of(&mut viewer.0));
     }
     assert!(
-        back.dimensions() == SIZE && line_matches(&back, &expected_after),
+        drawn_again(&back),
         "the viewer did not draw again after the window came back"
     );
 
