@@ -188,7 +188,8 @@ fn lamp() -> Equirect {
 }
 
 /// Irradiance worst texel ≤ 0.5 % on quarry_01, royal_esplanade and a one-texel lamp, at
-/// every irradiance size 8 … 64 (every texel to 32², every third at 64²) and specular size 32 … 512 (the GPU: one pair).
+/// every irradiance size 8 … 64 (the texels of `common::truth_texel_stride`) and specular
+/// size 32 … 512 (the GPU: one pair).
 #[test]
 fn irradiance_matches_the_full_resolution_truth() {
     let backends = common::backends();
@@ -205,24 +206,19 @@ fn irradiance_matches_the_full_resolution_truth() {
     ] {
         let truth = Truth::new(&e);
         let sizes = [8u32, 16, 32, 64];
-        // The truth per checked texel, None where unchecked: every texel up to 32², every
-        // third of the 64² (each one costs a sum over all 524 288 source texels, and the
-        // 64² cube alone holds three quarters of them; a stride of three crosses every
-        // row and column of every face).
-        let truths: Vec<Vec<Option<f64>>> = sizes
+        // The truth at the checked texels of each size (common::truth_texel_stride).
+        let truths: Vec<Vec<f64>> = sizes
             .iter()
             .map(|&n| {
                 use rayon::prelude::*;
-                let stride = if n >= 64 { 3 } else { 1 };
                 (0..6 * n * n)
                     .into_par_iter()
+                    .step_by(common::truth_texel_stride(n))
                     .map(|k| {
                         let (face, j, i) = (k / (n * n), (k % (n * n)) / n, k % n);
-                        (k % stride == 0).then(|| {
-                            truth.irradiance(
-                                cube_texel_direction(face, i as i32, j as i32, n).map(|v| v as f64),
-                            )
-                        })
+                        truth.irradiance(
+                            cube_texel_direction(face, i as i32, j as i32, n).map(|v| v as f64),
+                        )
                     })
                     .collect()
             })
@@ -251,10 +247,12 @@ fn irradiance_matches_the_full_resolution_truth() {
                         continue;
                     }
                     let irr = backend.irradiance(&source, n).unwrap();
-                    let checked = t.iter().flatten().count();
-                    let mean = t.iter().flatten().sum::<f64>() / checked as f64;
-                    for (k, got) in irr.levels[0].iter().enumerate() {
-                        let Some(truth_k) = t[k] else { continue };
+                    let mean = t.iter().sum::<f64>() / t.len() as f64;
+                    let checked = irr.levels[0]
+                        .iter()
+                        .enumerate()
+                        .step_by(common::truth_texel_stride(n));
+                    for ((k, got), &truth_k) in checked.zip(t) {
                         let got = luminance([got[0] as f64, got[1] as f64, got[2] as f64]);
                         let rel = (got - truth_k).abs() / truth_k.max(0.01 * mean);
                         worst = worst.max(rel);

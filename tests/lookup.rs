@@ -292,8 +292,9 @@ fn layout_scan() {
 
 /// Every texel of every prefiltered mip of 64² and 128² default chains (4² minimum) of
 /// quarry_01 against the full-resolution truth at the mip's roughness, on the CPU backend
-/// (the GPU kernels are checked against it in tests/specular.rs; every third texel of a 64²
-/// mip): energy-weighted error ≤ 1 % per mip and no texel over 10 % (relative to max(truth, 1 % of the mip's mean)).
+/// (the GPU kernels are checked against it in tests/specular.rs; at the texels of
+/// `common::truth_texel_stride`): energy-weighted error ≤ 1 % per mip and no texel over
+/// 10 % (relative to max(truth, 1 % of the mip's mean)).
 /// The exact levels read the bake's split source (the hot cells at source resolution):
 /// summing the 64² environment itself instead put the 64² chain's first level at 1.38 %.
 #[test]
@@ -314,13 +315,9 @@ fn small_chains_match_the_full_resolution_truth() {
         for m in 1..levels as usize {
             let r = m as f64 / (levels - 1) as f64;
             let n = chain.level_size(m);
-            // Every texel up to 32², every third of a 64² mip (the 128² chain's first, as
-            // costly as all the other mips together; a stride of three crosses every row
-            // and column of every face).
-            let stride = if n >= 64 { 3 } else { 1 };
             let checked: Vec<(f64, [f32; 4])> = (0..6 * n * n)
                 .into_par_iter()
-                .step_by(stride)
+                .step_by(common::truth_texel_stride(n))
                 .map(|k| {
                     let (face, j, i) = (k / (n * n), (k % (n * n)) / n, k % n);
                     let d = cube_texel_direction(face, i as i32, j as i32, n);

@@ -353,6 +353,19 @@ pub struct Term {
     pub y_omega: f64,
 }
 
+/// The stride through a cube level's texel indices (face-major, row-major) at which a
+/// brute-force check compares it with the full-resolution truth: every texel up to 32²,
+/// every third from 64² (each truth texel is a sum over the 524 288 texels of a 1k source,
+/// and a 64² level holds three times as many texels as all the smaller ones together; a
+/// stride of three crosses every row and column of every face).
+pub fn truth_texel_stride(n: u32) -> usize {
+    if n >= 64 {
+        3
+    } else {
+        1
+    }
+}
+
 /// Every texel of an equirect at full resolution, for brute-force integrals.
 pub fn equirect_terms(e: &splitsum::Equirect) -> Vec<Term> {
     use std::f64::consts::PI;
