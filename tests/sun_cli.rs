@@ -171,6 +171,49 @@ fn bake_split_writes_the_lights_and_records_them() {
 }
 
 #[test]
+fn babylon_split_writes_the_sky_as_seen_for_its_skybox() {
+    // A .env's RGBD holds radiance up to 255; four stops down keeps quarry_01's sun,
+    // averaged over a 32² cube's texels, below it, so the flux can be checked.
+    let dir = output_dir("sun_cli_babylon");
+    run_ok(
+        splitsum()
+            .args(["bake", QUARRY, "--target", "babylon", "--sun", "split"])
+            .args(["--specular-size", "32", "--exposure", "-4", "-o"])
+            .arg(&dir),
+    );
+    let out = dir.join("quarry_01_1k");
+    let env = |file: &str| {
+        let path = out.join(file);
+        splitsum::io::env::decode(&path, &std::fs::read(&path).unwrap())
+            .unwrap()
+            .cube
+    };
+    let (background, residual) = (env("quarry_01_1k_background.env"), env("quarry_01_1k.env"));
+    let manifest = json(&out.join("manifest.json"));
+    assert!(manifest["outputs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|o| o["file"] == "quarry_01_1k_background.env" && o["kind"] == "background"));
+    // Babylon reads a .env only with its whole chain: 32² down to 1².
+    assert_eq!((background.size, background.levels.len()), (32, 6));
+    // The sky as seen: the residual's flux plus the lights' E⊥ (sun.json, in the .env's
+    // units), green channel. 2 %: RGBD rounds each texel to 1/255 of its range (the
+    // residual's level 0 is also GGX-blurred at alpha 1/32, which keeps flux); without the
+    // sun the background would be half the light off.
+    let sun = json(&out.join("sun.json"));
+    let lights_e: f64 = std::iter::once(&sun)
+        .chain(sun["additional_lights"].as_array().into_iter().flatten())
+        .map(|l| l["irradiance"][1].as_f64().unwrap())
+        .sum();
+    let (fb, fr) = (cube_flux(&background)[1], cube_flux(&residual)[1]);
+    assert!(
+        ((fb - fr) / lights_e - 1.0).abs() < 0.02,
+        "background {fb}, residual {fr}, lights {lights_e}"
+    );
+}
+
+#[test]
 fn split_without_a_sun_says_so_and_succeeds() {
     let dir = output_dir("sun_cli_none");
     let o = split_bake(OVERCAST, "generic", 16, &dir);

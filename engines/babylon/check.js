@@ -198,7 +198,29 @@ window.runCheck = async function ({ hdrUrl, exactUrl, envUrl, controlUrl, roughn
     .map(({ metallic, roughness: r, px }, k) => ({ metallic, roughness: r, ...measure.compareSpheres(ourSpheres[k].px, px, SIZE) }));
   out.vsOwn = await compareWith(own, 'babylon', ownStats.mean);
   out.vsOwnExact = await compareWith(ownExact, 'babylon_exact', ownExactStats.mean);
-  if (split) out.sunLight = await sunLight(ours, split, images);
+  if (split) {
+    out.sunLight = await sunLight(ours, split, images);
+    // The split bake's skybox: its _background.env keeps the sun; its .env does not.
+    const background = await ready(new B.CubeTexture(split.background, scene));
+    const residual = await ready(new B.CubeTexture(split.env, scene));
+    // The residual's brightest spot lies where the sun was too (the fill copies the bright
+    // sky around it), so where the sun shows is not enough: its disc must also be as bright
+    // as the kept bake's skybox shows it, looking at the sun (radiance, the brightest pixel).
+    const e = 0.5 / ourStats.max;
+    const peak = async (texture) => {
+      const px = await skyAt(texture, e);
+      return measure.luminance(px, 4 * measure.brightestPixel(px, SIZE)) / e;
+    };
+    const kept = await peak(ours);
+    out.sunLight.background = {
+      sunError: degrees(await findSun(background, e), refSun),
+      peak: (await peak(background)) / kept,
+      residualPeak: (await peak(residual)) / kept,
+    };
+    images.sky_split_background = measure.toPng(await skyAt(background, 0.6 / ourStats.mean), SIZE);
+    background.dispose();
+    residual.dispose();
+  }
   out.renderer = engine.description;
   return { out, images };
 };

@@ -2,6 +2,8 @@
 //! whole chain in RGBD at Babylon's roughness per mip, in its left-handed frame, with the
 //! irradiance as its spherical polynomial.
 
+use crate::environment::mips::build_mips;
+use crate::environment::Cubemap;
 use crate::io::cubemap::Container;
 use crate::io::staging::Staging;
 use crate::io::{env, PixelFormat};
@@ -42,6 +44,7 @@ pub const BABYLON: Target = Target {
     format_refusals: &[],
     notes: &[
         "<stem>.env: new CubeTexture(url, scene) (or CubeTexture.CreateFromPrefilteredData) as scene.environmentTexture; scene.createDefaultSkybox(texture) for the background",
+        "with --sun split: <stem>_background.env is the sky as seen, sun included, for scene.createDefaultSkybox (the <stem>.env lacks the sun)",
         "Babylon samples lod = 0.8 * log2(size * (r^2 + 0.0005)); mip m holds GGX at alpha = 2^(m / 0.8) / size",
         "the irradiance is the header's spherical polynomial (E / pi, in the cube's frame)",
         "RGBD holds radiance up to 255: brighter texels (a sun) are clipped; scale with --exposure and scene.environmentIntensity to keep them",
@@ -87,6 +90,9 @@ fn write(ctx: &FileContext, baked: BakedEnvironment, out: &mut Staging) -> Resul
         bytes,
         ("specular", "rgbd png", specular.size, levels),
     );
+    if let Some(background) = baked.background {
+        add_background(ctx, background, &polynomial, out)?;
+    }
     Ok((clipped > 0)
         .then(|| {
             format!(
@@ -97,4 +103,34 @@ fn write(ctx: &FileContext, baked: BakedEnvironment, out: &mut Staging) -> Resul
         })
         .into_iter()
         .collect())
+}
+
+/// `<stem>_background.env`, written when lights were split out: the environment as seen,
+/// lights included, for `scene.createDefaultSkybox` (a background is seen, not lit by). A
+/// `.env` carries a whole chain, so its mips are the solid-angle-weighted means of level 0
+/// (what a skybox's blur reads), not a prefilter; its polynomial is the residual's, unused
+/// by a skybox. Radiance past RGBD's 255 (the sun's disc) is clipped: a skybox shows it
+/// saturated either way.
+fn add_background(
+    ctx: &FileContext,
+    mut background: Cubemap,
+    polynomial: &env::SphericalPolynomial,
+    out: &mut Staging,
+) -> Result<()> {
+    let path = ctx.dir.join(format!("{}_background.env", ctx.stem));
+    let levels = Cubemap::full_mip_count(background.size);
+    build_mips(&mut background, levels);
+    let background = ctx.target.orientation.apply(background);
+    let bytes = env::encode(&background, polynomial).map_err(|message| Error::Encode {
+        path: path.clone(),
+        format: "Babylon .env",
+        message,
+    })?;
+    let levels = background.levels.len() as u32;
+    out.add(
+        path,
+        bytes,
+        ("background", "rgbd png", background.size, levels),
+    );
+    Ok(())
 }
