@@ -16,8 +16,11 @@ const CLI_CRATES: [&str; 4] = ["clap", "indicatif", "ctrlc", "anyhow"];
 
 /// A crate in `dir` whose `main.rs` is `examples/bake.rs`, depending on this repository
 /// without default features; built in release with the repository's lock file (offline,
-/// so the versions are the ones the repository tests), its build folder inside this
-/// repository's `target/`. Returns the path of its binary.
+/// so the versions are the ones the repository tests), into the target folder this test
+/// was built in: the dependencies it shares with the test build, same version and
+/// features, are compiled once (a folder of its own rebuilt all of them, about two
+/// minutes; cargo holds no lock on the folder while tests run). Returns the path of its
+/// binary.
 fn api_crate(dir: &Path) -> PathBuf {
     let repo = std::env::current_dir().unwrap();
     std::fs::create_dir_all(dir.join("src")).unwrap();
@@ -33,7 +36,10 @@ fn api_crate(dir: &Path) -> PathBuf {
     .unwrap();
     std::fs::copy("Cargo.lock", dir.join("Cargo.lock")).unwrap();
     std::fs::copy("examples/bake.rs", dir.join("src/main.rs")).unwrap();
-    let target_dir = repo.join("target/api-crate");
+    let target_dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .parent()
+        .unwrap()
+        .to_path_buf();
     let o = Command::new(env!("CARGO"))
         .args(["build", "--release", "--offline", "--quiet"])
         .current_dir(dir)
