@@ -13,15 +13,21 @@
 //! should use: the kept sun's tens of per cent are the split-sum's own, no lookup mends
 //! them), minimising the mean figure of the spheres with r ≥ 0.25 (what
 //! `math::lookup::FITTED` holds). With `lod`, whether the chain suits the lookup:
-//! Frostbite's lookup reading each roughness at a scaled lod. 32-pixel cells and 1024
+//! Frostbite's lookup reading each roughness at a scaled lod. With `grazing`, what the
+//! README's recipe reads (`SpecularLookup::Stretched`): Frostbite's direction at a lod
+//! narrowed toward grazing views and as two taps along the plane of incidence, on a grid
+//! and then on every bundled HDRI. 32-pixel cells and 1024
 //! truth points: a quarter of the preview's pixels and half its points, enough for figures
 //! to the tenth of a per cent. docs/accuracy.md holds the output.
 
 use splitsum::backend::CpuBackend;
 use splitsum::bake::{bake_environment, BakeOptions};
-use splitsum::cpu::preview_split_sum::render_split_sum_along;
+use splitsum::cpu::preview_split_sum::{
+    render_split_sum_along, render_split_sum_shaded, split_sum_shade_along,
+};
 use splitsum::math::lookup::{BlendFit, SpecularLookup, FITTED};
 use splitsum::plan::lut::BrdfLut;
+use splitsum::plan::material::ShadeMaterial;
 use splitsum::plan::scene::{material_table, Scene, SplitSumInputs, SplitSumLight, ROUGHNESS};
 use splitsum::stages::preview::{
     add_sun_light, column_table, compare, render_preview, BakedLight, PreviewOptions,
@@ -40,6 +46,12 @@ const HDRIS: [&str; 6] = [
 /// What the blend is fitted on: a hard low sun and a sunset without one; the other four
 /// HDRIs check it.
 const FIT_HDRIS: [&str; 2] = ["quarry_01_1k.hdr", "venice_sunset_1k.hdr"];
+/// What the lod studies measure on, with the sun split: the two sunny HDRIs and a sunset.
+const LOD_HDRIS: [&str; 3] = [
+    "quarry_01_1k.hdr",
+    "royal_esplanade_1k.hdr",
+    "venice_sunset_1k.hdr",
+];
 /// The table's rows: every [`SpecularLookup`], then the fitted blend.
 const ROWS: usize = SpecularLookup::ALL.len() + 1;
 /// The four views: the environment turned about +Y.
@@ -79,13 +91,15 @@ fn views(name: &str, sun: SunMode, lut: &BrdfLut) -> Result<Vec<View>, splitsum:
 }
 
 /// Each sphere's figure (materials in row order, roughness in column order) of `view`
-/// shaded with the chain looked up along `lookup`.
+/// shaded with the chain looked up along `lookup`, stretched by `stretch`
+/// (`SpecularLookup::stretch`).
 fn figures(
     view: &View,
     lut: &BrdfLut,
     lookup: impl Fn(glam::Vec3, glam::Vec3, f32) -> glam::Vec3 + Sync,
+    stretch: f32,
 ) -> Vec<f32> {
-    figures_at(view, lut, lookup, 1.0)
+    figures_at(view, lut, lookup, stretch, 1.0)
 }
 
 /// As [`figures`], each roughness read at `lod_scale` × the chain's lod for it.
@@ -93,12 +107,16 @@ fn figures_at(
     view: &View,
     lut: &BrdfLut,
     lookup: impl Fn(glam::Vec3, glam::Vec3, f32) -> glam::Vec3 + Sync,
+    stretch: f32,
     lod_scale: f32,
 ) -> Vec<f32> {
     let scene = Scene { cell: OPTS.cell }.uniform();
     let light = BakedLight::of("", &view.baked, lut);
     let mut columns = column_table(light.chain, SpecularLookup::Reflect);
-    columns.iter_mut().for_each(|c| c[1] *= lod_scale);
+    columns.iter_mut().for_each(|c| {
+        c[1] *= lod_scale;
+        c[3] = stretch;
+    });
     let materials = material_table();
     let inputs = SplitSumInputs {
         light: SplitSumLight {
@@ -125,7 +143,7 @@ fn fit_objective(views: &[View], lut: &BrdfLut, fit: BlendFit) -> f32 {
     let mut sum = 0.0;
     let mut count = 0;
     for view in views {
-        for (i, e) in figures(view, lut, |n, v, r| fit.direction(n, v, r))
+        for (i, e) in figures(view, lut, |n, v, r| fit.direction(n, v, r), 0.0)
             .iter()
             .enumerate()
         {
@@ -167,11 +185,6 @@ fn fit(lut: &BrdfLut) -> Result<(), splitsum::Error> {
 /// at a scaled lod (a level of another lobe width), mean figure per roughness over
 /// LOD_HDRIS with the sun split.
 fn lod(lut: &BrdfLut) -> Result<(), splitsum::Error> {
-    const LOD_HDRIS: [&str; 3] = [
-        "quarry_01_1k.hdr",
-        "royal_esplanade_1k.hdr",
-        "venice_sunset_1k.hdr",
-    ];
     const SCALES: [f32; 6] = [0.7, 0.8, 0.9, 1.0, 1.1, 1.2];
     let mut all = Vec::new();
     for name in LOD_HDRIS {
@@ -184,7 +197,7 @@ fn lod(lut: &BrdfLut) -> Result<(), splitsum::Error> {
         let mut sums = vec![(0.0f32, 0u32); ROUGHNESS.len()];
         for view in &all {
             let lookup = |n, v, r| SpecularLookup::Frostbite.direction(n, v, r);
-            for (i, e) in figures_at(view, lut, lookup, scale).iter().enumerate() {
+            for (i, e) in figures_at(view, lut, lookup, 0.0, scale).iter().enumerate() {
                 let s = &mut sums[i % ROUGHNESS.len()];
                 *s = (s.0 + e, s.1 + 1);
             }
@@ -198,10 +211,139 @@ fn lod(lut: &BrdfLut) -> Result<(), splitsum::Error> {
     Ok(())
 }
 
+/// A lookup that changes toward grazing views, where the true lobe narrows across the
+/// plane of incidence and stretches along it: Frostbite's direction d read at
+/// lod(r) × (1 − c (1 − n·v)² (1 − r)) (narrower toward grazing, less so as r grows), as
+/// the mean of two taps d ± s·t with t the plane of incidence's direction across d and
+/// s = a α (1 − n·v) (a stretched lobe as two narrower ones). The power 2 and the (1 − r)
+/// factor were the best of (1 − n·v)^p (1 − r)^q, p ∈ {1, 2}, q ∈ {0, 1, 2}, on
+/// LOD_HDRIS.
+#[derive(Clone, Copy, Debug)]
+struct Grazing {
+    /// The two taps' spread (0: one tap).
+    a: f32,
+    /// How much narrower the lod gets toward grazing (0: the chain's own lod).
+    c: f32,
+}
+
+impl Grazing {
+    /// The split-sum radiance of a sphere pixel read this way.
+    fn shade(
+        self,
+        light: &SplitSumLight,
+        max_lod: f32,
+        n: glam::Vec3,
+        v: glam::Vec3,
+        n_dot_v: f32,
+        m: &ShadeMaterial,
+    ) -> glam::Vec3 {
+        let mut m = *m;
+        let grazing = 1.0 - n_dot_v;
+        let narrowing = 1.0 - self.c * grazing * grazing * (1.0 - m.roughness);
+        m.lod = (m.lod * narrowing).clamp(0.0, max_lod);
+        let dir = SpecularLookup::Frostbite.direction(n, v, m.roughness);
+        if self.a == 0.0 {
+            return split_sum_shade_along(light, n, dir, n_dot_v, &m);
+        }
+        let c = n - dir * n.dot(dir);
+        let across = c / c.length().max(splitsum::math::lookup::STRETCH_EPSILON);
+        let spread = across * self.a * m.roughness * m.roughness * grazing;
+        0.5 * (split_sum_shade_along(light, n, (dir + spread).normalize(), n_dot_v, &m)
+            + split_sum_shade_along(light, n, (dir - spread).normalize(), n_dot_v, &m))
+    }
+}
+
+/// Each sphere's figure of `view` shaded with `g`.
+fn grazing_figures(view: &View, lut: &BrdfLut, g: Grazing) -> Vec<f32> {
+    let scene = Scene { cell: OPTS.cell }.uniform();
+    let light = BakedLight::of("", &view.baked, lut);
+    let columns = column_table(light.chain, SpecularLookup::Frostbite);
+    let materials = material_table();
+    let inputs = SplitSumInputs {
+        light: SplitSumLight {
+            specular: light.specular,
+            irradiance: light.irradiance,
+            lut,
+        },
+        columns: &columns,
+        materials: &materials,
+    };
+    let max_lod = (light.chain.levels - 1) as f32;
+    let mut panel = render_split_sum_shaded(&scene, &inputs, |n, v, n_dot_v, m| {
+        g.shade(&inputs.light, max_lod, n, v, n_dot_v, m)
+    });
+    for sun in light.lights {
+        add_sun_light(&scene, &columns, &materials, sun, &mut panel);
+    }
+    compare(&scene, &panel, &view.truth)
+        .1
+        .iter()
+        .map(|s| s.mean_relative)
+        .collect()
+}
+
+/// Prints a table row: per roughness, the mean figure over `views` and the worst sphere.
+fn grazing_row(label: &str, views: &[View], lut: &BrdfLut, g: Grazing) {
+    let mut sums = vec![(0.0f32, 0u32, 0.0f32); ROUGHNESS.len()];
+    for view in views {
+        for (i, e) in grazing_figures(view, lut, g).iter().enumerate() {
+            let s = &mut sums[i % ROUGHNESS.len()];
+            *s = (s.0 + e, s.1 + 1, s.2.max(*e));
+        }
+    }
+    print!("| {label} | {} | {} |", g.a, g.c);
+    sums.iter()
+        .for_each(|(e, n, w)| print!(" {:.2} % ({:.1}) |", 100.0 * e / *n as f32, 100.0 * w));
+    println!();
+}
+
+/// Whether the lookup should change toward grazing views ([`Grazing`]): a grid on
+/// LOD_HDRIS with the sun split, then the plain lookup against the best narrowing and the
+/// best two taps on every bundled HDRI, the sun kept and split.
+fn grazing(lut: &BrdfLut) -> Result<(), splitsum::Error> {
+    let header = |first: &str| {
+        print!("| {first} | a | c |");
+        ROUGHNESS.iter().for_each(|r| print!(" r = {r} |"));
+        println!("\n|---|---|---|{}", "---|".repeat(ROUGHNESS.len()));
+    };
+    let mut fit_views = Vec::new();
+    for name in LOD_HDRIS {
+        fit_views.extend(views(name, SunMode::Split, lut)?);
+    }
+    header("fitted on");
+    for a in [0.0, 0.5, 1.0, 1.25, 1.5] {
+        for c in [0.0, 0.4, 0.8, 1.0, 1.2] {
+            grazing_row("LOD_HDRIS, split", &fit_views, lut, Grazing { a, c });
+        }
+    }
+    println!();
+    header("HDRI");
+    for name in HDRIS {
+        for sun in [SunMode::Keep, SunMode::Split] {
+            let views = views(name, sun, lut)?;
+            for g in GRAZING_CANDIDATES {
+                grazing_row(&format!("{name}, {}", sun.name()), &views, lut, g);
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The plain lookup, the narrowing best at r = 0.5 on LOD_HDRIS, and the two taps best at
+/// r = 0.25 and 0.5 there.
+const GRAZING_CANDIDATES: [Grazing; 3] = [
+    Grazing { a: 0.0, c: 0.0 },
+    Grazing { a: 0.0, c: 0.8 },
+    Grazing { a: 1.0, c: 1.0 },
+];
+
 fn main() -> Result<(), splitsum::Error> {
     let lut = splitsum::backend::Backend::brdf_lut(&CpuBackend, 512, 512)?;
     if std::env::args().any(|a| a == "fit") {
         return fit(&lut);
+    }
+    if std::env::args().any(|a| a == "grazing") {
+        return grazing(&lut);
     }
     if std::env::args().any(|a| a == "lod") {
         return lod(&lut);
@@ -214,8 +356,13 @@ fn main() -> Result<(), splitsum::Error> {
             for view in &views {
                 for (k, errors) in errors.iter_mut().enumerate() {
                     let f = match SpecularLookup::ALL.get(k) {
-                        Some(lookup) => figures(view, &lut, |n, v, r| lookup.direction(n, v, r)),
-                        None => figures(view, &lut, |n, v, r| FITTED.direction(n, v, r)),
+                        Some(lookup) => figures(
+                            view,
+                            &lut,
+                            |n, v, r| lookup.direction(n, v, r),
+                            lookup.stretch(),
+                        ),
+                        None => figures(view, &lut, |n, v, r| FITTED.direction(n, v, r), 0.0),
                     };
                     for (i, e) in f.into_iter().enumerate() {
                         errors[i % ROUGHNESS.len()].push(e);

@@ -67,13 +67,13 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
     if (id.x >= arrayLength(&cases)) {{
         return;
     }}
-    let c = cases[id.x];
-    let n = c.n.xyz;
-    let v = c.v.xyz;
-    let roughness = c.f0_roughness.w;
-    let f0 = c.f0_roughness.xyz;
-    let albedo = c.albedo_metallic.xyz;
-    let metallic = c.albedo_metallic.w;
+    let given = cases[id.x];
+    let n = given.n.xyz;
+    let v = given.v.xyz;
+    let roughness = given.f0_roughness.w;
+    let f0 = given.f0_roughness.xyz;
+    let albedo = given.albedo_metallic.xyz;
+    let metallic = given.albedo_metallic.w;
 // README.md, as written:
 {}
     radiance[id.x] = vec4<f32>(specular + diffuse, 1.0);
@@ -224,6 +224,7 @@ fn readme_wgsl_shades_as_the_preview() {
                 roughness,
                 lod: roughness * (levels - 1) as f32,
                 bend: SpecularLookup::GENERIC.bend(roughness),
+                stretch: SpecularLookup::GENERIC.stretch(),
             };
             reference.push(split_sum_shade(&light, n, v, n.dot(v).max(0.0), &m));
         }

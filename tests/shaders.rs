@@ -88,6 +88,19 @@ fn atan_coefficients_match_rust() {
     }
 }
 
+/// The stretched lookup's guard is the same on both sides.
+#[test]
+fn stretch_epsilon_matches_rust() {
+    let module = parse(
+        "preview_split_sum",
+        splitsum::gpu::shaders::PREVIEW_SPLIT_SUM,
+    );
+    assert_eq!(
+        wgsl_f32_constant(&module, "STRETCH_EPSILON"),
+        splitsum::math::lookup::STRETCH_EPSILON
+    );
+}
+
 /// The small-cap threshold of the irradiance kernel is the same on both sides.
 #[test]
 fn small_cap_threshold_matches_rust() {

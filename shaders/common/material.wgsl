@@ -8,6 +8,7 @@ struct ShadeMaterial {
     roughness: f32,     // perceptual roughness r (alpha = r^2)
     lod: f32,           // the specular chain's lod for r (the split-sum lookup)
     bend: f32,          // how far the lookup leans from R toward n for r (0: R, 1: n)
+    stretch: f32,       // how strongly the lookup reads two taps toward grazing (0: one)
 }
 
 // Fresnel-Schlick per channel: F0 + (1 - F0)(1 - v.h)^5.

@@ -55,7 +55,7 @@ fn pixel_geometry(s: SceneParams, x: u32, y: u32) -> PixelGeometry {
 }
 
 // The material of the sphere in row `material`, column `column`: the row's (F0, metallic),
-// (albedo, 0) from `materials`, the column's (roughness, lod, bend, 0) from `columns`.
+// (albedo, 0) from `materials`, the column's (roughness, lod, bend, stretch) from `columns`.
 fn preview_material(material: u32, column: u32) -> ShadeMaterial {
     let fm = materials[2u * material];
     let col = columns[column];
@@ -66,5 +66,6 @@ fn preview_material(material: u32, column: u32) -> ShadeMaterial {
     m.roughness = col.x;
     m.lod = col.y;
     m.bend = col.z;
+    m.stretch = col.w;
     return m;
 }

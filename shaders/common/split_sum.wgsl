@@ -2,7 +2,8 @@
 // L = prefiltered(d, lod(r)) (F0 A + B) + E/pi(n) albedo kD,
 // kD = (1 - F_r(n.v))(1 - metallic), F_r Lagarde's roughness-aware Fresnel, and
 // d = normalize(mix(R, n, bend(r))) the lookup direction, R = reflect(-v, n) bent toward
-// the normal (math::lookup: Frostbite's dominant direction for the generic target).
+// the normal, read as two taps stretched toward grazing views by the material's stretch
+// (math::lookup: Frostbite's dominant direction, stretched, for the generic target).
 // CPU mirror: src/cpu/preview_split_sum.rs (same function names).
 //
 // The including kernel declares the baked light as module globals:
@@ -52,11 +53,28 @@ fn bent_reflection(n: vec3<f32>, v: vec3<f32>, bend: f32) -> vec3<f32> {
     return normalize(mix(refl, n, bend));
 }
 
+// The smallest |n - d (n.d)| stretched_prefiltered divides by (math::lookup::STRETCH_EPSILON).
+const STRETCH_EPSILON: f32 = 1e-4;
+
+// The chain read along unit d for normal n as the material's stretch says: the mean of
+// two taps normalize(d +- t) at lod', g = 1 - n.v,
+// lod' = lod (1 - stretch g^2 (1 - r)), c = n - d (n.d), t = stretch alpha g c / max(|c|, eps);
+// with stretch 0 both are d at the chain's lod. Mirror of math::lookup::stretched_taps.
+fn stretched_prefiltered(n: vec3<f32>, d: vec3<f32>, n_dot_v: f32, m: ShadeMaterial) -> vec3<f32> {
+    let g = 1.0 - n_dot_v;
+    let lod = m.lod * (1.0 - m.stretch * g * g * (1.0 - m.roughness));
+    let c = n - d * dot(n, d);
+    let t = (m.stretch * m.roughness * m.roughness * g / max(length(c), STRETCH_EPSILON)) * c;
+    let a = sample_cube_lod(specular, light.specular_size, light.specular_levels, normalize(d + t), lod);
+    let b = sample_cube_lod(specular, light.specular_size, light.specular_levels, normalize(d - t), lod);
+    return 0.5 * (a + b);
+}
+
 // The split-sum radiance towards v of a point with normal n; n_dot_v is n.v clamped
 // away from 0 by the caller (silhouette normals are perpendicular to v).
 fn split_sum_shade(n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, m: ShadeMaterial) -> vec3<f32> {
     let dir = bent_reflection(n, v, m.bend);
-    let prefiltered = sample_cube_lod(specular, light.specular_size, light.specular_levels, dir, m.lod);
+    let prefiltered = stretched_prefiltered(n, dir, n_dot_v, m);
     let ab = sample_lut(n_dot_v, m.roughness);
     let spec = prefiltered * (m.f0 * ab.x + vec3<f32>(ab.y));
     let f_r = vec3<f32>(

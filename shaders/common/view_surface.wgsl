@@ -11,6 +11,7 @@ fn unpack_material(m: array<vec4<f32>, 3>) -> ShadeMaterial {
     s.roughness = m[1].w;
     s.lod = m[2].x;
     s.bend = m[2].y;
+    s.stretch = m[2].z;
     return s;
 }
 

@@ -286,7 +286,8 @@ pub struct PreviewRenderArgs {
     pub preview_cell: u32,
 
     /// Where the split-sum reads the specular chain: the README's recipe bends R toward
-    /// the normal (frostbite); the others are the lookups engines make.
+    /// the normal and reads two sharper taps toward grazing views (stretched); the others
+    /// are the lookups engines make.
     #[arg(long, default_value = splitsum::SpecularLookup::GENERIC.id(), value_parser = lookup_parser())]
     pub lookup: splitsum::SpecularLookup,
 }

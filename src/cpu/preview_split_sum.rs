@@ -10,7 +10,9 @@
 //!
 //! with d = normalize(mix(R, n, t(r))) the lookup direction, R = reflect(−v, n) bent toward
 //! n by the material's bend t (`math::lookup`: Frostbite's dominant direction for the
-//! generic target, the engines' own in their modes),
+//! generic target, the engines' own in their modes), read as the mean of two taps
+//! stretched along the plane of incidence toward grazing views, from a sharper level, by
+//! the material's stretch (`math::lookup::stretched_taps`; one tap with stretch 0),
 //! (A, B) the LUT at uv = (n·v, r) sampled bilinearly with clamp-to-edge,
 //! prefiltered a seamless trilinear lookup at the chain's lod for r, E/π a seamless
 //! bilinear lookup of the irradiance cube, and F_r Lagarde's roughness-aware Fresnel at n·v
@@ -22,7 +24,7 @@ use rayon::prelude::*;
 
 use crate::environment::sample::sample_cube_lod;
 use crate::math::brdf::fresnel_schlick_roughness;
-use crate::math::lookup::bent_reflection;
+use crate::math::lookup::{bent_reflection, stretched_taps};
 use crate::plan::lut::BrdfLut;
 use crate::plan::material::ShadeMaterial;
 use crate::plan::scene::{
@@ -60,7 +62,8 @@ pub fn split_sum_shade(light: &SplitSumLight, n: Vec3, v: Vec3, n_dot_v: f32, m:
 }
 
 /// The split-sum radiance with the chain read along `dir` (the material's bent reflection
-/// for [`split_sum_shade`]; a lookup that depends on more than r in the lookup study).
+/// for [`split_sum_shade`]; a lookup that depends on more than r in the lookup study), as
+/// the material's stretch says.
 pub fn split_sum_shade_along(
     light: &SplitSumLight,
     n: Vec3,
@@ -68,7 +71,10 @@ pub fn split_sum_shade_along(
     n_dot_v: f32,
     m: &ShadeMaterial,
 ) -> Vec3 {
-    let prefiltered = Vec3::from(sample_cube_lod(light.specular, dir.into(), m.lod));
+    let (a, b, lod) = stretched_taps(n, dir, n_dot_v, m.roughness, m.lod, m.stretch);
+    let prefiltered = 0.5
+        * (Vec3::from(sample_cube_lod(light.specular, a.into(), lod))
+            + Vec3::from(sample_cube_lod(light.specular, b.into(), lod)));
     let ab = sample_lut(light.lut, n_dot_v, m.roughness);
     let specular = prefiltered * (m.f0 * ab[0] + Vec3::splat(ab[1]));
     let f_r = Vec3::new(
@@ -99,6 +105,18 @@ pub fn render_split_sum_along(
     render_with(scene, inputs, |n, v, n_dot_v, m| {
         split_sum_shade_along(&inputs.light, n, lookup(n, v, m.roughness), n_dot_v, m)
     })
+}
+
+/// The panel with each sphere pixel shaded by `shade(n, v, n·v clamped, material)` (a
+/// lookup study's variant of [`split_sum_shade`]) and the background reading level 0 of
+/// the chain.
+#[cfg(any(test, feature = "internals"))]
+pub fn render_split_sum_shaded(
+    scene: &SceneUniform,
+    inputs: &SplitSumInputs,
+    shade: impl Fn(Vec3, Vec3, f32, &ShadeMaterial) -> Vec3 + Sync,
+) -> Vec<[f32; 3]> {
+    render_with(scene, inputs, shade)
 }
 
 /// The panel with each sphere pixel shaded by `shade(n, v, n·v clamped, material)` and the

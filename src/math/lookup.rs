@@ -8,9 +8,15 @@
 //! material, beside the chain's lod for r (`plan::material::ShadeMaterial::bend`; WGSL
 //! `bent_reflection` in `shaders/common/split_sum.wgsl`).
 //!
-//! [`SpecularLookup::Frostbite`] is the one the README's WGSL recipe, the preview and the
-//! viewer use ([`SpecularLookup::GENERIC`]), chosen by the lookup study
-//! (`examples/lookup_study.rs`, docs/accuracy.md) against the preview's ground truth.
+//! [`SpecularLookup::Stretched`] also reads the chain as the true lobe is shaped toward
+//! grazing views, where it narrows across the plane of incidence and stretches along it
+//! (the GGX lobe of the reflected directions, seen from v: Heitz 2018's visible normals
+//! reflected about them): two taps either side of the bent direction d, along the plane
+//! of incidence, from a sharper level ([`stretched_taps`]; its strength is the material's
+//! `stretch`, 0 for every other lookup, where both taps are d at the chain's lod). It is
+//! the one the README's WGSL recipe, the preview and the viewer use
+//! ([`SpecularLookup::GENERIC`]), chosen by the lookup study (`examples/lookup_study.rs`,
+//! docs/accuracy.md) against the preview's ground truth.
 
 use glam::Vec3;
 
@@ -32,21 +38,27 @@ pub enum SpecularLookup {
     /// de Rousiers 2014, Listing 22, fitted to the GGX lobe's peak); also bevy_pbr 0.19
     /// (`radiance_sample_direction` in `environment_map.wgsl`, with its α).
     Frostbite,
+    /// Frostbite's direction d read as two taps stretched along the plane of incidence
+    /// toward grazing views, from a sharper level ([`stretched_taps`]): splitsum's own,
+    /// the README's recipe.
+    Stretched,
 }
 
 impl SpecularLookup {
     /// Every lookup, in the study's order.
-    pub const ALL: [SpecularLookup; 4] = [
+    pub const ALL: [SpecularLookup; 5] = [
         SpecularLookup::Reflect,
         SpecularLookup::RSquared,
         SpecularLookup::AlphaSquared,
         SpecularLookup::Frostbite,
+        SpecularLookup::Stretched,
     ];
 
-    /// The lookup of the README's WGSL recipe, the preview and the viewer: the best or
-    /// within 0.6 % of the best of these at every roughness with the sun split, on every
-    /// bundled HDRI (docs/accuracy.md, "Where to look the chain up").
-    pub const GENERIC: SpecularLookup = SpecularLookup::Frostbite;
+    /// The lookup of the README's WGSL recipe, the preview and the viewer: below
+    /// Frostbite's single tap in the mean figure at every roughness ≥ 0.25 on the six
+    /// bundled HDRIs, the sun kept and split, but two of the 24 (docs/accuracy.md, "Where
+    /// to look the chain up").
+    pub const GENERIC: SpecularLookup = SpecularLookup::Stretched;
 
     /// The name `preview --lookup` takes and its JSON writes.
     pub fn id(self) -> &'static str {
@@ -55,6 +67,7 @@ impl SpecularLookup {
             SpecularLookup::RSquared => "r2",
             SpecularLookup::AlphaSquared => "alpha2",
             SpecularLookup::Frostbite => "frostbite",
+            SpecularLookup::Stretched => "stretched",
         }
     }
 
@@ -70,7 +83,10 @@ impl SpecularLookup {
             SpecularLookup::RSquared => "mix(R, n, r^2) (no engine's; the lookup study's)",
             SpecularLookup::AlphaSquared => "mix(R, n, alpha^2), alpha = r^2 (three.js, Filament)",
             SpecularLookup::Frostbite => {
-                "Frostbite's dominant direction, R bent toward n as the GGX lobe leans (the README's recipe; Bevy)"
+                "Frostbite's dominant direction, R bent toward n as the GGX lobe leans (Bevy)"
+            }
+            SpecularLookup::Stretched => {
+                "Frostbite's direction as two taps stretched along the plane of incidence toward grazing views (the README's recipe)"
             }
         }
     }
@@ -82,6 +98,7 @@ impl SpecularLookup {
             SpecularLookup::RSquared => "mix(R, n, r²)",
             SpecularLookup::AlphaSquared => "mix(R, n, α²) (three.js, Filament)",
             SpecularLookup::Frostbite => "Frostbite's dominant direction",
+            SpecularLookup::Stretched => "Frostbite's, stretched (two taps)",
         }
     }
 
@@ -93,7 +110,7 @@ impl SpecularLookup {
             SpecularLookup::Reflect => 0.0,
             SpecularLookup::RSquared => roughness * roughness,
             SpecularLookup::AlphaSquared => alpha * alpha,
-            SpecularLookup::Frostbite => {
+            SpecularLookup::Frostbite | SpecularLookup::Stretched => {
                 // mix(n, R, w) = mix(R, n, 1 − w).
                 let s = (1.0 - alpha).clamp(0.0, 1.0);
                 1.0 - s * (s.sqrt() + alpha)
@@ -101,11 +118,57 @@ impl SpecularLookup {
         }
     }
 
-    /// The unit direction to look the chain up along, for unit `n` and `v` with n·v > 0.
+    /// How strongly the lookup stretches toward grazing views ([`stretched_taps`]): 1 for
+    /// [`SpecularLookup::Stretched`], 0 (one tap at the chain's lod) for the others.
+    pub fn stretch(self) -> f32 {
+        match self {
+            SpecularLookup::Stretched => 1.0,
+            _ => 0.0,
+        }
+    }
+
+    /// The unit direction to look the chain up along (for [`SpecularLookup::Stretched`],
+    /// the centre of its two taps), for unit `n` and `v` with n·v > 0.
     pub fn direction(self, n: Vec3, v: Vec3, roughness: f32) -> Vec3 {
         bent_reflection(n, v, self.bend(roughness))
     }
 }
+
+/// The two taps of a stretched lookup and the lod both read at: for unit n, the unit
+/// lookup direction d, n·v, roughness r (α = r²), the chain's lod for r and the stretch
+/// k ∈ [0, 1], with g = 1 − n·v,
+///
+/// lod' = lod (1 − k g² (1 − r)),  c = n − d (n·d),  t = k α g c / max(|c|, ε),
+/// taps normalize(d ± t).
+///
+/// Toward grazing views the lobe of reflected directions narrows across the plane of
+/// incidence (a sharper level) and stretches along it (two taps in that plane, t ⊥ d, its
+/// length k α g); at normal incidence (g = 0), at r = 0 (α = 0), where d is n (c = 0: r = 1
+/// with Frostbite's bend, which also keeps the lod there, the roughest level being E/π)
+/// and with k = 0 both taps are d at the chain's lod. ε ([`STRETCH_EPSILON`]) keeps c = 0
+/// from dividing by zero. The form and its two unit strengths were fitted by the lookup study
+/// (`examples/lookup_study.rs grazing`) on quarry_01, royal_esplanade and venice_sunset
+/// with the sun split, and checked on the other bundled HDRIs (docs/accuracy.md).
+/// Mirror of `stretched_taps` in `shaders/common/split_sum.wgsl`.
+pub fn stretched_taps(
+    n: Vec3,
+    d: Vec3,
+    n_dot_v: f32,
+    roughness: f32,
+    lod: f32,
+    stretch: f32,
+) -> (Vec3, Vec3, f32) {
+    let g = 1.0 - n_dot_v;
+    let lod = lod * (1.0 - stretch * g * g * (1.0 - roughness));
+    let c = n - d * n.dot(d);
+    let t = (stretch * roughness * roughness * g / c.length().max(STRETCH_EPSILON)) * c;
+    ((d + t).normalize(), (d - t).normalize(), lod)
+}
+
+/// The smallest |n − d (n·d)| [`stretched_taps`] divides by: where d is within 1e-4 rad of
+/// n, the taps' spread shrinks with that angle instead of dividing by it (WGSL:
+/// `STRETCH_EPSILON` in `shaders/common/split_sum.wgsl`, held equal by `tests/shaders.rs`).
+pub const STRETCH_EPSILON: f32 = 1e-4;
 
 /// normalize(mix(R, n, `bend`)) with R = reflect(−v, n). With n·v > 0, R·n = n·v > 0,
 /// so the blend never vanishes. Mirror of `bent_reflection` in
@@ -193,5 +256,36 @@ mod tests {
             let got = SpecularLookup::Frostbite.direction(n, v, r);
             assert!(got.distance(listing) < 1e-6, "r {r}: {got} vs {listing}");
         }
+    }
+
+    /// The stretched taps: d itself at the chain's lod with no stretch, at normal
+    /// incidence and on a mirror; otherwise two directions symmetric about d in the plane
+    /// of n and d, read from a sharper level.
+    #[test]
+    fn stretched_taps_lie_in_the_plane_of_incidence() {
+        let n = Vec3::Y;
+        let v = Vec3::new(0.8, 0.6, 0.0);
+        let d = SpecularLookup::Stretched.direction(n, v, 0.5);
+        let n_dot_v = n.dot(v);
+        // (n·v, r, stretch, the chain's lod for r: 0 for a mirror).
+        for (n_dot_v, r, k, lod) in [
+            (n_dot_v, 0.5, 0.0, 3.0),
+            (1.0, 0.5, 1.0, 3.0),
+            (n_dot_v, 0.0, 1.0, 0.0),
+        ] {
+            let (a, b, got) = stretched_taps(n, d, n_dot_v, r, lod, k);
+            // 1e-6: single-precision rounding.
+            assert!(a.distance(d) < 1e-6 && b.distance(d) < 1e-6, "{n_dot_v} {r} {k}");
+            assert_eq!(got, lod);
+        }
+        // Where d is n (r = 1 with Frostbite's bend), no division by zero.
+        let (a, b, _) = stretched_taps(n, n, n_dot_v, 1.0, 3.0, 1.0);
+        assert!(a.distance(n) < 1e-6 && b.distance(n) < 1e-6, "{a} {b}");
+        let (a, b, lod) = stretched_taps(n, d, n_dot_v, 0.5, 3.0, 1.0);
+        assert!(lod < 3.0);
+        assert!(a.z.abs() < 1e-6 && b.z.abs() < 1e-6, "{a} {b}");
+        assert!((a.dot(d) - b.dot(d)).abs() < 1e-6 && a.dot(d) < 1.0 - 1e-4);
+        // One tap leans toward n, the other away from it.
+        assert!(a.dot(n) > d.dot(n) && b.dot(n) < d.dot(n));
     }
 }

@@ -12,7 +12,7 @@ use crate::math::brdf::{
 };
 
 /// One surface's material and where the split-sum reads the chain for its roughness: the
-/// lod and the lookup direction's bend (`math::lookup`).
+/// lod, the lookup direction's bend and its stretch (`math::lookup`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ShadeMaterial {
     /// Linear-RGB reflectance at normal incidence.
@@ -28,6 +28,9 @@ pub struct ShadeMaterial {
     /// How far the chain's lookup direction leans from R toward n for `roughness`
     /// (`math::lookup::SpecularLookup::bend`: 0 along R, 1 along n).
     pub bend: f32,
+    /// How strongly the lookup reads two taps stretched toward grazing views
+    /// (`math::lookup::stretched_taps`; `SpecularLookup::stretch`: 0 reads one tap).
+    pub stretch: f32,
 }
 
 /// Fresnel-Schlick per channel: F0 + (1 − F0)(1 − v·h)⁵ (Schlick 1994).

@@ -220,7 +220,7 @@ pub fn material_table() -> Vec<[f32; 4]> {
 }
 
 /// The material of the sphere in row `material`, column `column` of the kernels' tables:
-/// the row's (F0, metallic), (albedo, 0), the column's (roughness, lod, bend, 0). Mirror of
+/// the row's (F0, metallic), (albedo, 0), the column's (roughness, lod, bend, stretch). Mirror of
 /// `preview_material` in `shaders/common/preview_scene.wgsl`.
 pub fn preview_material(
     columns: &[[f32; 4]],
@@ -237,6 +237,7 @@ pub fn preview_material(
         roughness: col[0],
         lod: col[1],
         bend: col[2],
+        stretch: col[3],
     }
 }
 

@@ -212,9 +212,10 @@ impl ViewLight {
     }
 
     /// `base` at roughness `r` as the split-sum reads it: the chain's lod for r and the
-    /// generic lookup's bend (`math::lookup::SpecularLookup::GENERIC`).
+    /// generic lookup's bend and stretch (`math::lookup::SpecularLookup::GENERIC`).
     pub fn material(&self, base: &BaseMaterial, r: f32) -> ShadeMaterial {
-        base.shade(r, self.lod(r), SpecularLookup::GENERIC.bend(r))
+        let lookup = SpecularLookup::GENERIC;
+        base.shade(r, self.lod(r), lookup.bend(r), lookup.stretch())
     }
 
     /// What the split-sum shading reads.
@@ -259,7 +260,7 @@ pub struct FrameUniform {
     pub front: [f32; 4],
     /// World to clip space (column-major).
     pub view_projection: [[f32; 4]; 4],
-    /// The object's material: (F0, metallic), (albedo, roughness), (lod, bend, 0, 0).
+    /// The object's material: (F0, metallic), (albedo, roughness), (lod, bend, stretch, 0).
     pub object: [[f32; 4]; 3],
     /// The floor's material, as `object`.
     pub floor: [[f32; 4]; 3],
@@ -279,7 +280,7 @@ fn pack(m: &ShadeMaterial) -> [[f32; 4]; 3] {
     [
         m.f0.extend(m.metallic).into(),
         m.albedo.extend(m.roughness).into(),
-        [m.lod, m.bend, 0.0, 0.0],
+        [m.lod, m.bend, m.stretch, 0.0],
     ]
 }
 
@@ -292,6 +293,7 @@ pub fn unpack_material(m: &[[f32; 4]; 3]) -> ShadeMaterial {
         roughness: m[1][3],
         lod: m[2][0],
         bend: m[2][1],
+        stretch: m[2][2],
     }
 }
 

@@ -85,8 +85,8 @@ pub fn materials() -> [BaseMaterial; 6] {
 
 impl BaseMaterial {
     /// The shading functions' material at `roughness` with the chain's `lod` and the
-    /// lookup's `bend` for it.
-    pub fn shade(&self, roughness: f32, lod: f32, bend: f32) -> ShadeMaterial {
+    /// lookup's `bend` for it and its `stretch`.
+    pub fn shade(&self, roughness: f32, lod: f32, bend: f32, stretch: f32) -> ShadeMaterial {
         let base = Vec3::from(self.base);
         let metallic = if self.metallic { 1.0 } else { 0.0 };
         ShadeMaterial {
@@ -96,6 +96,7 @@ impl BaseMaterial {
             roughness,
             lod,
             bend,
+            stretch,
         }
     }
 }
@@ -118,7 +119,7 @@ mod tests {
     #[test]
     fn materials_are_the_previews() {
         for (v, p) in materials().iter().zip(MATERIALS.iter()) {
-            let m = v.shade(0.5, 1.0, 0.0);
+            let m = v.shade(0.5, 1.0, 0.0, 0.0);
             assert_eq!(m.f0, Vec3::from(p.f0), "{}", p.name);
             assert_eq!(m.metallic, p.metallic);
             if p.metallic < 1.0 {
@@ -133,7 +134,7 @@ mod tests {
         assert_eq!(OBJECT_CENTRE, [0.0, 0.0, 1.5]);
         assert_eq!(OBJECT_TURN_DEG, 180.0);
         assert_eq!(FLOOR_Y, -0.75);
-        let f = floor_material().shade(FLOOR_ROUGHNESS, 0.0, 0.0);
+        let f = floor_material().shade(FLOOR_ROUGHNESS, 0.0, 0.0, 0.0);
         assert_eq!((f.roughness, f.metallic), (0.9, 0.0));
         assert_eq!(f.albedo, Vec3::splat(0.2));
         assert_eq!(f.f0, Vec3::splat(0.04));

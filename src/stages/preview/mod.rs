@@ -164,11 +164,14 @@ pub fn validate_options(opts: &PreviewOptions) -> Result<()> {
 }
 
 /// The per-column table of the kernels: (roughness, the chain's lod for it, `lookup`'s
-/// bend for it, 0).
+/// bend for it, its stretch).
 pub fn column_table(chain: SpecularChain, lookup: SpecularLookup) -> Vec<[f32; 4]> {
     ROUGHNESS
         .iter()
-        .map(|&r| [r, chain.roughness.lod(r, chain.levels), lookup.bend(r), 0.0])
+        .map(|&r| {
+            let lod = chain.roughness.lod(r, chain.levels);
+            [r, lod, lookup.bend(r), lookup.stretch()]
+        })
         .collect()
 }
 
