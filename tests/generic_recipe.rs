@@ -231,18 +231,23 @@ fn readme_wgsl_shades_as_the_preview() {
     }
 
     let device = &ctx.device;
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("README recipe"),
-        source: wgpu::ShaderSource::Wgsl(kernel(levels).into()),
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some("README recipe"),
-        layout: None,
-        module: &module,
-        entry_point: Some("main"),
-        compilation_options: Default::default(),
-        cache: None,
-    });
+    // A recipe that does not compile (a name the kernel around it also declares, a WGSL
+    // error) fails here with the compiler's message, not as a black result.
+    let pipeline = splitsum::gpu::compute::with_error_scope(device, "README recipe", || {
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("README recipe"),
+            source: wgpu::ShaderSource::Wgsl(kernel(levels).into()),
+        });
+        device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("README recipe"),
+            layout: None,
+            module: &module,
+            entry_point: Some("main"),
+            compilation_options: Default::default(),
+            cache: None,
+        })
+    })
+    .unwrap_or_else(|e| panic!("the README's WGSL does not compile in its kernel: {e}"));
     let sampler = |address: wgpu::AddressMode| {
         device.create_sampler(&wgpu::SamplerDescriptor {
             address_mode_u: address,
