@@ -39,7 +39,7 @@ pub enum SpecularLookup {
     /// (`radiance_sample_direction` in `environment_map.wgsl`, with its α).
     Frostbite,
     /// Frostbite's direction d read as two taps stretched along the plane of incidence
-    /// toward grazing views, from a sharper level ([`stretched_taps`]): splitsum's own,
+    /// toward grazing views, from a sharper level (`math::lookup::stretched_taps`): splitsum's own,
     /// the README's recipe.
     Stretched,
 }
@@ -118,7 +118,7 @@ impl SpecularLookup {
         }
     }
 
-    /// How strongly the lookup stretches toward grazing views ([`stretched_taps`]): 1 for
+    /// How strongly the lookup stretches toward grazing views (`math::lookup::stretched_taps`): 1 for
     /// [`SpecularLookup::Stretched`], 0 (one tap at the chain's lod) for the others.
     pub fn stretch(self) -> f32 {
         match self {
