@@ -16,7 +16,8 @@
 //! Frostbite's lookup reading each roughness at a scaled lod. With `grazing`, what the
 //! README's recipe reads (`SpecularLookup::Stretched`): Frostbite's direction at a lod
 //! narrowed toward grazing views and as two taps along the plane of incidence, on a grid
-//! and then on every bundled HDRI. 32-pixel cells and 1024
+//! and then on every bundled HDRI. With `high`, both lookups at r = 0.8 … 0.99, where the
+//! taps fade out. 32-pixel cells and 1024
 //! truth points: a quarter of the preview's pixels and half its points, enough for figures
 //! to the tenth of a per cent. docs/accuracy.md holds the output.
 
@@ -337,10 +338,98 @@ const GRAZING_CANDIDATES: [Grazing; 3] = [
     Grazing { a: 1.0, c: 1.0 },
 ];
 
+/// The roughness of the high-roughness check's five columns: between the table's 0.75
+/// and 1, where Frostbite's direction reaches n.
+const HIGH_ROUGHNESS: [f32; 5] = [0.8, 0.85, 0.9, 0.95, 0.99];
+
+/// The spheres at HIGH_ROUGHNESS, between the table's columns, where the stretched taps
+/// fade out (`math::lookup::STRETCH_FADE_ROUGHNESS`): each roughness's mean figure (worst
+/// sphere) over every bundled HDRI with the sun split, four views, Frostbite's single tap
+/// against the stretched lookup.
+fn high(lut: &BrdfLut) -> Result<(), splitsum::Error> {
+    use splitsum::backend::Backend;
+    use splitsum::plan::scene::{disk_points, TruthInputs, TruthLight};
+    use splitsum::stages::preview::{sun_texels, truth_environment};
+    print!("| lookup |");
+    HIGH_ROUGHNESS.iter().for_each(|r| print!(" r = {r} |"));
+    println!("\n|---|{}", "---|".repeat(HIGH_ROUGHNESS.len()));
+    let scene = Scene { cell: OPTS.cell }.uniform();
+    let materials = material_table();
+    let points = disk_points(OPTS.truth_samples);
+    let mut rows = vec![vec![Vec::new(); HIGH_ROUGHNESS.len()]; 2];
+    for name in HDRIS {
+        for view in views(name, SunMode::Split, lut)? {
+            let light = BakedLight::of("", &view.baked, lut);
+            let (env, mut split) = truth_environment(light.specular);
+            for sun in light.lights {
+                split.hot.extend(sun_texels(sun));
+            }
+            for (k, lookup) in [SpecularLookup::Frostbite, SpecularLookup::Stretched]
+                .into_iter()
+                .enumerate()
+            {
+                let columns: Vec<[f32; 4]> = HIGH_ROUGHNESS
+                    .iter()
+                    .map(|&r| {
+                        let lod = light.chain.roughness.lod(r, light.chain.levels);
+                        [r, lod, lookup.bend(r), lookup.stretch()]
+                    })
+                    .collect();
+                let truth = CpuBackend.preview_truth(
+                    &scene,
+                    &TruthInputs {
+                        light: TruthLight {
+                            env: &env,
+                            cold: &split.rest,
+                            hot: &split.hot,
+                            points: &points,
+                        },
+                        columns: &columns,
+                        materials: &materials,
+                    },
+                )?;
+                let inputs = SplitSumInputs {
+                    light: SplitSumLight {
+                        specular: light.specular,
+                        irradiance: light.irradiance,
+                        lut,
+                    },
+                    columns: &columns,
+                    materials: &materials,
+                };
+                let mut panel =
+                    render_split_sum_along(&scene, &inputs, |n, v, r| lookup.direction(n, v, r));
+                for sun in light.lights {
+                    add_sun_light(&scene, &columns, &materials, sun, &mut panel);
+                }
+                for (i, s) in compare(&scene, &panel, &truth).1.iter().enumerate() {
+                    rows[k][i % HIGH_ROUGHNESS.len()].push(s.mean_relative);
+                }
+            }
+        }
+    }
+    for (k, name) in ["Frostbite's dominant direction", "Frostbite's, stretched"]
+        .iter()
+        .enumerate()
+    {
+        print!("| {name} |");
+        for e in &rows[k] {
+            let mean = e.iter().sum::<f32>() / e.len() as f32;
+            let worst = e.iter().copied().fold(0.0f32, f32::max);
+            print!(" {:.2} % ({:.1}) |", 100.0 * mean, 100.0 * worst);
+        }
+        println!();
+    }
+    Ok(())
+}
+
 fn main() -> Result<(), splitsum::Error> {
     let lut = splitsum::backend::Backend::brdf_lut(&CpuBackend, 512, 512)?;
     if std::env::args().any(|a| a == "fit") {
         return fit(&lut);
+    }
+    if std::env::args().any(|a| a == "high") {
+        return high(&lut);
     }
     if std::env::args().any(|a| a == "grazing") {
         return grazing(&lut);

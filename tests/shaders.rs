@@ -88,16 +88,21 @@ fn atan_coefficients_match_rust() {
     }
 }
 
-/// The stretched lookup's guard is the same on both sides.
+/// The stretched lookup's guard and fade are the same on both sides.
 #[test]
-fn stretch_epsilon_matches_rust() {
+fn stretch_constants_match_rust() {
+    use splitsum::math::lookup::{STRETCH_EPSILON, STRETCH_FADE_ROUGHNESS};
     let module = parse(
         "preview_split_sum",
         splitsum::gpu::shaders::PREVIEW_SPLIT_SUM,
     );
     assert_eq!(
         wgsl_f32_constant(&module, "STRETCH_EPSILON"),
-        splitsum::math::lookup::STRETCH_EPSILON
+        STRETCH_EPSILON
+    );
+    assert_eq!(
+        wgsl_f32_constant(&module, "STRETCH_FADE_ROUGHNESS"),
+        STRETCH_FADE_ROUGHNESS
     );
 }
 

@@ -55,16 +55,20 @@ fn bent_reflection(n: vec3<f32>, v: vec3<f32>, bend: f32) -> vec3<f32> {
 
 // The smallest |n - d (n.d)| stretched_prefiltered divides by (math::lookup::STRETCH_EPSILON).
 const STRETCH_EPSILON: f32 = 1e-4;
+// Where the taps' spread starts to fade to 0 at r = 1 (math::lookup::STRETCH_FADE_ROUGHNESS).
+const STRETCH_FADE_ROUGHNESS: f32 = 0.9;
 
 // The chain read along unit d for normal n as the material's stretch says: the mean of
 // two taps normalize(d +- t) at lod', g = 1 - n.v,
-// lod' = lod (1 - stretch g^2 (1 - r)), c = n - d (n.d), t = stretch alpha g c / max(|c|, eps);
+// lod' = lod (1 - stretch g^2 (1 - r)), c = n - d (n.d),
+// t = stretch alpha g fade c / max(|c|, eps), fade = min(1, (1 - r) / (1 - r_fade));
 // with stretch 0 both are d at the chain's lod. Mirror of math::lookup::stretched_taps.
 fn stretched_prefiltered(n: vec3<f32>, d: vec3<f32>, n_dot_v: f32, m: ShadeMaterial) -> vec3<f32> {
     let g = 1.0 - n_dot_v;
     let lod = m.lod * (1.0 - m.stretch * g * g * (1.0 - m.roughness));
     let c = n - d * dot(n, d);
-    let t = (m.stretch * m.roughness * m.roughness * g / max(length(c), STRETCH_EPSILON)) * c;
+    let fade = min(1.0, (1.0 - m.roughness) / (1.0 - STRETCH_FADE_ROUGHNESS));
+    let t = (m.stretch * m.roughness * m.roughness * g * fade / max(length(c), STRETCH_EPSILON)) * c;
     let a = sample_cube_lod(specular, light.specular_size, light.specular_levels, normalize(d + t), lod);
     let b = sample_cube_lod(specular, light.specular_size, light.specular_levels, normalize(d - t), lod);
     return 0.5 * (a + b);

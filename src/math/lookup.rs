@@ -138,17 +138,19 @@ impl SpecularLookup {
 /// lookup direction d, n·v, roughness r (α = r²), the chain's lod for r and the stretch
 /// k ∈ [0, 1], with g = 1 − n·v,
 ///
-/// lod' = lod (1 − k g² (1 − r)),  c = n − d (n·d),  t = k α g c / max(|c|, ε),
-/// taps normalize(d ± t).
+/// lod' = lod (1 − k g² (1 − r)),  c = n − d (n·d),  t = k α g φ(r) c / max(|c|, ε),
+/// taps normalize(d ± t),  φ(r) = min(1, (1 − r) / (1 − r_f)).
 ///
 /// Toward grazing views the lobe of reflected directions narrows across the plane of
 /// incidence (a sharper level) and stretches along it (two taps in that plane, t ⊥ d, its
 /// length k α g); at normal incidence (g = 0), at r = 0 (α = 0), where d is n (c = 0: r = 1
 /// with Frostbite's bend, which also keeps the lod there, the roughest level being E/π)
 /// and with k = 0 both taps are d at the chain's lod. ε ([`STRETCH_EPSILON`]) keeps c = 0
-/// from dividing by zero. The form and its two unit strengths were fitted by the lookup study
+/// from dividing by zero; φ fades the spread out from r_f ([`STRETCH_FADE_ROUGHNESS`]) to
+/// r = 1, so that the lookup is continuous in r where d reaches n. The form and its two unit strengths were fitted by the lookup study
 /// (`examples/lookup_study.rs grazing`) on quarry_01, royal_esplanade and venice_sunset
-/// with the sun split, and checked on the other bundled HDRIs (docs/accuracy.md).
+/// with the sun split, and checked on the other bundled HDRIs; r_f = 0.9 by the spheres
+/// between r = 0.8 and 0.99 (`lookup_study high`, docs/accuracy.md).
 /// Mirror of `stretched_taps` in `shaders/common/split_sum.wgsl`.
 pub fn stretched_taps(
     n: Vec3,
@@ -160,8 +162,9 @@ pub fn stretched_taps(
 ) -> (Vec3, Vec3, f32) {
     let g = 1.0 - n_dot_v;
     let lod = lod * (1.0 - stretch * g * g * (1.0 - roughness));
+    let fade = ((1.0 - roughness) / (1.0 - STRETCH_FADE_ROUGHNESS)).min(1.0);
     let c = n - d * n.dot(d);
-    let t = (stretch * roughness * roughness * g / c.length().max(STRETCH_EPSILON)) * c;
+    let t = (stretch * roughness * roughness * g * fade / c.length().max(STRETCH_EPSILON)) * c;
     ((d + t).normalize(), (d - t).normalize(), lod)
 }
 
@@ -169,6 +172,14 @@ pub fn stretched_taps(
 /// n, the taps' spread shrinks with that angle instead of dividing by it (WGSL:
 /// `STRETCH_EPSILON` in `shaders/common/split_sum.wgsl`, held equal by `tests/shaders.rs`).
 pub const STRETCH_EPSILON: f32 = 1e-4;
+
+/// Where the taps' spread starts to fade: it falls linearly from this roughness to 0 at
+/// r = 1, where Frostbite's direction reaches n and the spread's direction c/|c| is lost
+/// (without the fade the lookup would jump there). The full spread gains on the spheres at
+/// r = 0.8–0.9 and loses at 0.95–0.99 (`lookup_study high`, docs/accuracy.md). WGSL:
+/// `STRETCH_FADE_ROUGHNESS` in `shaders/common/split_sum.wgsl`, held equal by
+/// `tests/shaders.rs`.
+pub const STRETCH_FADE_ROUGHNESS: f32 = 0.9;
 
 /// normalize(mix(R, n, `bend`)) with R = reflect(−v, n). With n·v > 0, R·n = n·v > 0,
 /// so the blend never vanishes. Mirror of `bent_reflection` in
@@ -281,6 +292,10 @@ mod tests {
         // Where d is n (r = 1 with Frostbite's bend), no division by zero.
         let (a, b, _) = stretched_taps(n, n, n_dot_v, 1.0, 3.0, 1.0);
         assert!(a.distance(n) < 1e-6 && b.distance(n) < 1e-6, "{a} {b}");
+        // Continuous where d reaches n: just below r = 1 the taps are within the fade of d.
+        let rough = SpecularLookup::Stretched.direction(n, v, 0.999);
+        let (a, b, _) = stretched_taps(n, rough, n_dot_v, 0.999, 3.0, 1.0);
+        assert!(a.distance(rough) < 0.01 && b.distance(rough) < 0.01, "{a} {b} {rough}");
         let (a, b, lod) = stretched_taps(n, d, n_dot_v, 0.5, 3.0, 1.0);
         assert!(lod < 3.0);
         assert!(a.z.abs() < 1e-6 && b.z.abs() < 1e-6, "{a} {b}");
