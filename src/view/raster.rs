@@ -34,7 +34,9 @@ fn vertex(p: Vec3, n: Vec3, surface: Surface) -> Vertex {
     }
 }
 
-/// The triangles of a frame: the floor, then the model's mesh (none for the sphere).
+/// The triangles of a frame: the model's mesh (none for the sphere), then the floor. The
+/// GPU draws them in this order, so the floor's fragments behind the model fail the depth
+/// test before they are shaded (nearer first; the picture does not depend on the order).
 pub fn scene_vertices(model: &Model) -> Vec<Vertex> {
     let (y, h, cz) = (FLOOR_Y, FLOOR_HALF_EXTENT, OBJECT_CENTRE[2]);
     let corners = [
@@ -43,11 +45,12 @@ pub fn scene_vertices(model: &Model) -> Vec<Vertex> {
         Vec3::new(h, y, cz + h),
         Vec3::new(-h, y, cz + h),
     ];
-    let mut out: Vec<Vertex> = [0, 1, 2, 0, 2, 3]
-        .iter()
-        .map(|&k| vertex(corners[k], Vec3::Y, Surface::Floor))
-        .collect();
-    out.extend(object_vertices(model));
+    let mut out = object_vertices(model);
+    out.extend(
+        [0, 1, 2, 0, 2, 3]
+            .iter()
+            .map(|&k| vertex(corners[k], Vec3::Y, Surface::Floor)),
+    );
     out
 }
 

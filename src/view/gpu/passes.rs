@@ -20,7 +20,9 @@ impl GpuRenderer {
         }
     }
 
-    /// The model (and the ray-cast sphere) drawn into an open pass by `mesh` and `sphere`.
+    /// The model (and the ray-cast sphere) drawn into an open pass by `mesh` and `sphere`:
+    /// the sphere first, then the model and the floor (`raster::scene_vertices`), nearer
+    /// surfaces before the floor, so that what they hide is not shaded.
     fn draw_scene(
         &self,
         pass: &mut wgpu::RenderPass<'_>,
@@ -36,16 +38,16 @@ impl GpuRenderer {
                 resources,
             )
         };
-        pass.set_pipeline(mesh);
-        pass.set_bind_group(0, &bind(mesh), &[]);
-        pass.set_vertex_buffer(0, vertices.slice(..));
-        pass.draw(0..count, 0..1);
         if self.sphere {
             pass.set_pipeline(sphere);
             pass.set_bind_group(0, &bind(sphere), &[]);
             pass.set_vertex_buffer(0, self.sphere_box.slice(..));
             pass.draw(0..36, 0..1);
         }
+        pass.set_pipeline(mesh);
+        pass.set_bind_group(0, &bind(mesh), &[]);
+        pass.set_vertex_buffer(0, vertices.slice(..));
+        pass.draw(0..count, 0..1);
         Ok(())
     }
 
