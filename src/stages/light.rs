@@ -6,7 +6,7 @@
 use std::time::Instant;
 
 use crate::backend::Backend;
-use crate::environment::sun::{find_lights, split_lights, Sun, SunMode};
+use crate::environment::sun::{find_lights, take_lights_out, Sun, SunMode};
 use crate::environment::{Cubemap, Environment};
 use crate::plan::chain::SpecularChain;
 use crate::plan::fit::fit_roughest_level;
@@ -161,24 +161,21 @@ pub fn bake_light(
     progress: &mut dyn FnMut(Stage),
     timings: &mut Timings,
 ) -> Result<BakedEnvironment> {
-    let mut source = source;
-    // The environment as seen is kept for the background when lights are taken out (a
-    // background is seen, not lit by).
-    let (lights, seen) = timed_stage(Stage::Sun, progress, timings, || {
-        let (lights, seen) = match opts.sun {
-            SunMode::Keep => (find_lights(&source), None),
-            SunMode::Split => {
-                let seen = source.clone();
-                let lights = split_lights(&mut source);
-                let seen = (!lights.is_empty()).then_some(seen);
-                (lights, seen)
-            }
+    // With lights taken out, the environment as seen is kept for the background (a
+    // background is seen, not lit by) and the residual is baked; a copy is made only then.
+    let (lights, source, seen) = timed_stage(Stage::Sun, progress, timings, || {
+        let (lights, source, seen) = match opts.sun {
+            SunMode::Keep => (find_lights(&source), source, None),
+            SunMode::Split => match take_lights_out(&source) {
+                Some((lights, residual)) => (lights, residual, Some(source)),
+                None => (Vec::new(), source, None),
+            },
         };
         let lights = lights
             .into_iter()
             .map(|s| s.rotated(opts.rotate_degrees))
             .collect::<Vec<_>>();
-        Ok((lights, seen))
+        Ok((lights, source, seen))
     })?;
     let background = match seen {
         Some(seen) => Some(timed_stage(Stage::Background, progress, timings, || {

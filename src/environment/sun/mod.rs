@@ -276,9 +276,13 @@ fn find_next(env: &Environment, flux: f64) -> Option<SunFit> {
 /// The compact dominant sources of `env`, most energetic first: the sun, then each further
 /// compact source holding [`MIN_SHARE`] of the input's light (an interior's brightest
 /// lamps), at most [`MAX_LIGHTS`]. Each is found on what the ones before it leave (their
-/// regions filled), its share taken of the input's flux. `env` is left as it is.
+/// regions filled), its share taken of the input's flux. `env` is left as it is; it is
+/// copied only when it has a sun, to look for further lights on what the sun leaves.
 pub fn find_lights(env: &Environment) -> Vec<Sun> {
-    split_lights(&mut env.clone())
+    match take_lights_out(env) {
+        Some((lights, _)) => lights,
+        None => Vec::new(),
+    }
 }
 
 /// [`find_lights`], taking each light out of `env` as it is found: `env` becomes the
@@ -286,6 +290,25 @@ pub fn find_lights(env: &Environment) -> Vec<Sun> {
 pub fn split_lights(env: &mut Environment) -> Vec<Sun> {
     let flux = flux_stats(&Grid::of(env)).flux;
     let mut lights = Vec::new();
+    take_further_lights(env, flux, &mut lights);
+    lights
+}
+
+/// The lights of `env` ([`find_lights`]) and the residual they leave, or `None` when it
+/// has none (and nothing is copied): what `--sun split` bakes from, with `env` kept as
+/// seen for a background.
+pub fn take_lights_out(env: &Environment) -> Option<(Vec<Sun>, Environment)> {
+    let flux = flux_stats(&Grid::of(env)).flux;
+    let sun = find_next(env, flux)?;
+    let mut residual = env.clone();
+    apply_fill(&mut residual, &sun);
+    let mut lights = vec![sun.sun];
+    take_further_lights(&mut residual, flux, &mut lights);
+    Some((lights, residual))
+}
+
+/// Finds and takes out of `env` the lights after `lights`, up to [`MAX_LIGHTS`] in all.
+fn take_further_lights(env: &mut Environment, flux: f64, lights: &mut Vec<Sun>) {
     while lights.len() < MAX_LIGHTS {
         let Some(fit) = find_next(env, flux) else {
             break;
@@ -293,7 +316,6 @@ pub fn split_lights(env: &mut Environment) -> Vec<Sun> {
         apply_fill(env, &fit);
         lights.push(fit.sun);
     }
-    lights
 }
 
 /// Finds the sun of `env` and replaces its region by the fill (the first of
