@@ -88,6 +88,24 @@ fn atan_coefficients_match_rust() {
     }
 }
 
+/// The split-sum diffuse weight's fit is the same on both sides.
+#[test]
+fn diffuse_fresnel_fit_matches_rust() {
+    use splitsum::math::brdf::{DIFFUSE_FRESNEL_POWER, DIFFUSE_FRESNEL_SCALE};
+    let module = parse(
+        "preview_split_sum",
+        splitsum::gpu::shaders::PREVIEW_SPLIT_SUM,
+    );
+    assert_eq!(
+        wgsl_f32_constant(&module, "DIFFUSE_FRESNEL_SCALE"),
+        DIFFUSE_FRESNEL_SCALE
+    );
+    assert_eq!(
+        wgsl_f32_constant(&module, "DIFFUSE_FRESNEL_POWER"),
+        DIFFUSE_FRESNEL_POWER
+    );
+}
+
 /// The stretched lookup's guard and fade are the same on both sides.
 #[test]
 fn stretch_constants_match_rust() {

@@ -130,8 +130,8 @@ fn bent_lookup_on_sunless_hdris() {
     // most half of R's figure (measured: a twentieth on venice_sunset, a fifth on
     // pedestrian_overpass, a third on studio_small_03's soft boxes). What it does not do
     // (docs/accuracy.md): at r = 0.25 it is 0.6 points above R on studio_small_03 in this
-    // view (below it over four views), and the dielectric's figure rises by up to 0.3
-    // points at r = 0.25–0.5, where the diffuse term dominates it.
+    // view (below it over four views), and there the dielectric's figure rises by up to
+    // 0.35 points at r = 0.25–0.5 (it falls on the other two).
     for name in [
         "venice_sunset_1k.hdr",
         "pedestrian_overpass_1k.hdr",

@@ -101,10 +101,17 @@ fn fresnel_schlick(f0: f32, v_dot_h: f32) -> f32 {
     return f0 * (1.0 - w) + w;
 }
 
-// Fresnel-Schlick at n.v with Lagarde's (2011) roughness-dependent grazing value:
-// F0 + (max(1 - r, F0) - F0)(1 - n.v)^5 (LearnOpenGL's fresnelSchlickRoughness).
-fn fresnel_schlick_roughness(f0: f32, n_dot_v: f32, roughness: f32) -> f32 {
-    return f0 + (max(1.0 - roughness, f0) - f0) * fresnel_schlick_weight(n_dot_v);
+// The fit of the cosine-weighted mean of (1 - v.h)^5 over the light directions
+// (math::brdf::DIFFUSE_FRESNEL_SCALE, DIFFUSE_FRESNEL_POWER).
+const DIFFUSE_FRESNEL_SCALE: f32 = 0.028;
+const DIFFUSE_FRESNEL_POWER: f32 = 2.55;
+
+// W(n.v) = (1/pi) integral of (1 - v.h)^5 (n.l) over the hemisphere, fitted as
+// 0.028 (1 - n.v)^2.55: the split-sum diffuse weight is (1 - F0)(1 - W)(1 - metallic), the
+// BRDF's kD(h) = (1 - F(v.h))(1 - metallic) under uniform light. Mirror of
+// math::brdf::diffuse_fresnel_weight.
+fn diffuse_fresnel_weight(n_dot_v: f32) -> f32 {
+    return DIFFUSE_FRESNEL_SCALE * pow(clamp(1.0 - n_dot_v, 0.0, 1.0), DIFFUSE_FRESNEL_POWER);
 }
 
 // Exact Smith masking of GGX, G1(x) = 2 n.x / (n.x + Lambda'(x)) (Walter et al. 2007, eq. 34).

@@ -1,6 +1,7 @@
 // Split-sum shading of one surface point, exactly as the README tells an engine to:
 // L = prefiltered(d, lod(r)) (F0 A + B) + E/pi(n) albedo kD,
-// kD = (1 - F_r(n.v))(1 - metallic), F_r Lagarde's roughness-aware Fresnel, and
+// kD = (1 - F0)(1 - W(n.v))(1 - metallic), the BRDF's diffuse weight averaged over the light
+// directions (diffuse_fresnel_weight in common/brdf.wgsl), and
 // d = normalize(mix(R, n, bend(r))) the lookup direction, R = reflect(-v, n) bent toward
 // the normal, read as two taps stretched toward grazing views by the material's stretch
 // (math::lookup: Frostbite's dominant direction, stretched, for the generic target).
@@ -81,12 +82,7 @@ fn split_sum_shade(n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, m: ShadeMaterial) -
     let prefiltered = stretched_prefiltered(n, dir, n_dot_v, m);
     let ab = sample_lut(n_dot_v, m.roughness);
     let spec = prefiltered * (m.f0 * ab.x + vec3<f32>(ab.y));
-    let f_r = vec3<f32>(
-        fresnel_schlick_roughness(m.f0.x, n_dot_v, m.roughness),
-        fresnel_schlick_roughness(m.f0.y, n_dot_v, m.roughness),
-        fresnel_schlick_roughness(m.f0.z, n_dot_v, m.roughness),
-    );
-    let kd = (vec3<f32>(1.0) - f_r) * (1.0 - m.metallic);
+    let kd = (vec3<f32>(1.0) - m.f0) * ((1.0 - diffuse_fresnel_weight(n_dot_v)) * (1.0 - m.metallic));
     let e = sample_cube_lod(irradiance, light.irradiance_size, 1u, n, 0.0);
     return spec + e * m.albedo * kd;
 }

@@ -238,7 +238,7 @@ impl Manifest {
                 exposure: p.exposure,
                 tone_mapping: "Khronos PBR Neutral, then sRGB".into(),
                 truth_samples: o.truth_samples,
-                split_sum: "prefiltered(reflect(-v, n), lod(r)) * (F0 * A + B) + irradiance(n) * albedo * (1 - F_roughness(n.v)) * (1 - metallic)".into(),
+                split_sum: "prefiltered(d, lod(r)) * (F0 * A + B) + irradiance(n) * albedo * (1 - F0) * (1 - W(n.v)) * (1 - metallic), d and lod as the README's recipe reads them (math::lookup), W the cosine-weighted mean of (1 - v.h)^5 (math::brdf::diffuse_fresnel_weight)".into(),
                 truth: TRUTH_DEFINITION.into(),
                 relative_difference: "on each pixel's luminance Y: mean_relative = sum |Y_split_sum - Y_truth| / sum Y_truth over the sphere, worst_relative = the largest |Y_split_sum - Y_truth| / Y_truth of one pixel".into(),
                 spheres: p.stats.iter().map(SphereRecord::from).collect(),

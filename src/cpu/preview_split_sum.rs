@@ -6,7 +6,7 @@
 //! For normal n, view v, roughness r and a material (F0, albedo c, metallic m):
 //!
 //! L = prefiltered(d, lod(r)) · (F0·A + B) + E/π(n) · c · kD,
-//! kD = (1 − F_r)(1 − m),
+//! kD = (1 − F0)(1 − W(n·v))(1 − m),
 //!
 //! with d = normalize(mix(R, n, t(r))) the lookup direction, R = reflect(−v, n) bent toward
 //! n by the material's bend t (`math::lookup`: Frostbite's dominant direction for the
@@ -15,15 +15,17 @@
 //! the material's stretch (`math::lookup::stretched_taps`; one tap with stretch 0),
 //! (A, B) the LUT at uv = (n·v, r) sampled bilinearly with clamp-to-edge,
 //! prefiltered a seamless trilinear lookup at the chain's lod for r, E/π a seamless
-//! bilinear lookup of the irradiance cube, and F_r Lagarde's roughness-aware Fresnel at n·v
-//! (`brdf::fresnel_schlick_roughness`). Background pixels read level 0 of the chain (the
+//! bilinear lookup of the irradiance cube, and W the cosine-weighted mean of the
+//! Fresnel-Schlick weight (1 − v·h)⁵ over the light directions
+//! (`brdf::diffuse_fresnel_weight`), so that kD is the BRDF's diffuse weight
+//! (1 − F(v·h))(1 − m) under uniform light. Background pixels read level 0 of the chain (the
 //! environment itself).
 
 use glam::Vec3;
 use rayon::prelude::*;
 
 use crate::environment::sample::sample_cube_lod;
-use crate::math::brdf::fresnel_schlick_roughness;
+use crate::math::brdf::diffuse_fresnel_weight;
 use crate::math::lookup::{bent_reflection, stretched_taps};
 use crate::plan::lut::BrdfLut;
 use crate::plan::material::ShadeMaterial;
@@ -77,12 +79,7 @@ pub fn split_sum_shade_along(
             + Vec3::from(sample_cube_lod(light.specular, b.into(), lod)));
     let ab = sample_lut(light.lut, n_dot_v, m.roughness);
     let specular = prefiltered * (m.f0 * ab[0] + Vec3::splat(ab[1]));
-    let f_r = Vec3::new(
-        fresnel_schlick_roughness(m.f0.x, n_dot_v, m.roughness),
-        fresnel_schlick_roughness(m.f0.y, n_dot_v, m.roughness),
-        fresnel_schlick_roughness(m.f0.z, n_dot_v, m.roughness),
-    );
-    let kd = (Vec3::ONE - f_r) * (1.0 - m.metallic);
+    let kd = (Vec3::ONE - m.f0) * ((1.0 - diffuse_fresnel_weight(n_dot_v)) * (1.0 - m.metallic));
     let irradiance = Vec3::from(sample_cube_lod(light.irradiance, n.into(), 0.0));
     specular + irradiance * m.albedo * kd
 }
