@@ -125,7 +125,7 @@ pub struct BakedEnvironment {
     /// The prefiltered Charlie sheen chain, in the specular chain's layout, when asked for.
     pub sheen: Option<Cubemap>,
     /// The compact lights found in the environment, the sun first (see
-    /// [`split_lights`]), in the output frame (rotation applied), whatever the mode; empty
+    /// [`find_lights`]), in the output frame (rotation applied), whatever the mode; empty
     /// when it has none.
     pub lights: Vec<Sun>,
     /// [`SunMode::Split`]: the chain, irradiance, SH and sheen are the residual's (the
