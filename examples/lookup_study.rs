@@ -24,14 +24,14 @@
 use splitsum::backend::CpuBackend;
 use splitsum::bake::{bake_environment, BakeOptions};
 use splitsum::cpu::preview_split_sum::{
-    render_split_sum_along, render_split_sum_shaded, split_sum_shade_along,
+    render_split_sum_shaded, split_sum_shade, split_sum_shade_along,
 };
 use splitsum::math::lookup::{BlendFit, SpecularLookup, FITTED};
 use splitsum::plan::lut::BrdfLut;
 use splitsum::plan::material::ShadeMaterial;
 use splitsum::plan::scene::{material_table, Scene, SplitSumInputs, SplitSumLight, ROUGHNESS};
 use splitsum::stages::preview::{
-    add_sun_light, column_table, compare, render_preview, BakedLight, PreviewOptions,
+    add_sun_light, column_table, column_table_at, compare, render_truth, BakedLight, PreviewOptions,
 };
 use splitsum::{BakedEnvironment, SunMode};
 
@@ -85,7 +85,14 @@ fn views(name: &str, sun: SunMode, lut: &BrdfLut) -> Result<Vec<View>, splitsum:
                 ..BakeOptions::default()
             };
             let baked = bake_environment(&cpu, env.clone(), &opts, &mut |_| {}, &mut Vec::new())?;
-            let truth = render_preview(&cpu, &BakedLight::of(name, &baked, lut), &OPTS)?.truth;
+            let truth = render_truth(
+                &cpu,
+                &Scene { cell: OPTS.cell }.uniform(),
+                &BakedLight::of(name, &baked, lut),
+                &column_table(baked.chain, OPTS.lookup),
+                &material_table(),
+                OPTS.truth_samples,
+            )?;
             Ok(View { baked, truth })
         })
         .collect()
@@ -111,13 +118,35 @@ fn figures_at(
     stretch: f32,
     lod_scale: f32,
 ) -> Vec<f32> {
-    let scene = Scene { cell: OPTS.cell }.uniform();
-    let light = BakedLight::of("", &view.baked, lut);
-    let mut columns = column_table(light.chain, SpecularLookup::Reflect);
+    let mut columns = column_table(view.baked.chain, SpecularLookup::Reflect);
     columns.iter_mut().for_each(|c| {
         c[1] *= lod_scale;
         c[3] = stretch;
     });
+    figures_with(
+        &view.baked,
+        lut,
+        &columns,
+        &view.truth,
+        |light, n, v, n_dot_v, m| {
+            split_sum_shade_along(light, n, lookup(n, v, m.roughness), n_dot_v, m)
+        },
+    )
+}
+
+/// Each sphere's figure of `baked` against `truth` (materials in row order, columns in
+/// order), its spheres shaded by `shade(light, n, v, n·v, material)` with the kernels'
+/// per-column table `columns`, and the lights taken out of it shaded as the preview
+/// shades them.
+fn figures_with(
+    baked: &BakedEnvironment,
+    lut: &BrdfLut,
+    columns: &[[f32; 4]],
+    truth: &[[f32; 3]],
+    shade: impl Fn(&SplitSumLight, glam::Vec3, glam::Vec3, f32, &ShadeMaterial) -> glam::Vec3 + Sync,
+) -> Vec<f32> {
+    let scene = Scene { cell: OPTS.cell }.uniform();
+    let light = BakedLight::of("", baked, lut);
     let materials = material_table();
     let inputs = SplitSumInputs {
         light: SplitSumLight {
@@ -125,14 +154,16 @@ fn figures_at(
             irradiance: light.irradiance,
             lut,
         },
-        columns: &columns,
+        columns,
         materials: &materials,
     };
-    let mut panel = render_split_sum_along(&scene, &inputs, lookup);
+    let mut panel = render_split_sum_shaded(&scene, &inputs, |n, v, n_dot_v, m| {
+        shade(&inputs.light, n, v, n_dot_v, m)
+    });
     for sun in light.lights {
-        add_sun_light(&scene, &columns, &materials, sun, &mut panel);
+        add_sun_light(&scene, columns, &materials, sun, &mut panel);
     }
-    compare(&scene, &panel, &view.truth)
+    compare(&scene, &panel, truth)
         .1
         .iter()
         .map(|s| s.mean_relative)
@@ -256,31 +287,15 @@ impl Grazing {
 
 /// Each sphere's figure of `view` shaded with `g`.
 fn grazing_figures(view: &View, lut: &BrdfLut, g: Grazing) -> Vec<f32> {
-    let scene = Scene { cell: OPTS.cell }.uniform();
-    let light = BakedLight::of("", &view.baked, lut);
-    let columns = column_table(light.chain, SpecularLookup::Frostbite);
-    let materials = material_table();
-    let inputs = SplitSumInputs {
-        light: SplitSumLight {
-            specular: light.specular,
-            irradiance: light.irradiance,
-            lut,
-        },
-        columns: &columns,
-        materials: &materials,
-    };
-    let max_lod = (light.chain.levels - 1) as f32;
-    let mut panel = render_split_sum_shaded(&scene, &inputs, |n, v, n_dot_v, m| {
-        g.shade(&inputs.light, max_lod, n, v, n_dot_v, m)
-    });
-    for sun in light.lights {
-        add_sun_light(&scene, &columns, &materials, sun, &mut panel);
-    }
-    compare(&scene, &panel, &view.truth)
-        .1
-        .iter()
-        .map(|s| s.mean_relative)
-        .collect()
+    let columns = column_table(view.baked.chain, SpecularLookup::Frostbite);
+    let max_lod = (view.baked.chain.levels - 1) as f32;
+    figures_with(
+        &view.baked,
+        lut,
+        &columns,
+        &view.truth,
+        |light, n, v, n_dot_v, m| g.shade(light, max_lod, n, v, n_dot_v, m),
+    )
 }
 
 /// Prints a table row: per roughness, the mean figure over `views` and the worst sphere.
@@ -347,63 +362,28 @@ const HIGH_ROUGHNESS: [f32; 5] = [0.8, 0.85, 0.9, 0.95, 0.99];
 /// sphere) over every bundled HDRI with the sun split, four views, Frostbite's single tap
 /// against the stretched lookup.
 fn high(lut: &BrdfLut) -> Result<(), splitsum::Error> {
-    use splitsum::backend::Backend;
-    use splitsum::plan::scene::{disk_points, TruthInputs, TruthLight};
-    use splitsum::stages::preview::{sun_texels, truth_environment};
     print!("| lookup |");
     HIGH_ROUGHNESS.iter().for_each(|r| print!(" r = {r} |"));
     println!("\n|---|{}", "---|".repeat(HIGH_ROUGHNESS.len()));
-    let scene = Scene { cell: OPTS.cell }.uniform();
-    let materials = material_table();
-    let points = disk_points(OPTS.truth_samples);
-    let mut rows = vec![vec![Vec::new(); HIGH_ROUGHNESS.len()]; 2];
+    let lookups = [SpecularLookup::Frostbite, SpecularLookup::Stretched];
+    let mut rows = vec![vec![Vec::new(); HIGH_ROUGHNESS.len()]; lookups.len()];
     for name in HDRIS {
         for view in views(name, SunMode::Split, lut)? {
-            let light = BakedLight::of("", &view.baked, lut);
-            let (env, mut split) = truth_environment(light.specular);
-            for sun in light.lights {
-                split.hot.extend(sun_texels(sun));
-            }
-            for (k, lookup) in [SpecularLookup::Frostbite, SpecularLookup::Stretched]
-                .into_iter()
-                .enumerate()
-            {
-                let columns: Vec<[f32; 4]> = HIGH_ROUGHNESS
-                    .iter()
-                    .map(|&r| {
-                        let lod = light.chain.roughness.lod(r, light.chain.levels);
-                        [r, lod, lookup.bend(r), lookup.stretch()]
-                    })
-                    .collect();
-                let truth = CpuBackend.preview_truth(
-                    &scene,
-                    &TruthInputs {
-                        light: TruthLight {
-                            env: &env,
-                            cold: &split.rest,
-                            hot: &split.hot,
-                            points: &points,
-                        },
-                        columns: &columns,
-                        materials: &materials,
-                    },
-                )?;
-                let inputs = SplitSumInputs {
-                    light: SplitSumLight {
-                        specular: light.specular,
-                        irradiance: light.irradiance,
-                        lut,
-                    },
-                    columns: &columns,
-                    materials: &materials,
-                };
-                let mut panel =
-                    render_split_sum_along(&scene, &inputs, |n, v, r| lookup.direction(n, v, r));
-                for sun in light.lights {
-                    add_sun_light(&scene, &columns, &materials, sun, &mut panel);
-                }
-                for (i, s) in compare(&scene, &panel, &truth).1.iter().enumerate() {
-                    rows[k][i % HIGH_ROUGHNESS.len()].push(s.mean_relative);
+            let chain = view.baked.chain;
+            // The truth reads each column's roughness alone: one for both lookups.
+            let truth = render_truth(
+                &CpuBackend,
+                &Scene { cell: OPTS.cell }.uniform(),
+                &BakedLight::of(name, &view.baked, lut),
+                &column_table_at(&HIGH_ROUGHNESS, chain, SpecularLookup::Frostbite),
+                &material_table(),
+                OPTS.truth_samples,
+            )?;
+            for (row, lookup) in rows.iter_mut().zip(lookups) {
+                let columns = column_table_at(&HIGH_ROUGHNESS, chain, lookup);
+                let figures = figures_with(&view.baked, lut, &columns, &truth, split_sum_shade);
+                for (i, e) in figures.into_iter().enumerate() {
+                    row[i % HIGH_ROUGHNESS.len()].push(e);
                 }
             }
         }

@@ -146,10 +146,9 @@ fn white_furnace_matches_analytic_values() {
                 let f0 = mat.f0[ch] as f64;
                 let (albedo, metallic) = (mat.albedo[ch] as f64, mat.metallic as f64);
                 let spec = f0 * a + b;
-                let want_t = spec + albedo * (1.0 - metallic) * (1.0 - f0) * (1.0 - w);
-                let want_ss = want_t;
-                let e_ss = (p.split_sum[k][ch] as f64 - want_ss).abs();
-                let e_t = (p.truth[k][ch] as f64 - want_t).abs();
+                let want = spec + albedo * (1.0 - metallic) * (1.0 - f0) * (1.0 - w);
+                let e_ss = (p.split_sum[k][ch] as f64 - want).abs();
+                let e_t = (p.truth[k][ch] as f64 - want).abs();
                 if e_ss > worst_ss.0 {
                     worst_ss = (e_ss, k);
                 }

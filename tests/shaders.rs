@@ -88,40 +88,24 @@ fn atan_coefficients_match_rust() {
     }
 }
 
-/// The split-sum diffuse weight's fit is the same on both sides.
+/// The split-sum shading's constants (the diffuse weight's fit, the stretched lookup's
+/// guard and fade) are the same on both sides.
 #[test]
-fn diffuse_fresnel_fit_matches_rust() {
+fn split_sum_constants_match_rust() {
     use splitsum::math::brdf::{DIFFUSE_FRESNEL_POWER, DIFFUSE_FRESNEL_SCALE};
-    let module = parse(
-        "preview_split_sum",
-        splitsum::gpu::shaders::PREVIEW_SPLIT_SUM,
-    );
-    assert_eq!(
-        wgsl_f32_constant(&module, "DIFFUSE_FRESNEL_SCALE"),
-        DIFFUSE_FRESNEL_SCALE
-    );
-    assert_eq!(
-        wgsl_f32_constant(&module, "DIFFUSE_FRESNEL_POWER"),
-        DIFFUSE_FRESNEL_POWER
-    );
-}
-
-/// The stretched lookup's guard and fade are the same on both sides.
-#[test]
-fn stretch_constants_match_rust() {
     use splitsum::math::lookup::{STRETCH_EPSILON, STRETCH_FADE_ROUGHNESS};
     let module = parse(
         "preview_split_sum",
         splitsum::gpu::shaders::PREVIEW_SPLIT_SUM,
     );
-    assert_eq!(
-        wgsl_f32_constant(&module, "STRETCH_EPSILON"),
-        STRETCH_EPSILON
-    );
-    assert_eq!(
-        wgsl_f32_constant(&module, "STRETCH_FADE_ROUGHNESS"),
-        STRETCH_FADE_ROUGHNESS
-    );
+    for (name, rust) in [
+        ("DIFFUSE_FRESNEL_SCALE", DIFFUSE_FRESNEL_SCALE),
+        ("DIFFUSE_FRESNEL_POWER", DIFFUSE_FRESNEL_POWER),
+        ("STRETCH_EPSILON", STRETCH_EPSILON),
+        ("STRETCH_FADE_ROUGHNESS", STRETCH_FADE_ROUGHNESS),
+    ] {
+        assert_eq!(wgsl_f32_constant(&module, name), rust, "{name}");
+    }
 }
 
 /// The small-cap threshold of the irradiance kernel is the same on both sides.

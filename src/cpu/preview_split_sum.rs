@@ -91,22 +91,10 @@ pub fn render_split_sum(scene: &SceneUniform, inputs: &SplitSumInputs) -> Vec<[f
     })
 }
 
-/// The split-sum panel with the chain looked up along `lookup(n, v, roughness)` (the
-/// lookup study's fitted blend, `math::lookup::FITTED`, depends on n·v too).
-#[cfg(any(test, feature = "internals"))]
-pub fn render_split_sum_along(
-    scene: &SceneUniform,
-    inputs: &SplitSumInputs,
-    lookup: impl Fn(Vec3, Vec3, f32) -> Vec3 + Sync,
-) -> Vec<[f32; 3]> {
-    render_with(scene, inputs, |n, v, n_dot_v, m| {
-        split_sum_shade_along(&inputs.light, n, lookup(n, v, m.roughness), n_dot_v, m)
-    })
-}
-
 /// The panel with each sphere pixel shaded by `shade(n, v, n·v clamped, material)` (a
-/// lookup study's variant of [`split_sum_shade`]) and the background reading level 0 of
-/// the chain.
+/// lookup study's variant of [`split_sum_shade`], such as [`split_sum_shade_along`] a
+/// direction that depends on n·v: `math::lookup::FITTED`) and the background reading
+/// level 0 of the chain.
 #[cfg(any(test, feature = "internals"))]
 pub fn render_split_sum_shaded(
     scene: &SceneUniform,

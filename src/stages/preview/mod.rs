@@ -166,7 +166,17 @@ pub fn validate_options(opts: &PreviewOptions) -> Result<()> {
 /// The per-column table of the kernels: (roughness, the chain's lod for it, `lookup`'s
 /// bend for it, its stretch).
 pub fn column_table(chain: SpecularChain, lookup: SpecularLookup) -> Vec<[f32; 4]> {
-    ROUGHNESS
+    column_table_at(&ROUGHNESS, chain, lookup)
+}
+
+/// [`column_table`] for the columns' roughness `roughness` (one per column of the
+/// scene; a study of other roughness than the preview's).
+pub fn column_table_at(
+    roughness: &[f32],
+    chain: SpecularChain,
+    lookup: SpecularLookup,
+) -> Vec<[f32; 4]> {
+    roughness
         .iter()
         .map(|&r| {
             let lod = chain.roughness.lod(r, chain.levels);
@@ -280,6 +290,39 @@ pub fn add_sun_light(
     }
 }
 
+/// The ground-truth panel of `light` on `backend` for the kernels' tables (of the columns
+/// only each one's roughness is read) with `samples` quasi-Monte Carlo points per lobe and
+/// pixel: the chain's level 0 split into its hot texels and the cold rest
+/// ([`truth_environment`]), the lights taken out of it added to the hot texels as discs
+/// ([`sun_texels`]).
+pub fn render_truth(
+    backend: &dyn Backend,
+    scene: &SceneUniform,
+    light: &BakedLight,
+    columns: &[[f32; 4]],
+    materials: &[[f32; 4]],
+    samples: u32,
+) -> Result<Vec<[f32; 3]>> {
+    let (env, mut split) = truth_environment(light.specular);
+    for sun in light.lights {
+        split.hot.extend(sun_texels(sun));
+    }
+    let points = disk_points(samples);
+    backend.preview_truth(
+        scene,
+        &TruthInputs {
+            light: TruthLight {
+                env: &env,
+                cold: &split.rest,
+                hot: &split.hot,
+                points: &points,
+            },
+            columns,
+            materials,
+        },
+    )
+}
+
 /// Renders the preview of `light` with `backend`.
 pub fn render_preview(
     backend: &dyn Backend,
@@ -314,23 +357,13 @@ pub fn render_preview(
     let truth = if opts.truth_samples == 0 {
         Vec::new()
     } else {
-        let (env, mut split) = truth_environment(light.specular);
-        for sun in light.lights {
-            split.hot.extend(sun_texels(sun));
-        }
-        let points = disk_points(opts.truth_samples);
-        backend.preview_truth(
+        render_truth(
+            backend,
             &uniform,
-            &TruthInputs {
-                light: TruthLight {
-                    env: &env,
-                    cold: &split.rest,
-                    hot: &split.hot,
-                    points: &points,
-                },
-                columns: &columns,
-                materials: &materials,
-            },
+            light,
+            &columns,
+            &materials,
+            opts.truth_samples,
         )?
     };
     let truth_seconds = t.elapsed().as_secs_f64();
