@@ -86,6 +86,7 @@ export function requireTools(tools) {
 // Runs an engine check page: serves `root`, opens `page` (a path under it) in headless
 // Chromium with `puppeteer`, waits for window.checkReady, and for each of `cases` calls
 // window.runCheck(config(case)), saves the images it returns as <case>_<name>.png in `out`
+// (and its `raw` files, base64 strings, as <case>_<name>, for checks run after this one)
 // and hands the result to judge(result, { bad, note }): bad(ok, text) prints an ok or FAIL
 // line that fails the check, note(ok, text) an ok or info line that does not. Then the
 // console must be clean; writes results.json with `bars` and exits (1 on a failure).
@@ -121,10 +122,13 @@ export async function runEngineCheck({ puppeteer, chromium, root, page: pagePath
     await page.goto(`http://127.0.0.1:${server.port}${pagePath}`);
     await page.waitForFunction('window.checkReady === true', { timeout: 120000 });
     for (const c of cases) {
-      const { out: r, images } = await page.evaluate((cfg) => window.runCheck(cfg), config(c));
+      const { out: r, images, raw = {} } = await page.evaluate((cfg) => window.runCheck(cfg), config(c));
       results[c] = r;
       for (const [name, url] of Object.entries(images)) {
         writeFileSync(join(out, `${c}_${name}.png`), Buffer.from(url.split(',')[1], 'base64'));
+      }
+      for (const [name, base64] of Object.entries(raw)) {
+        writeFileSync(join(out, `${c}_${name}`), Buffer.from(base64, 'base64'));
       }
       judge(r, lineFor(c));
     }

@@ -249,6 +249,16 @@ export const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * 
 export const normalize = (a) => scale(a, 1 / Math.hypot(...a));
 export const degrees = (a, b) => (Math.acos(Math.min(1, Math.max(-1, dot(normalize(a), normalize(b))))) * 180) / Math.PI;
 
+// The bytes of a typed array as base64 (a runCheck's `raw` files).
+export function base64(array) {
+  const bytes = new Uint8Array(array.buffer, array.byteOffset, array.byteLength);
+  let text = '';
+  for (let i = 0; i < bytes.length; i += 0x8000) {
+    text += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+  }
+  return btoa(text);
+}
+
 // A pinhole camera: eye, forward, up and vertical field of view; the ray through pixel
 // (x, y) of a read-back image (row 0 at the bottom).
 export function pinhole(eye, target, fov) {

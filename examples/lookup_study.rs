@@ -30,6 +30,7 @@ use splitsum::math::lookup::{BlendFit, SpecularLookup, FITTED};
 use splitsum::plan::lut::BrdfLut;
 use splitsum::plan::material::ShadeMaterial;
 use splitsum::plan::scene::{material_table, Scene, SplitSumInputs, SplitSumLight, ROUGHNESS};
+use splitsum::plan::shading::{LightBrdf, Shading, ShadingTerms};
 use splitsum::stages::preview::{
     add_sun_light, column_table, column_table_at, compare, render_truth, BakedLight, PreviewOptions,
 };
@@ -62,7 +63,7 @@ const OPTS: PreviewOptions = PreviewOptions {
     cell: 32,
     exposure_ev: None,
     truth_samples: 1024,
-    lookup: SpecularLookup::GENERIC,
+    shading: Shading::GENERIC,
 };
 
 /// One view of one HDRI in one mode: its bake and the preview's ground truth.
@@ -89,9 +90,10 @@ fn views(name: &str, sun: SunMode, lut: &BrdfLut) -> Result<Vec<View>, splitsum:
                 &cpu,
                 &Scene { cell: OPTS.cell }.uniform(),
                 &BakedLight::of(name, &baked, lut),
-                &column_table(baked.chain, OPTS.lookup),
+                &column_table(baked.chain, &OPTS.shading),
                 &material_table(),
                 OPTS.truth_samples,
+                LightBrdf::GENERIC,
             )?;
             Ok(View { baked, truth })
         })
@@ -118,7 +120,10 @@ fn figures_at(
     stretch: f32,
     lod_scale: f32,
 ) -> Vec<f32> {
-    let mut columns = column_table(view.baked.chain, SpecularLookup::Reflect);
+    let mut columns = column_table(
+        view.baked.chain,
+        &Shading::GENERIC.with_lookup(SpecularLookup::Reflect),
+    );
     columns.iter_mut().for_each(|c| {
         c[1] *= lod_scale;
         c[3] = stretch;
@@ -153,6 +158,7 @@ fn figures_with(
             specular: light.specular,
             irradiance: light.irradiance,
             lut,
+            terms: ShadingTerms::GENERIC,
         },
         columns,
         materials: &materials,
@@ -161,7 +167,15 @@ fn figures_with(
         shade(&inputs.light, n, v, n_dot_v, m)
     });
     for sun in light.lights {
-        add_sun_light(&scene, columns, &materials, sun, &mut panel);
+        add_sun_light(
+            &scene,
+            columns,
+            &materials,
+            sun,
+            LightBrdf::GENERIC,
+            lut,
+            &mut panel,
+        );
     }
     compare(&scene, &panel, truth)
         .1
@@ -287,7 +301,10 @@ impl Grazing {
 
 /// Each sphere's figure of `view` shaded with `g`.
 fn grazing_figures(view: &View, lut: &BrdfLut, g: Grazing) -> Vec<f32> {
-    let columns = column_table(view.baked.chain, SpecularLookup::Frostbite);
+    let columns = column_table(
+        view.baked.chain,
+        &Shading::GENERIC.with_lookup(SpecularLookup::Frostbite),
+    );
     let max_lod = (view.baked.chain.levels - 1) as f32;
     figures_with(
         &view.baked,
@@ -375,12 +392,21 @@ fn high(lut: &BrdfLut) -> Result<(), splitsum::Error> {
                 &CpuBackend,
                 &Scene { cell: OPTS.cell }.uniform(),
                 &BakedLight::of(name, &view.baked, lut),
-                &column_table_at(&HIGH_ROUGHNESS, chain, SpecularLookup::Frostbite),
+                &column_table_at(
+                    &HIGH_ROUGHNESS,
+                    chain,
+                    &Shading::GENERIC.with_lookup(SpecularLookup::Frostbite),
+                ),
                 &material_table(),
                 OPTS.truth_samples,
+                LightBrdf::GENERIC,
             )?;
             for (row, lookup) in rows.iter_mut().zip(lookups) {
-                let columns = column_table_at(&HIGH_ROUGHNESS, chain, lookup);
+                let columns = column_table_at(
+                    &HIGH_ROUGHNESS,
+                    chain,
+                    &Shading::GENERIC.with_lookup(lookup),
+                );
                 let figures = figures_with(&view.baked, lut, &columns, &truth, split_sum_shade);
                 for (i, e) in figures.into_iter().enumerate() {
                     row[i % HIGH_ROUGHNESS.len()].push(e);

@@ -119,6 +119,9 @@ pub use math::lookup::SpecularLookup;
 pub use plan::bc6h::Bc6hQuality;
 pub use plan::chain::{MipRoughness, SpecularChain};
 pub use plan::lut::{BrdfLut, LutModel, DEFAULT_LUT_SIZE, MAX_LUT_SIZE};
+pub use plan::shading::{
+    DiffuseLobe, IblTerms, IrradianceSource, LightBrdf, Masking, Shading, ShadingTerms,
+};
 pub use stages::convert::check_cube_size;
 pub use stages::light::{BakedEnvironment, Stage};
 pub use stages::preview::{Preview, PreviewOptions, SphereStats, PREVIEW_ROUGHNESS};

@@ -21,6 +21,7 @@ use glam::Vec3;
 use splitsum::cpu::preview_split_sum::split_sum_shade;
 use splitsum::plan::material::ShadeMaterial;
 use splitsum::plan::scene::SplitSumLight;
+use splitsum::plan::shading::ShadingTerms;
 use splitsum::SpecularLookup;
 
 /// Relative bar per channel (see the module documentation).
@@ -204,6 +205,7 @@ fn readme_wgsl_shades_as_the_preview() {
         specular: &baked.specular,
         irradiance: &baked.irradiance,
         lut: &lut,
+        terms: ShadingTerms::GENERIC,
     };
     for (k, n) in directions(96).into_iter().enumerate() {
         let tangent = n.any_orthonormal_vector();

@@ -78,6 +78,18 @@ fn wgsl_f32_constant(module: &naga::Module, name: &str) -> f32 {
     }
 }
 
+fn wgsl_u32_constant(module: &naga::Module, name: &str) -> u32 {
+    let (_, c) = module
+        .constants
+        .iter()
+        .find(|(_, c)| c.name.as_deref() == Some(name))
+        .unwrap_or_else(|| panic!("{name} missing"));
+    match module.global_expressions[c.init] {
+        naga::Expression::Literal(naga::Literal::U32(v)) => v,
+        ref other => panic!("{name}: {other:?}"),
+    }
+}
+
 /// The WGSL atan coefficients are the Rust ones (one source of truth, checked).
 #[test]
 fn atan_coefficients_match_rust() {
@@ -105,6 +117,55 @@ fn split_sum_constants_match_rust() {
         ("STRETCH_FADE_ROUGHNESS", STRETCH_FADE_ROUGHNESS),
     ] {
         assert_eq!(wgsl_f32_constant(&module, name), rust, "{name}");
+    }
+}
+
+/// The shading models' codes (`plan::shading`'s enums as u32) and the Fresnel mean are
+/// the same on both sides.
+#[test]
+fn shading_codes_match_rust() {
+    use splitsum::plan::shading::{DiffuseLobe, IblTerms, Masking, FRESNEL_MEAN_WEIGHT};
+    let module = parse("preview_truth", splitsum::gpu::shaders::PREVIEW_TRUTH);
+    let split = parse(
+        "preview_split_sum",
+        splitsum::gpu::shaders::PREVIEW_SPLIT_SUM,
+    );
+    assert_eq!(
+        wgsl_f32_constant(&split, "FRESNEL_MEAN_WEIGHT"),
+        FRESNEL_MEAN_WEIGHT
+    );
+    for (m, name, rust) in [
+        (&split, "IBL_TERMS_SPLITSUM", IblTerms::Splitsum as u32),
+        (
+            &split,
+            "IBL_TERMS_ENERGY_COMPENSATED",
+            IblTerms::EnergyCompensated as u32,
+        ),
+        (
+            &split,
+            "IBL_TERMS_MULTISCATTER_IRRADIANCE",
+            IblTerms::MultiscatterIrradiance as u32,
+        ),
+        (
+            &split,
+            "IBL_TERMS_MULTISCATTER_RADIANCE",
+            IblTerms::MultiscatterRadiance as u32,
+        ),
+        (&module, "MASKING_SCHLICK_GGX", Masking::SchlickGgx as u32),
+        (
+            &module,
+            "MASKING_SMITH_CORRELATED",
+            Masking::SmithCorrelated as u32,
+        ),
+        (
+            &module,
+            "DIFFUSE_FRESNEL_WEIGHTED",
+            DiffuseLobe::FresnelWeighted as u32,
+        ),
+        (&module, "DIFFUSE_LAMBERT", DiffuseLobe::Lambert as u32),
+        (&module, "DIFFUSE_BURLEY", DiffuseLobe::Burley as u32),
+    ] {
+        assert_eq!(wgsl_u32_constant(m, name), rust, "{name}");
     }
 }
 
@@ -209,16 +270,25 @@ fn preview_uniforms_match_rust() {
             irradiance_size,
             lut_width,
             lut_height,
-            _pad0,
-            _pad1,
-            _pad2
+            ibl_terms,
+            roughness_fresnel,
+            _pad
         ]
     );
     assert_layout!(
         PREVIEW_TRUTH,
         "TruthParams",
         TruthUniform,
-        [env_size, hot_count, point_count, _pad]
+        [
+            env_size,
+            hot_count,
+            point_count,
+            masking,
+            diffuse,
+            compensated,
+            lut_width,
+            lut_height
+        ]
     );
 }
 

@@ -15,7 +15,7 @@ use splitsum::bake::{bake_environment, BakeOptions};
 use splitsum::environment::Environment;
 use splitsum::plan::scene::Scene;
 use splitsum::stages::preview::{compare, render_preview, BakedLight, PreviewOptions};
-use splitsum::{SpecularLookup, SphereStats, SunMode, DEFAULT_LUT_SIZE};
+use splitsum::{Shading, SpecularLookup, SphereStats, SunMode, DEFAULT_LUT_SIZE};
 
 /// Each sphere's figure with R and with the generic lookup.
 struct Figures {
@@ -43,7 +43,7 @@ fn figures(name: &str, sun: SunMode) -> Figures {
     let popts = PreviewOptions {
         cell: 32,
         truth_samples: 1024,
-        lookup: SpecularLookup::Reflect,
+        shading: Shading::GENERIC.with_lookup(SpecularLookup::Reflect),
         ..PreviewOptions::default()
     };
     let reflect = render_preview(&*backend, &light, &popts).unwrap();
@@ -52,7 +52,7 @@ fn figures(name: &str, sun: SunMode) -> Figures {
         &light,
         &PreviewOptions {
             truth_samples: 0,
-            lookup: SpecularLookup::GENERIC,
+            shading: Shading::GENERIC,
             ..popts
         },
     )

@@ -164,6 +164,11 @@ window.runCheck = async function ({ hdrUrl, bakeDir, cubeUrl, roughness, splitDi
   images.mirror_splitsum = toPng(gotMirror);
 
   out.spheres = [];
+  // The spheres as rendered from the bake, linear RGBA float rows from the bottom, for the
+  // preview's three.js mode to be held against (tests/engine_renders.rs): the camera as
+  // measure.pinhole takes it.
+  const raw = {};
+  out.sphereCamera = { eye: sphereCamera.position.toArray(), fov: 30, size: SIZE };
   for (const metalness of [1, 0]) {
     for (const r of roughness) {
       material.metalness = metalness;
@@ -178,6 +183,7 @@ window.runCheck = async function ({ hdrUrl, bakeDir, cubeUrl, roughness, splitDi
       });
       images[`sphere_m${metalness}_r${r}_three`] = toPng(want);
       images[`sphere_m${metalness}_r${r}_splitsum`] = toPng(got);
+      if (format !== 'bc6h') raw[`sphere_m${metalness}_r${r}.rgba32f`] = measure.base64(got);
     }
   }
 
@@ -201,7 +207,7 @@ window.runCheck = async function ({ hdrUrl, bakeDir, cubeUrl, roughness, splitDi
   if (splitDir) out.sunLight = await sunLight(bake, splitDir, images);
 
   out.renderer = renderer.getContext().getParameter(renderer.getContext().VERSION);
-  return { out, images };
+  return { out, images, raw };
 };
 
 // The sun as a light (a `--sun split` bake in `splitDir`, beside the kept bake `full`): a

@@ -106,6 +106,14 @@ fn fresnel_schlick(f0: f32, v_dot_h: f32) -> f32 {
 const DIFFUSE_FRESNEL_SCALE: f32 = 0.028;
 const DIFFUSE_FRESNEL_POWER: f32 = 2.55;
 
+// Burley's diffuse over Lambert's, (1 + (f90 - 1)(1 - n.l)^5)(1 + (f90 - 1)(1 - n.v)^5),
+// f90 = 1/2 + 2 alpha (l.h)^2 (Burley 2012; Filament's and bevy_pbr's Fd_Burley).
+// Mirror of math::brdf::burley_weight.
+fn burley_weight(n_dot_l: f32, n_dot_v: f32, l_dot_h: f32, alpha: f32) -> f32 {
+    let f90 = 0.5 + 2.0 * alpha * l_dot_h * l_dot_h;
+    return (1.0 + (f90 - 1.0) * fresnel_schlick_weight(n_dot_l)) * (1.0 + (f90 - 1.0) * fresnel_schlick_weight(n_dot_v));
+}
+
 // W(n.v) = (1/pi) integral of (1 - v.h)^5 (n.l) over the hemisphere, fitted as
 // 0.028 (1 - n.v)^2.55: the split-sum diffuse weight is (1 - F0)(1 - W)(1 - metallic), the
 // BRDF's kD(h) = (1 - F(v.h))(1 - metallic) under uniform light. Mirror of

@@ -23,13 +23,58 @@ struct LightShade {
     diff: vec3<f32>,
 }
 
+// A light's BRDF terms (plan::shading::LightBrdf; its compensation is the caller's): the
+// specular masking MASKING_* and the diffuse weighting DIFFUSE_*.
+struct LightBrdf {
+    masking: u32,
+    diffuse: u32,
+}
+
+// plan::shading::Masking: Schlick-GGX G1(l) G1(v) with k = alpha/2, or the height-correlated
+// Smith G2.
+const MASKING_SCHLICK_GGX: u32 = 0u;
+const MASKING_SMITH_CORRELATED: u32 = 1u;
+// plan::shading::DiffuseLobe: Lambert weighted by (1 - F(v.h))(1 - metallic), by
+// (1 - metallic) alone, or Burley's times (1 - metallic).
+const DIFFUSE_FRESNEL_WEIGHTED: u32 = 0u;
+const DIFFUSE_LAMBERT: u32 = 1u;
+const DIFFUSE_BURLEY: u32 = 2u;
+
+// What a diffuse lobe of `brdf` weights Lambert by besides (1 - metallic), for light from
+// l_t and the view v_t (any frame) with n.l, n.v given: 1 - F(v.h), 1, or Burley's.
+fn diffuse_weight(brdf: LightBrdf, f0: vec3<f32>, n_dot_l: f32, n_dot_v: f32, v_dot_h: f32, alpha: f32) -> vec3<f32> {
+    if (brdf.diffuse == DIFFUSE_FRESNEL_WEIGHTED) {
+        return vec3<f32>(1.0) - fresnel3(f0, v_dot_h);
+    }
+    if (brdf.diffuse == DIFFUSE_BURLEY) {
+        return vec3<f32>(burley_weight(n_dot_l, n_dot_v, v_dot_h, alpha));
+    }
+    return vec3<f32>(1.0);
+}
+
+// The recipe's BRDF (LightBrdf::GENERIC): the viewer's and the generic preview's.
+fn generic_light_brdf() -> LightBrdf {
+    return LightBrdf(MASKING_SCHLICK_GGX, DIFFUSE_FRESNEL_WEIGHTED);
+}
+
+// 4 (n.l) times the specular masking over 4 (n.l)(n.v) of `brdf`, for n.l > 0: the
+// Schlick-GGX G1(n.l) G1(n.v)/(n.v), or the correlated 4 V (n.l).
+fn light_masking(brdf: LightBrdf, n_dot_l: f32, n_dot_v: f32, alpha: f32) -> f32 {
+    if (brdf.masking == MASKING_SMITH_CORRELATED) {
+        let a2 = alpha * alpha;
+        return smith_correlated_4v_n_dot_l(n_dot_v, n_dot_l, a2, smith_correlated_lambda(n_dot_v, a2));
+    }
+    let k = 0.5 * alpha;
+    return g1_schlick_ggx(n_dot_l, k) * g1_over_n_dot_v(n_dot_v, k);
+}
+
 // What a light of irradiance e (L times its solid angle) from unit direction l sends
-// towards v off a point with normal n, e f(l, v) (n.l) with the truth's BRDF: GGX D,
-// Schlick-GGX G1 with k = alpha/2 for l and v, Fresnel-Schlick at v.h, plus Lambert
-// weighted by (1 - F)(1 - metallic); at alpha 0 no specular (a mirror shows a direction's
-// light as a point: the mirror lookup's). The truth's hot texels and the lights taken out
-// of the environment are shaded by it. Mirror of plan::material::directional_light.
-fn directional_light(n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, alpha: f32, f0: vec3<f32>, metallic: f32, l: vec3<f32>, e: vec3<f32>) -> LightShade {
+// towards v off a point with normal n, e f(l, v) (n.l) with `brdf`: GGX D, its masking,
+// Fresnel-Schlick at v.h, plus Lambert weighted as its diffuse says; at alpha 0 no
+// specular (a mirror shows a direction's light as a point: the mirror lookup's). The
+// truth's hot texels and the lights taken out of the environment are shaded by it.
+// Mirror of plan::material::directional_light.
+fn directional_light(n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, alpha: f32, f0: vec3<f32>, metallic: f32, l: vec3<f32>, e: vec3<f32>, brdf: LightBrdf) -> LightShade {
     var out: LightShade;
     out.spec = vec3<f32>(0.0);
     out.diff = vec3<f32>(0.0);
@@ -37,16 +82,16 @@ fn directional_light(n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, alpha: f32, f0: v
     if (n_dot_l <= 0.0) {
         return out;
     }
-    let k = 0.5 * alpha;
     let h = normalize(l + v);
     let f = fresnel3(f0, max(dot(v, h), 0.0));
     if (alpha > 0.0) {
-        // f (n.l) = D F G1(n.l) (G1(n.v)/(n.v)) / 4
-        let w = d_ggx(max(dot(n, h), 0.0), alpha) * g1_schlick_ggx(n_dot_l, k) * g1_over_n_dot_v(n_dot_v, k) * 0.25;
+        // f (n.l) = D F (4 (n.l) masking) / 4
+        let w = d_ggx(max(dot(n, h), 0.0), alpha) * light_masking(brdf, n_dot_l, n_dot_v, alpha) * 0.25;
         out.spec = e * f * w;
     }
     if (metallic < 1.0) {
-        out.diff = e * (vec3<f32>(1.0) - f) * ((1.0 - metallic) * n_dot_l / PI);
+        let weight = diffuse_weight(brdf, f0, n_dot_l, n_dot_v, max(dot(v, h), 0.0), alpha);
+        out.diff = e * weight * ((1.0 - metallic) * n_dot_l / PI);
     }
     return out;
 }

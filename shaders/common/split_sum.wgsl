@@ -1,4 +1,5 @@
-// Split-sum shading of one surface point, exactly as the README tells an engine to:
+// Split-sum shading of one surface point, exactly as the README tells an engine to (or as
+// an engine's own shader does, plan::shading, with the params' ibl_terms):
 // L = prefiltered(d, lod(r)) (F0 A + B) + E/pi(n) albedo kD,
 // kD = (1 - F0)(1 - W(n.v))(1 - metallic), the BRDF's diffuse weight averaged over the light
 // directions (diffuse_fresnel_weight in common/brdf.wgsl), and
@@ -17,34 +18,22 @@ struct SplitSumParams {
     irradiance_size: u32,
     lut_width: u32,
     lut_height: u32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
+    ibl_terms: u32,          // IBL_TERMS_* (plan::shading::IblTerms)
+    roughness_fresnel: u32,  // 1: kS is the roughness-aware Fresnel
+    _pad: u32,
 }
 
-// Bilinear LUT lookup at uv = (n.v, r), clamp-to-edge, texel centres at (i + 0.5) / W.
-// The LUT texture holds each texel's (A, B) in .xy and its right neighbour's (clamped to
-// the last column) in .zw (gpu::texture::upload_lut_pairs), so the four taps a, b, c, d of
-// the CPU twin are two loads.
+// plan::shading::IblTerms: how the prefiltered radiance, (A, B) and E/pi combine.
+const IBL_TERMS_SPLITSUM: u32 = 0u;
+const IBL_TERMS_ENERGY_COMPENSATED: u32 = 1u;
+const IBL_TERMS_MULTISCATTER_IRRADIANCE: u32 = 2u;
+const IBL_TERMS_MULTISCATTER_RADIANCE: u32 = 3u;
+// The cosine-weighted mean of (1 - cos)^5, 1/21 (plan::shading::FRESNEL_MEAN_WEIGHT).
+const FRESNEL_MEAN_WEIGHT: f32 = 0.04761904761904762;
+
+// The LUT at uv = (n.v, r) (lut_bilinear, common/lut.wgsl).
 fn sample_lut(n_dot_v: f32, roughness: f32) -> vec2<f32> {
-    let w = light.lut_width;
-    let h = light.lut_height;
-    let x = clamp(n_dot_v * f32(w) - 0.5, 0.0, f32(w - 1u));
-    let y = clamp(roughness * f32(h) - 0.5, 0.0, f32(h - 1u));
-    let x0 = floor(x);
-    let y0 = floor(y);
-    let fx = x - x0;
-    let fy = y - y0;
-    let i0 = u32(x0);
-    let j0 = u32(y0);
-    let j1 = min(j0 + 1u, h - 1u);
-    let row0 = textureLoad(lut, vec2<u32>(i0, j0), 0);
-    let row1 = textureLoad(lut, vec2<u32>(i0, j1), 0);
-    let a = row0.xy;
-    let b = row0.zw;
-    let c = row1.xy;
-    let d = row1.zw;
-    return (a * (1.0 - fx) + b * fx) * (1.0 - fy) + (c * (1.0 - fx) + d * fx) * fy;
+    return lut_bilinear(light.lut_width, light.lut_height, n_dot_v, roughness);
 }
 
 // normalize(mix(R, n, bend)) with R = reflect(-v, n); with n.v > 0, R.n = n.v > 0, so the
@@ -75,14 +64,41 @@ fn stretched_prefiltered(n: vec3<f32>, d: vec3<f32>, n_dot_v: f32, m: ShadeMater
     return 0.5 * (a + b);
 }
 
+// The light towards v from the prefiltered radiance s, the LUT's ab = (A, B) and the
+// irradiance e = E/pi at n, combined as the params' ibl_terms say (plan::shading: the
+// recipe's S (F0 A + B) + E c kD, or an engine's FssEss / FmsEms terms).
+// Mirror of cpu::preview_split_sum::ibl_terms.
+fn ibl_terms(s: vec3<f32>, e: vec3<f32>, ab: vec2<f32>, n_dot_v: f32, m: ShadeMaterial) -> vec3<f32> {
+    if (light.ibl_terms == IBL_TERMS_SPLITSUM) {
+        let kd = (vec3<f32>(1.0) - m.f0) * ((1.0 - diffuse_fresnel_weight(n_dot_v)) * (1.0 - m.metallic));
+        return s * (m.f0 * ab.x + vec3<f32>(ab.y)) + e * m.albedo * kd;
+    }
+    var ks = m.f0;
+    if (light.roughness_fresnel != 0u) {
+        ks = m.f0 + (max(vec3<f32>(1.0 - m.roughness), m.f0) - m.f0) * fresnel_schlick_weight(n_dot_v);
+    }
+    let fss_ess = ks * ab.x + vec3<f32>(ab.y);
+    let ess = ab.x + ab.y;
+    if (light.ibl_terms == IBL_TERMS_ENERGY_COMPENSATED) {
+        let compensation = vec3<f32>(1.0) + m.f0 * (1.0 / ess - 1.0);
+        return s * fss_ess * compensation + e * m.albedo * (vec3<f32>(1.0) - fss_ess) * (1.0 - m.metallic);
+    }
+    let ems = 1.0 - ess;
+    let f_avg = m.f0 + (vec3<f32>(1.0) - m.f0) * FRESNEL_MEAN_WEIGHT;
+    let fms_ems = ems * fss_ess * f_avg / (vec3<f32>(1.0) - ems * f_avg);
+    let diffuse = e * m.albedo * (vec3<f32>(1.0) - fss_ess - fms_ems) * (1.0 - m.metallic);
+    if (light.ibl_terms == IBL_TERMS_MULTISCATTER_RADIANCE) {
+        return s * (fss_ess + fms_ems) + diffuse;
+    }
+    return s * fss_ess + e * fms_ems + diffuse;
+}
+
 // The split-sum radiance towards v of a point with normal n; n_dot_v is n.v clamped
 // away from 0 by the caller (silhouette normals are perpendicular to v).
 fn split_sum_shade(n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, m: ShadeMaterial) -> vec3<f32> {
     let dir = bent_reflection(n, v, m.bend);
     let prefiltered = stretched_prefiltered(n, dir, n_dot_v, m);
     let ab = sample_lut(n_dot_v, m.roughness);
-    let spec = prefiltered * (m.f0 * ab.x + vec3<f32>(ab.y));
-    let kd = (vec3<f32>(1.0) - m.f0) * ((1.0 - diffuse_fresnel_weight(n_dot_v)) * (1.0 - m.metallic));
     let e = sample_cube_lod(irradiance, light.irradiance_size, 1u, n, 0.0);
-    return spec + e * m.albedo * kd;
+    return ibl_terms(prefiltered, e, ab, n_dot_v, m);
 }

@@ -53,7 +53,7 @@ fn sun_texels_shade(px: PixelView, first: u32, count: u32) -> vec3<f32> {
     for (var i = first; i < first + count; i++) {
         let t = sun_texels[2u * i];
         let r = sun_texels[2u * i + 1u];
-        let s = directional_light(px.s.n, px.v, px.n_dot_v, alpha, px.m.f0, px.m.metallic, t.xyz, r.rgb * t.w);
+        let s = directional_light(px.s.n, px.v, px.n_dot_v, alpha, px.m.f0, px.m.metallic, t.xyz, r.rgb * t.w, generic_light_brdf());
         var c = s.spec + s.diff * px.m.albedo;
         if (r.w < 0.5) {
             c *= visibility;

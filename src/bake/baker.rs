@@ -269,7 +269,8 @@ impl Baker {
     }
 
     /// The preview of `baked` (generic orientation; `name` in its caption) with `lut` (the
-    /// default model's table; computed when `None`).
+    /// table of the shading's LUT where the caller has it; computed when `None` or another
+    /// table, `stages::preview::shading_lut`).
     pub fn preview(
         &mut self,
         name: &str,

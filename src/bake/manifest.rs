@@ -16,6 +16,7 @@ use crate::plan::bc6h::{ENCODER, ENCODER_VERSION};
 use crate::plan::chain::SpecularChain;
 use crate::plan::lut::BrdfLut;
 use crate::stages::light::BakedEnvironment;
+use crate::plan::shading::Shading;
 use crate::stages::preview::{Preview, SphereStats};
 use crate::targets::generic::read_sun_json;
 use crate::targets::GENERIC;
@@ -238,8 +239,14 @@ impl Manifest {
                 exposure: p.exposure,
                 tone_mapping: "Khronos PBR Neutral, then sRGB".into(),
                 truth_samples: o.truth_samples,
-                split_sum: "prefiltered(d, lod(r)) * (F0 * A + B) + irradiance(n) * albedo * (1 - F0) * (1 - W(n.v)) * (1 - metallic), d and lod as the README's recipe reads them (math::lookup), W the cosine-weighted mean of (1 - v.h)^5 (math::brdf::diffuse_fresnel_weight)".into(),
-                truth: TRUTH_DEFINITION.into(),
+                split_sum: match o.shading == Shading::GENERIC {
+                    true => "prefiltered(d, lod(r)) * (F0 * A + B) + irradiance(n) * albedo * (1 - F0) * (1 - W(n.v)) * (1 - metallic), d and lod as the README's recipe reads them (math::lookup), W the cosine-weighted mean of (1 - v.h)^5 (math::brdf::diffuse_fresnel_weight)".into(),
+                    false => format!("as {}'s shader: {}", o.shading.name, o.shading.describe()),
+                },
+                truth: match o.shading == Shading::GENERIC {
+                    true => TRUTH_DEFINITION.into(),
+                    false => format!("{TRUTH_DEFINITION}; the BRDF is {}'s light BRDF", o.shading.name),
+                },
                 relative_difference: "on each pixel's luminance Y: mean_relative = sum |Y_split_sum - Y_truth| / sum Y_truth over the sphere, worst_relative = the largest |Y_split_sum - Y_truth| / Y_truth of one pixel".into(),
                 spheres: p.stats.iter().map(SphereRecord::from).collect(),
             }),

@@ -22,9 +22,9 @@ use crate::io::atomic::write_all_atomic;
 use crate::io::cubemap::{clip_warning, BlockEncoder, CubeEncoding};
 use crate::io::input::{input_stem, load_input, LoadedEnvironment};
 use crate::io::staging::{OutputRecord, Staging};
-use crate::plan::lut::{BrdfLut, LutModel};
+use crate::plan::lut::BrdfLut;
 use crate::stages::light::{bake_light, timed_stage, BakedEnvironment, Stage, Timings};
-use crate::stages::preview::{preview_baked, Preview};
+use crate::stages::preview::{is_shading_lut, preview_baked, Preview};
 use crate::targets::{write_luts, FileContext};
 use crate::Result;
 
@@ -113,8 +113,9 @@ pub fn bake(
     let preview = match &opts.preview {
         None => None,
         Some(p) => Some(timed_stage(Stage::Preview, progress, &mut timings, || {
-            // The preview shades with the default model's table.
-            let split_sum_lut = luts.iter().find(|l| l.model == LutModel::default());
+            // The preview shades with the table of its shading's LUT where the bake has it
+            // (the target's file), computing it otherwise.
+            let split_sum_lut = luts.iter().find(|l| is_shading_lut(&p.shading, l));
             let name = input.file_name().map(|n| n.to_string_lossy()).unwrap_or_default();
             preview_baked(backend, &name, &baked, split_sum_lut, p)
         })?),

@@ -285,11 +285,12 @@ pub struct PreviewRenderArgs {
     #[arg(long, default_value_t = splitsum::PreviewOptions::default().cell)]
     pub preview_cell: u32,
 
-    /// Where the split-sum reads the specular chain: the README's recipe bends R toward
-    /// the normal and reads two sharper taps toward grazing views (stretched); the others
-    /// are the lookups engines make.
-    #[arg(long, default_value = splitsum::SpecularLookup::GENERIC.id(), value_parser = lookup_parser())]
-    pub lookup: splitsum::SpecularLookup,
+    /// Where the split-sum reads the specular chain [default: the shading's own: for the
+    /// generic target the README's recipe, which bends R toward the normal and reads two
+    /// sharper taps toward grazing views (stretched); the others are the lookups engines
+    /// make].
+    #[arg(long, value_parser = lookup_parser())]
+    pub lookup: Option<splitsum::SpecularLookup>,
 }
 
 /// `splitsum preview`.
@@ -320,6 +321,12 @@ pub struct PreviewArgs {
     /// light with the BRDF [default: keep]. A bake folder is shown as it was baked.
     #[arg(long, value_name = "MODE", value_parser = sun_mode_parser())]
     pub sun: Option<splitsum::SunMode>,
+
+    /// With an environment: bake it for this engine (its chain layout, its lookup's
+    /// files) and shade the spheres as its shader does, its ground truth the integral of
+    /// its own BRDF; generic is the README's recipe.
+    #[arg(long, default_value = "generic", value_parser = target_parser())]
+    pub target: &'static Target,
 
     #[command(flatten)]
     pub render: PreviewRenderArgs,

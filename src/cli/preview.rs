@@ -8,20 +8,39 @@ use splitsum::{
     PreviewOptions, PREVIEW_ROUGHNESS,
 };
 
+use splitsum::{Shading, Target};
+
 use super::args::{PreviewArgs, PreviewRenderArgs};
 use super::shared::{open_baker, progress_bar, sun_line, warn};
 use super::{for_user, Usage};
 
+/// The preview's options for a bake for `target`: its engine's shading where the preview
+/// models it ([`unmodelled_shading`] otherwise), its lookup replaced by `--lookup`.
 pub(super) fn preview_options(
     render: &PreviewRenderArgs,
     exposure_ev: Option<f32>,
+    target: &Target,
 ) -> PreviewOptions {
+    let shading = target.shading.unwrap_or(Shading::GENERIC);
     PreviewOptions {
         cell: render.preview_cell,
         exposure_ev,
         truth_samples: render.truth_samples,
-        lookup: render.lookup,
+        shading: render
+            .lookup
+            .map_or(shading, |lookup| shading.with_lookup(lookup)),
     }
+}
+
+/// The warning for a preview of `target`'s files where the preview does not shade as its
+/// engine: the spheres are then shaded as the README's recipe.
+pub(super) fn unmodelled_shading(target: &Target) -> Option<String> {
+    target.shading.is_none().then(|| {
+        format!(
+            "the preview does not shade as {}'s shader (docs/targets.md, \"What each engine's shader gets\"): its spheres show {}'s files shaded as the README's recipe",
+            target.name, target.name
+        )
+    })
 }
 
 /// Prints a preview's table: per material and roughness, mean / worst relative difference
@@ -64,7 +83,8 @@ pub(super) fn print_preview(path: &Path, p: &Preview, verbose: bool) {
 
 /// `splitsum preview`.
 pub fn preview(args: PreviewArgs) -> anyhow::Result<()> {
-    let popts = preview_options(&args.render, args.exposure);
+    let popts = preview_options(&args.render, args.exposure, args.target);
+    warn(unmodelled_shading(args.target));
     let output = args.output.clone().unwrap_or_else(|| {
         if args.input.is_dir() {
             args.input.join("preview.png")
@@ -81,7 +101,7 @@ pub fn preview(args: PreviewArgs) -> anyhow::Result<()> {
         specular_size: args.specular_size,
         preview: Some(popts),
         sun: args.sun.unwrap_or_default(),
-        ..BakeOptions::default()
+        ..BakeOptions::for_target(args.target)
     };
     let mut baker = open_baker("preview", opts, &args.common)?;
     let spinner = progress_bar(true, 0, "{spinner} {msg} ({elapsed})");
@@ -151,6 +171,7 @@ fn preview_json(input: &Path, baked: &splitsum::BakedEnvironment, p: &Preview) -
     struct Out<'a> {
         input: String,
         sun_mode: &'static str,
+        shading: &'static str,
         lookup: &'static str,
         sun: Option<splitsum::Sun>,
         additional_lights: &'a [splitsum::Sun],
@@ -161,7 +182,8 @@ fn preview_json(input: &Path, baked: &splitsum::BakedEnvironment, p: &Preview) -
     let out = Out {
         input: input.display().to_string(),
         sun_mode: baked.sun_mode.name(),
-        lookup: p.lookup.id(),
+        shading: p.shading.name,
+        lookup: p.shading.lookup.id(),
         sun: baked.sun().copied(),
         additional_lights: baked.lights.get(1..).unwrap_or_default(),
         exposure: p.exposure,

@@ -8,6 +8,9 @@
 //! L = prefiltered(d, lod(r)) · (F0·A + B) + E/π(n) · c · kD,
 //! kD = (1 − F0)(1 − W(n·v))(1 − m),
 //!
+//! (an engine's mode combines the same reads as that engine's shader does: [`ibl_terms`],
+//! `plan::shading`),
+//!
 //! with d = normalize(mix(R, n, t(r))) the lookup direction, R = reflect(−v, n) bent toward
 //! n by the material's bend t (`math::lookup`: Frostbite's dominant direction for the
 //! generic target, the engines' own in their modes), read as the mean of two taps
@@ -25,10 +28,11 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use crate::environment::sample::sample_cube_lod;
-use crate::math::brdf::diffuse_fresnel_weight;
+use crate::math::brdf::{diffuse_fresnel_weight, fresnel_schlick_weight};
 use crate::math::lookup::{bent_reflection, stretched_taps};
 use crate::plan::lut::BrdfLut;
 use crate::plan::material::ShadeMaterial;
+use crate::plan::shading::{IblTerms, ShadingTerms, FRESNEL_MEAN_WEIGHT};
 use crate::plan::scene::{
     pixel_geometry, preview_material, PixelGeometry, SceneUniform, SplitSumInputs, SplitSumLight,
     MIN_N_DOT_V,
@@ -78,10 +82,46 @@ pub fn split_sum_shade_along(
         * (Vec3::from(sample_cube_lod(light.specular, a.into(), lod))
             + Vec3::from(sample_cube_lod(light.specular, b.into(), lod)));
     let ab = sample_lut(light.lut, n_dot_v, m.roughness);
-    let specular = prefiltered * (m.f0 * ab[0] + Vec3::splat(ab[1]));
-    let kd = (Vec3::ONE - m.f0) * ((1.0 - diffuse_fresnel_weight(n_dot_v)) * (1.0 - m.metallic));
     let irradiance = Vec3::from(sample_cube_lod(light.irradiance, n.into(), 0.0));
-    specular + irradiance * m.albedo * kd
+    ibl_terms(light.terms, prefiltered, irradiance, ab, n_dot_v, m)
+}
+
+/// The light towards v from the prefiltered radiance `s`, the LUT's `ab` = (A, B) and the
+/// irradiance `e` = E/π at n, combined as `terms` says ([`crate::plan::shading`]'s
+/// notation): the recipe's S (F0 A + B) + E c (1 − F0)(1 − W(n·v))(1 − m), or an engine's
+/// FssEss and FmsEms terms. Mirror of `ibl_terms` in `shaders/common/split_sum.wgsl`.
+pub fn ibl_terms(terms: ShadingTerms, s: Vec3, e: Vec3, ab: [f32; 2], n_dot_v: f32, m: &ShadeMaterial) -> Vec3 {
+    let [a, b] = ab;
+    if terms.ibl == IblTerms::Splitsum {
+        let kd = (Vec3::ONE - m.f0) * ((1.0 - diffuse_fresnel_weight(n_dot_v)) * (1.0 - m.metallic));
+        return s * (m.f0 * a + Vec3::splat(b)) + e * m.albedo * kd;
+    }
+    let ks = if terms.roughness_fresnel {
+        m.f0 + (Vec3::splat(1.0 - m.roughness).max(m.f0) - m.f0) * fresnel_schlick_weight(n_dot_v)
+    } else {
+        m.f0
+    };
+    let fss_ess = ks * a + Vec3::splat(b);
+    let ess = a + b;
+    if terms.ibl == IblTerms::EnergyCompensated {
+        let compensation = Vec3::ONE + m.f0 * (1.0 / ess - 1.0);
+        return s * fss_ess * compensation + e * m.albedo * (Vec3::ONE - fss_ess) * (1.0 - m.metallic);
+    }
+    let ems = 1.0 - ess;
+    let f_avg = m.f0 + (Vec3::ONE - m.f0) * FRESNEL_MEAN_WEIGHT;
+    let fms_ems = ems * fss_ess * f_avg / (Vec3::ONE - ems * f_avg);
+    let diffuse = e * m.albedo * (Vec3::ONE - fss_ess - fms_ems) * (1.0 - m.metallic);
+    if terms.ibl == IblTerms::MultiscatterRadiance {
+        return s * (fss_ess + fms_ems) + diffuse;
+    }
+    s * fss_ess + e * fms_ems + diffuse
+}
+
+/// The factor 1 + F0 (1/Ess − 1), Ess = A + B of the LUT's `ab`, by which a compensated
+/// light BRDF scales its specular ([`crate::plan::shading::LightBrdf::compensated`];
+/// Turquin 2019). Mirror of `specular_compensation` in `shaders/common/lut.wgsl`.
+pub fn specular_compensation(ab: [f32; 2], f0: Vec3) -> Vec3 {
+    Vec3::ONE + f0 * (1.0 / (ab[0] + ab[1]) - 1.0)
 }
 
 /// The split-sum panel, row-major linear RGB.

@@ -6,7 +6,11 @@
 //!
 //! The BRDF: f = kD(h) c/π + D(h) G(l, v) F(v·h) / (4 (n·l)(n·v)), GGX D with α = r²,
 //! G = G1(n·l) G1(n·v) Schlick-GGX with k = r²/2, F Fresnel-Schlick, and
-//! kD(h) = (1 − F(v·h))(1 − metallic) (docs/conventions.md, "Roughness, BRDF").
+//! kD(h) = (1 − F(v·h))(1 − metallic) (docs/conventions.md, "Roughness, BRDF"); in an
+//! engine's mode ([`crate::plan::shading`]) that engine's: G the height-correlated Smith,
+//! kD = 1 − metallic where its Lambert is not Fresnel-weighted, and the specular scaled by
+//! its multiple-scattering compensation 1 + F0 (1/Ess − 1) (Ess from its LUT) where it has
+//! one.
 //!
 //! The environment is the bake's own cube (level 0), split as the specular bake splits it
 //! (`plan::sources::split_hot_texels`): its hot texels (a sun, lamps: at most 512,
@@ -14,7 +18,7 @@
 //! Σ L Ω f (n·l); the cold rest, whose dynamic range is low, is integrated by
 //! quasi-Monte Carlo with one estimator per lobe:
 //! - specular: N GGX visible normals h (Heitz 2018), l = reflect(−v, h), each weighted
-//!   f (n·l) / pdf(l) = F(v·h) G1(n·l) G1(n·v) / G1_Smith(n·v) (bounded, so the estimate
+//!   f (n·l) / pdf(l) = F(v·h) G(l, v) / G1_Smith(n·v) (bounded, so the estimate
 //!   converges quickly even at grazing n·v);
 //! - diffuse: N cosine-distributed l, each weighted kD(h) c.
 //!
@@ -30,13 +34,15 @@ use rayon::prelude::*;
 
 use crate::environment::sample::sample_cube_lod;
 use crate::environment::texels::SourceTexel;
+use crate::cpu::preview_split_sum::{sample_lut, specular_compensation};
 use crate::math::brdf::{
-    alpha_from_roughness, g1_schlick_ggx, g1_smith_ggx, k_ibl,
+    alpha_from_roughness, g1_schlick_ggx, g1_smith_ggx, smith_correlated_lambda,
 };
 use crate::math::sampling::{
     cosine_hemisphere_from_disk, pcg_hash, sample_ggx_vndf, tangent_frame, unit_float,
 };
-use crate::plan::material::{directional_light, fresnel3, ShadeMaterial};
+use crate::plan::material::{directional_light, diffuse_weight, fresnel3, ShadeMaterial};
+use crate::plan::shading::{LightBrdf, Masking};
 use crate::plan::scene::{
     pixel_geometry, preview_material, PixelGeometry, SceneUniform, TruthInputs, TruthLight,
     MIN_N_DOT_V,
@@ -68,8 +74,9 @@ pub fn shifted_disk_point(p: [f32; 4], shift: [f32; 3]) -> [f32; 2] {
     [r * c, r * s]
 }
 
-/// The exact part: Σ L Ω f (n·l) over the hot texels, split into (specular, diffuse / c).
-/// At r = 0 (`alpha` 0) the specular part is left to the mirror lookup.
+/// The exact part: Σ L Ω f (n·l) over the hot texels with `brdf`, split into (specular,
+/// diffuse / c). At r = 0 (`alpha` 0) the specular part is left to the mirror lookup.
+#[allow(clippy::too_many_arguments)]
 pub fn hot_texels_shade(
     hot: &[SourceTexel],
     n: Vec3,
@@ -78,36 +85,57 @@ pub fn hot_texels_shade(
     alpha: f32,
     f0: Vec3,
     metallic: f32,
+    brdf: LightBrdf,
 ) -> (Vec3, Vec3) {
     hot.iter().fold((Vec3::ZERO, Vec3::ZERO), |(spec, diff), t| {
         let l = Vec3::from_slice(&t.dir_omega[..3]);
         let e = Vec3::from_slice(&t.radiance[..3]) * t.dir_omega[3];
-        let (s, d) = directional_light(n, v, n_dot_v, alpha, f0, metallic, l, e);
+        let (s, d) = directional_light(n, v, n_dot_v, alpha, f0, metallic, l, e, brdf);
         (spec + s, diff + d)
     })
 }
 
-/// One estimate of the radiance towards `v` of a point with normal `n`, its quadrature
-/// rotated by `shift` ([`pixel_shift`]); `n_dot_v` is n·v clamped away from 0 by the caller.
-pub fn truth_shade(
+/// The specular weight of a visible normal's direction besides F, G(l, v) / G1_Smith(v),
+/// for n·l > 0 (the VNDF's pdf holds D and the exact Smith G1(v); Heitz 2018):
+/// Schlick-GGX G1(n·l) G1(n·v) / G1_Smith(n·v) with k = α/2, or the height-correlated
+/// G2 / G1(v) = n·l (n·v + Λ'(v)) / (n·l Λ'(v) + n·v Λ'(l)).
+pub fn vndf_masking_weight(brdf: LightBrdf, n_dot_l: f32, n_dot_v: f32, alpha: f32) -> f32 {
+    let a2 = alpha * alpha;
+    match brdf.masking {
+        Masking::SmithCorrelated => {
+            let lv = smith_correlated_lambda(n_dot_v, a2);
+            n_dot_l * (n_dot_v + lv)
+                / (n_dot_l * lv + n_dot_v * smith_correlated_lambda(n_dot_l, a2))
+        }
+        Masking::SchlickGgx => {
+            let k = 0.5 * alpha;
+            g1_schlick_ggx(n_dot_l, k) * g1_schlick_ggx(n_dot_v, k) / g1_smith_ggx(n_dot_v, a2)
+        }
+    }
+}
+
+/// One estimate of the light towards `v` of a point with normal `n`, its quadrature
+/// rotated by `shift` ([`pixel_shift`]), as (specular, diffuse times the albedo) with the
+/// light's BRDF; `n_dot_v` is n·v clamped away from 0 by the caller.
+pub fn truth_shade_parts(
     light: &TruthLight,
     n: Vec3,
     v: Vec3,
     n_dot_v: f32,
     m: &ShadeMaterial,
     shift: [f32; 3],
-) -> Vec3 {
+) -> (Vec3, Vec3) {
     let (r, f0, metallic, albedo) = (m.roughness, m.f0, m.metallic, m.albedo);
+    let brdf = light.brdf;
     let alpha = alpha_from_roughness(r);
-    let k = k_ibl(r);
     let (t0, b0) = tangent_frame(n.into());
     let (t0, b0) = (Vec3::from(t0), Vec3::from(b0));
     let vt = Vec3::new(v.dot(t0), v.dot(b0), n_dot_v);
     let count = light.points.len() as f32;
 
-    let (mut spec, mut diff) = hot_texels_shade(light.hot, n, v, n_dot_v, alpha, f0, metallic);
+    let (mut spec, mut diff) =
+        hot_texels_shade(light.hot, n, v, n_dot_v, alpha, f0, metallic, brdf);
     if alpha > 0.0 {
-        let view_term = g1_schlick_ggx(n_dot_v, k) / g1_smith_ggx(n_dot_v, alpha * alpha);
         let mut sum = Vec3::ZERO;
         for &p in light.points {
             let h = Vec3::from(sample_ggx_vndf(
@@ -122,7 +150,7 @@ pub fn truth_shade(
                 let radiance = Vec3::from(sample_cube_lod(light.cold, l.into(), 0.0));
                 sum += radiance
                     * fresnel3(f0, v_dot_h.max(0.0))
-                    * (g1_schlick_ggx(lt.z, k) * view_term);
+                    * vndf_masking_weight(brdf, lt.z, n_dot_v, alpha);
             }
         }
         spec += sum / count;
@@ -134,14 +162,28 @@ pub fn truth_shade(
         let mut sum = Vec3::ZERO;
         for &p in light.points {
             let lt = Vec3::from(cosine_hemisphere_from_disk(shifted_disk_point(p, shift)));
-            let h = (vt + lt).normalize();
             let l = lt.x * t0 + lt.y * b0 + lt.z * n;
             let radiance = Vec3::from(sample_cube_lod(light.cold, l.into(), 0.0));
-            sum += radiance * (Vec3::ONE - fresnel3(f0, vt.dot(h).max(0.0)));
+            let h = (vt + lt).normalize();
+            sum += radiance * diffuse_weight(brdf, f0, lt.z, n_dot_v, vt.dot(h).max(0.0), alpha);
         }
         diff += sum * ((1.0 - metallic) / count);
     }
-    spec + diff * albedo
+    (spec, diff * albedo)
+}
+
+/// One estimate of the radiance towards `v` of a point with normal `n`
+/// ([`truth_shade_parts`], the two parts summed).
+pub fn truth_shade(
+    light: &TruthLight,
+    n: Vec3,
+    v: Vec3,
+    n_dot_v: f32,
+    m: &ShadeMaterial,
+    shift: [f32; 3],
+) -> Vec3 {
+    let (spec, diff) = truth_shade_parts(light, n, v, n_dot_v, m, shift);
+    spec + diff
 }
 
 /// The truth panel, row-major linear RGB.
@@ -160,7 +202,14 @@ pub fn render_truth(scene: &SceneUniform, inputs: &TruthInputs) -> Vec<[f32; 3]>
                     let m = preview_material(inputs.columns, inputs.materials, material, column);
                     let shift = pixel_shift(y * scene.width + x);
                     let n_dot_v = n.dot(v).max(MIN_N_DOT_V);
-                    truth_shade(&inputs.light, n, v, n_dot_v, &m, shift).into()
+                    let (mut spec, diff) = truth_shade_parts(&inputs.light, n, v, n_dot_v, &m, shift);
+                    if inputs.light.brdf.compensated {
+                        spec *= specular_compensation(
+                            sample_lut(inputs.lut, n_dot_v, m.roughness),
+                            m.f0,
+                        );
+                    }
+                    (spec + diff).into()
                 }
             })
         })

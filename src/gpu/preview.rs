@@ -3,8 +3,7 @@
 //! `cpu/preview_truth.rs`). Each writes one panel into an `Rgba32Float` 2D texture that is
 //! read back as row-major RGB.
 
-use crate::plan::scene::SplitSumInputs;
-use crate::plan::scene::TruthInputs;
+use crate::plan::scene::{SplitSumInputs, SplitSumLight, TruthInputs, TruthLight};
 use crate::gpu::compute::{
     read_texture_level, storage_buffer, uniform_buffer, with_error_scope, ComputeKernel,
 };
@@ -31,12 +30,28 @@ pub struct SplitSumUniform {
     pub lut_width: u32,
     /// LUT height (roughness).
     pub lut_height: u32,
+    /// How the reads combine (`IblTerms` as u32).
+    pub ibl_terms: u32,
+    /// 1 where kS is the roughness-aware Fresnel.
+    pub roughness_fresnel: u32,
     /// Padding to a whole 16-byte block.
-    pub _pad0: u32,
-    /// Padding.
-    pub _pad1: u32,
-    /// Padding.
-    pub _pad2: u32,
+    pub _pad: u32,
+}
+
+impl SplitSumUniform {
+    /// The block for `light`, its chain of `specular_levels` levels.
+    pub fn new(light: &SplitSumLight, specular_levels: u32) -> Self {
+        SplitSumUniform {
+            specular_size: light.specular.size,
+            specular_levels,
+            irradiance_size: light.irradiance.size,
+            lut_width: light.lut.width,
+            lut_height: light.lut.height,
+            ibl_terms: light.terms.ibl as u32,
+            roughness_fresnel: light.terms.roughness_fresnel as u32,
+            _pad: 0,
+        }
+    }
 }
 
 /// Uniform block of `preview_truth.wgsl` (layout checked in tests/shaders.rs).
@@ -49,8 +64,33 @@ pub struct TruthUniform {
     pub hot_count: u32,
     /// Number of quadrature points.
     pub point_count: u32,
-    /// Padding.
-    pub _pad: u32,
+    /// The BRDF's masking (`Masking` as u32).
+    pub masking: u32,
+    /// The BRDF's diffuse weighting (`DiffuseLobe` as u32).
+    pub diffuse: u32,
+    /// 1 where the preview scales the specular by the LUT's compensation.
+    pub compensated: u32,
+    /// The compensation's LUT width (n·v; 0 without one).
+    pub lut_width: u32,
+    /// Its height (roughness).
+    pub lut_height: u32,
+}
+
+impl TruthUniform {
+    /// The block for `light` (whose BRDF's compensation reads a `lut` of `lut_size`, when
+    /// the kernel binds one).
+    pub fn new(light: &TruthLight, lut_size: [u32; 2]) -> Self {
+        TruthUniform {
+            env_size: light.env.size,
+            hot_count: light.hot.len() as u32,
+            point_count: light.points.len() as u32,
+            masking: light.brdf.masking as u32,
+            diffuse: light.brdf.diffuse as u32,
+            compensated: light.brdf.compensated as u32,
+            lut_width: lut_size[0],
+            lut_height: lut_size[1],
+        }
+    }
 }
 
 /// Runs `kernel` over the panel with `resources` followed by the output, and reads it back.
@@ -90,16 +130,7 @@ pub fn preview_split_sum(
         WORKGROUP,
     )?;
     let (spec, irr, lut) = (inputs.light.specular, inputs.light.irradiance, inputs.light.lut);
-    let params = SplitSumUniform {
-        specular_size: spec.size,
-        specular_levels: spec.levels.len() as u32,
-        irradiance_size: irr.size,
-        lut_width: lut.width,
-        lut_height: lut.height,
-        _pad0: 0,
-        _pad1: 0,
-        _pad2: 0,
-    };
+    let params = SplitSumUniform::new(&inputs.light, spec.levels.len() as u32);
     let lut_tex = upload_lut_pairs(device, queue, "preview lut", lut)?;
     let (spec_tex, irr_tex, buffers) =
         with_error_scope(device, "preview_split_sum upload", || {
@@ -142,12 +173,8 @@ pub fn preview_truth(
     inputs: &TruthInputs,
 ) -> Result<Vec<[f32; 3]>> {
     let kernel = ComputeKernel::new(device, "preview_truth", shaders::PREVIEW_TRUTH, WORKGROUP)?;
-    let params = TruthUniform {
-        env_size: inputs.light.env.size,
-        hot_count: inputs.light.hot.len() as u32,
-        point_count: inputs.light.points.len() as u32,
-        _pad: 0,
-    };
+    let params = TruthUniform::new(&inputs.light, [inputs.lut.width, inputs.lut.height]);
+    let lut_tex = upload_lut_pairs(device, queue, "preview truth lut", inputs.lut)?;
     let (env_tex, cold_tex, buffers) = with_error_scope(device, "preview_truth upload", || {
         (
             upload_cube(device, queue, inputs.light.env, 1),
@@ -163,6 +190,7 @@ pub fn preview_truth(
         )
     })?;
     let (env_view, cold_view) = (cube_array_view(&env_tex), cube_array_view(&cold_tex));
+    let lut_view = lut_tex.create_view(&Default::default());
     run_panel(
         device,
         queue,
@@ -177,6 +205,7 @@ pub fn preview_truth(
             buffers[3].as_entire_binding(),
             buffers[4].as_entire_binding(),
             buffers[5].as_entire_binding(),
+            wgpu::BindingResource::TextureView(&lut_view),
         ],
         "preview_truth dispatch",
     )

@@ -61,6 +61,7 @@ pub const PREVIEW_SPLIT_SUM: &str = kernel_source!(
         "cube_fetch.wgsl",
         "cube_sample.wgsl",
         "material.wgsl",
+        "lut.wgsl",
         "split_sum.wgsl",
         "preview_scene.wgsl"
     ]
@@ -77,6 +78,7 @@ pub const PREVIEW_TRUTH: &str = kernel_source!(
         "cube_fetch.wgsl",
         "cube_sample.wgsl",
         "material.wgsl",
+        "lut.wgsl",
         "truth.wgsl",
         "preview_scene.wgsl"
     ]
@@ -93,6 +95,7 @@ pub const VIEW_SPLIT_SUM: &str = kernel_source!(
         "cube_fetch_bordered.wgsl",
         "cube_sample.wgsl",
         "material.wgsl",
+        "lut.wgsl",
         "split_sum.wgsl",
         "view_frame.wgsl",
         "view_surface.wgsl",
@@ -146,6 +149,7 @@ pub const VIEW_FORWARD_BODY: &str = render_source!(
         "cube_fetch_bordered.wgsl",
         "cube_sample.wgsl",
         "material.wgsl",
+        "lut.wgsl",
         "split_sum.wgsl",
         "view_frame.wgsl",
         "view_surface.wgsl",

@@ -151,6 +151,37 @@ pub fn diffuse_fresnel_weight(n_dot_v: f32) -> f32 {
     DIFFUSE_FRESNEL_SCALE * (1.0 - n_dot_v).clamp(0.0, 1.0).powf(DIFFUSE_FRESNEL_POWER)
 }
 
+/// Burley's diffuse over Lambert's, (1 + (f90 − 1)(1 − n·l)⁵)(1 + (f90 − 1)(1 − n·v)⁵) with
+/// f90 = 1/2 + 2 α (l·h)² (Burley 2012, "Physically-Based Shading at Disney", as
+/// Filament's and bevy_pbr's `Fd_Burley` write it with α = r²).
+pub fn burley_weight(n_dot_l: f32, n_dot_v: f32, l_dot_h: f32, alpha: f32) -> f32 {
+    let f90 = 0.5 + 2.0 * alpha * l_dot_h * l_dot_h;
+    (1.0 + (f90 - 1.0) * fresnel_schlick_weight(n_dot_l))
+        * (1.0 + (f90 - 1.0) * fresnel_schlick_weight(n_dot_v))
+}
+
+/// The coefficients of [`env_brdf_approx`]: r·C0 + C1 (Karis 2014).
+const ENV_BRDF_APPROX_C0: [f32; 4] = [-1.0, -0.0275, -0.572, 0.022];
+/// See [`ENV_BRDF_APPROX_C0`].
+const ENV_BRDF_APPROX_C1: [f32; 4] = [1.0, 0.0425, 1.04, -0.04];
+/// The floor Bevy puts under both terms, so that 1/(A + B) stays finite.
+const ENV_BRDF_APPROX_FLOOR: f32 = 5e-5;
+
+/// Karis's analytic fit of the split-sum (A, B) for mobile ("Physically Based Shading on
+/// Mobile", 2014, `EnvBRDFApprox`): with c = r·C0 + C1,
+/// a = min(c₀², 2^(−9.28 n·v)) c₀ + c₁, (A, B) = (−1.04 a + c₂, 1.04 a + c₃); each term
+/// at least 5e-5 as bevy_pbr 0.19's `F_AB` keeps it (without its `dfg_lut` feature, off by
+/// default).
+pub fn env_brdf_approx(roughness: f32, n_dot_v: f32) -> [f32; 2] {
+    let c: [f32; 4] =
+        std::array::from_fn(|k| roughness * ENV_BRDF_APPROX_C0[k] + ENV_BRDF_APPROX_C1[k]);
+    let a004 = (c[0] * c[0]).min((-9.28 * n_dot_v).exp2()) * c[0] + c[1];
+    [
+        (-1.04 * a004 + c[2]).max(ENV_BRDF_APPROX_FLOOR),
+        (1.04 * a004 + c[3]).max(ENV_BRDF_APPROX_FLOOR),
+    ]
+}
+
 /// The exact Smith masking of GGX for one direction, G1(x) = 2 n·x / (n·x + Λ'(x))
 /// (Walter et al. 2007, eq. 34; Λ' as [`smith_correlated_lambda`]): the normalisation of
 /// the distribution of visible normals that `math::sampling::sample_ggx_vndf` draws from.
@@ -185,6 +216,20 @@ mod tests {
             let fit = diffuse_fresnel_weight(n_dot_v as f32) as f64;
             assert!((fit - exact).abs() < 6e-4, "n·v {n_dot_v}: fit {fit}, integral {exact}");
         }
+    }
+
+    /// Karis's fit at two points, worked by hand from the published coefficients: at
+    /// r = 0.5, n·v = 0.5, c = (0.5, 0.02875, 0.754, −0.029), a = min(0.25, 2^−4.64)·0.5 +
+    /// 0.02875 = 0.048804, (A, B) = (0.70324, 0.02176); at r = 1, n·v = 0 the floor holds B.
+    #[test]
+    fn env_brdf_approx_at_worked_points() {
+        let [a, b] = env_brdf_approx(0.5, 0.5);
+        assert!((a - 0.70324).abs() < 1e-5, "{a}");
+        assert!((b - 0.02176).abs() < 1e-5, "{b}");
+        let [a, b] = env_brdf_approx(1.0, 0.0);
+        // c = (0, 0.015, 0.468, −0.018): a = 0.015, A = 0.4524, B = −0.0024 → the floor.
+        assert!((a - 0.4524).abs() < 1e-5, "{a}");
+        assert_eq!(b, ENV_BRDF_APPROX_FLOOR);
     }
 
     #[test]

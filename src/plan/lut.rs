@@ -235,6 +235,16 @@ impl LutLayout {
             LutLayout::Albedo => [ab[0] + ab[1], 0.0],
         }
     }
+
+    /// The integrals (A, B) of a stored pair, where the layout holds both (`None` for
+    /// [`LutLayout::Albedo`], which keeps only their sum).
+    pub fn scale_bias(self, stored: [f32; 2]) -> Option<[f32; 2]> {
+        match self {
+            LutLayout::ScaleBias => Some(stored),
+            LutLayout::Multiscatter => Some([stored[1] - stored[0], stored[0]]),
+            LutLayout::Albedo => None,
+        }
+    }
 }
 
 /// A BRDF lookup table: `data[j * width + i]` holds the model's two channels (for the

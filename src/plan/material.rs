@@ -8,8 +8,10 @@
 use glam::Vec3;
 
 use crate::math::brdf::{
-    alpha_from_roughness, d_ggx, fresnel_schlick_weight, g1_over_n_dot_v, g1_schlick_ggx, k_direct,
+    alpha_from_roughness, burley_weight, d_ggx, fresnel_schlick_weight, g1_over_n_dot_v, g1_schlick_ggx, k_direct,
+    smith_correlated_4v_n_dot_l, smith_correlated_lambda,
 };
+use crate::plan::shading::{DiffuseLobe, LightBrdf, Masking};
 
 /// One surface's material and where the split-sum reads the chain for its roughness: the
 /// lod, the lookup direction's bend and its stretch (`math::lookup`).
@@ -39,12 +41,47 @@ pub fn fresnel3(f0: Vec3, v_dot_h: f32) -> Vec3 {
     f0 * (1.0 - w) + Vec3::splat(w)
 }
 
+/// 4 (n·l) times `brdf`'s specular masking over 4 (n·l)(n·v), for n·l > 0: the
+/// Schlick-GGX G1(n·l) G1(n·v)/(n·v) with k = α/2, or the height-correlated 4 V (n·l).
+/// Mirror of `light_masking` in `shaders/common/material.wgsl`.
+pub fn light_masking(brdf: LightBrdf, n_dot_l: f32, n_dot_v: f32, alpha: f32) -> f32 {
+    match brdf.masking {
+        Masking::SmithCorrelated => {
+            let a2 = alpha * alpha;
+            smith_correlated_4v_n_dot_l(n_dot_v, n_dot_l, a2, smith_correlated_lambda(n_dot_v, a2))
+        }
+        Masking::SchlickGgx => {
+            let k = 0.5 * alpha;
+            g1_schlick_ggx(n_dot_l, k) * g1_over_n_dot_v(n_dot_v, k)
+        }
+    }
+}
+
+/// What `brdf`'s diffuse lobe weights Lambert by besides (1 − metallic), for n·l, n·v and
+/// v·h (= l·h): 1 − F(v·h), 1, or Burley's ([`burley_weight`]). Mirror of `diffuse_weight`
+/// in `shaders/common/material.wgsl`.
+pub fn diffuse_weight(
+    brdf: LightBrdf,
+    f0: Vec3,
+    n_dot_l: f32,
+    n_dot_v: f32,
+    v_dot_h: f32,
+    alpha: f32,
+) -> Vec3 {
+    match brdf.diffuse {
+        DiffuseLobe::FresnelWeighted => Vec3::ONE - fresnel3(f0, v_dot_h),
+        DiffuseLobe::Lambert => Vec3::ONE,
+        DiffuseLobe::Burley => Vec3::splat(burley_weight(n_dot_l, n_dot_v, v_dot_h, alpha)),
+    }
+}
+
 /// What a light of irradiance `e` (L times its solid angle) from unit direction `l` sends
-/// towards `v` off a point with normal `n`, e f(l, v) (n·l) with the truth's BRDF, as
-/// (specular, diffuse per unit albedo): GGX D, Schlick-GGX G1 with k = α/2 for l and v,
-/// Fresnel-Schlick at v·h, plus Lambert weighted by (1 − F)(1 − metallic); at α = 0 no
-/// specular (a mirror shows a direction's light as a point: the mirror lookup's). The
-/// truth's hot texels and the lights taken out of the environment are shaded by it.
+/// towards `v` off a point with normal `n`, e f(l, v) (n·l) with `brdf`, as (specular,
+/// diffuse per unit albedo): GGX D, its masking ([`light_masking`]), Fresnel-Schlick at
+/// v·h, plus Lambert weighted by (1 − F)(1 − metallic) or by (1 − metallic) alone, as its
+/// diffuse says; at α = 0 no specular (a mirror shows a direction's light as a point: the
+/// mirror lookup's). The truth's hot texels and the lights taken out of the environment are
+/// shaded by it ([`LightBrdf::GENERIC`]: Schlick-GGX, Fresnel-weighted, for the recipe).
 /// Mirror of `directional_light` in `shaders/common/material.wgsl`.
 #[allow(clippy::too_many_arguments)]
 pub fn directional_light(
@@ -56,26 +93,24 @@ pub fn directional_light(
     metallic: f32,
     l: Vec3,
     e: Vec3,
+    brdf: LightBrdf,
 ) -> (Vec3, Vec3) {
     let n_dot_l = n.dot(l);
     if n_dot_l <= 0.0 {
         return (Vec3::ZERO, Vec3::ZERO);
     }
-    let k = 0.5 * alpha;
     let h = (l + v).normalize();
     let f = fresnel3(f0, v.dot(h).max(0.0));
     let mut spec = Vec3::ZERO;
     if alpha > 0.0 {
-        // f (n·l) = D F G1(n·l) (G1(n·v)/(n·v)) / 4
-        let w = d_ggx(n.dot(h).max(0.0), alpha)
-            * g1_schlick_ggx(n_dot_l, k)
-            * g1_over_n_dot_v(n_dot_v, k)
-            * 0.25;
+        // f (n·l) = D F (4 (n·l) masking) / 4
+        let w = d_ggx(n.dot(h).max(0.0), alpha) * light_masking(brdf, n_dot_l, n_dot_v, alpha) * 0.25;
         spec = e * f * w;
     }
     let mut diff = Vec3::ZERO;
     if metallic < 1.0 {
-        diff = e * (Vec3::ONE - f) * ((1.0 - metallic) * n_dot_l / std::f32::consts::PI);
+        let weight = diffuse_weight(brdf, f0, n_dot_l, n_dot_v, v.dot(h).max(0.0), alpha);
+        diff = e * weight * ((1.0 - metallic) * n_dot_l / std::f32::consts::PI);
     }
     (spec, diff)
 }

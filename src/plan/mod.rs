@@ -4,7 +4,8 @@
 //! sheen chain's plan and driver ([`sheen`]), the least-squares fit of a level for
 //! bilinear lookups ([`fit`]), the conversion's parameters ([`convert`]), the LUT models
 //! and their quadrature ([`lut`]), the BC6H encoder's settings ([`bc6h`]), the shading
-//! functions' material ([`material`]) and the preview's scene ([`scene`]).
+//! functions' material ([`material`]), how a shader combines a bake's files ([`shading`]:
+//! the recipe's and each engine's) and the preview's scene ([`scene`]).
 
 pub mod bc6h;
 pub mod chain;
@@ -13,5 +14,6 @@ pub mod fit;
 pub mod lut;
 pub mod material;
 pub mod scene;
+pub mod shading;
 pub mod sheen;
 pub mod sources;

@@ -18,6 +18,7 @@ use crate::environment::Cubemap;
 use crate::math::sampling::hammersley;
 use crate::plan::lut::BrdfLut;
 use crate::plan::material::ShadeMaterial;
+use crate::plan::shading::{LightBrdf, ShadingTerms};
 
 /// A material of the preview: Cook-Torrance with GGX D, Smith/Schlick-GGX G and
 /// Fresnel-Schlick, plus Lambert diffuse weighted by kD = (1 − F)(1 − metallic).
@@ -255,6 +256,9 @@ pub struct TruthLight<'a> {
     pub hot: &'a [SourceTexel],
     /// The quasi-Monte Carlo points ([`disk_points`]).
     pub points: &'a [[f32; 4]],
+    /// The BRDF integrated (its compensation is applied by the preview's render, which
+    /// has the LUT: [`TruthInputs::lut`]).
+    pub brdf: LightBrdf,
 }
 
 /// The baked light the split-sum reads: what `split_sum_shade` reads besides the point.
@@ -266,6 +270,8 @@ pub struct SplitSumLight<'a> {
     pub irradiance: &'a Cubemap,
     /// The split-sum LUT (scale A, bias B).
     pub lut: &'a BrdfLut,
+    /// How the shading combines the reads (the recipe's, or an engine's).
+    pub terms: ShadingTerms,
 }
 
 /// What the truth render reads: the environment and the kernels' tables.
@@ -277,6 +283,8 @@ pub struct TruthInputs<'a> {
     pub columns: &'a [[f32; 4]],
     /// Per material: (F0, metallic), (albedo, 0).
     pub materials: &'a [[f32; 4]],
+    /// The LUT (A, B) the light BRDF's compensation reads, when it is compensated.
+    pub lut: &'a BrdfLut,
 }
 
 /// The N points of the truth's quadrature: Hammersley (i/N, φ-radical-inverse) as

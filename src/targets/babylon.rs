@@ -49,6 +49,7 @@ pub const BABYLON: Target = Target {
         "the irradiance is the header's spherical polynomial (E / pi, in the cube's frame)",
         "RGBD holds radiance up to 255: brighter texels (a sun) are clipped; scale with --exposure and scene.environmentIntensity to keep them",
     ],
+    shading: None,
 };
 
 /// Babylon's prefiltered environment: `<stem>.env`, the whole chain as RGBD PNGs and the

@@ -5,6 +5,11 @@ use crate::io::PixelFormat;
 use crate::math::cubemap::AxisMap;
 use crate::plan::chain::{MipRoughness, DEFAULT_MIN_MIP_SIZE};
 use crate::targets::generic::STANDARD;
+use crate::math::lookup::SpecularLookup;
+use crate::plan::shading::{
+    DiffuseLobe, IblTerms, IrradianceSource, LightBrdf, Masking, ShaderLut, Shading,
+    ShadingTerms,
+};
 use crate::targets::{Orientation, Target, BRDF_LUT_PNG};
 
 /// Bevy 0.19 (`EnvironmentMapLight`, `Skybox`).
@@ -38,4 +43,33 @@ pub const BEVY: Target = Target {
         "radiance is the HDRI's: at Bevy's default exposure (EV100 9.7) use intensity = brightness = 2^9.7 * 1.2 = 998 to see it as is",
         "Bevy uses its own environment BRDF, no LUT and no SH",
     ],
+    shading: Some(BEVY_SHADING),
+};
+
+/// How bevy_pbr 0.19's `StandardMaterial` shades with an `EnvironmentMapLight` and its
+/// default features (`environment_map.wgsl`'s `environment_map_light`, `pbr_lighting.wgsl`):
+/// α = max(r, 0.089)² (`perceptualRoughnessToRoughness`; the lod and the LUT read r
+/// unclamped, which differs at r = 0 alone); the chain read along Frostbite's dominant
+/// direction (`radiance_sample_direction`); (A, B) from `F_AB`, Karis's analytic fit (the
+/// `dfg_lut` feature, off by default, reads a 64² height-correlated table instead);
+/// `compute_multiscatter`'s FssEss and FmsEms, the multiple scattering lit by the
+/// irradiance cube, the diffuse by `Edss` = 1 − FssEss − FmsEms of the dielectric
+/// (`specular_occlusion` is 1 for F0 ≥ 0.02); lights with `V_SmithGGXCorrelated`, Fresnel
+/// with f90 = 1 for F0 ≥ 0.02, `specular_multiscatter`'s 1 + F0 (1/(A + B) − 1), and
+/// `Fd_Burley` unweighted by F.
+pub const BEVY_SHADING: Shading = Shading {
+    name: "Bevy 0.19",
+    lookup: SpecularLookup::Frostbite,
+    min_roughness: 0.089,
+    lut: ShaderLut::EnvBrdfApprox,
+    terms: ShadingTerms {
+        ibl: IblTerms::MultiscatterIrradiance,
+        roughness_fresnel: false,
+    },
+    irradiance: IrradianceSource::Cube,
+    light: LightBrdf {
+        masking: Masking::SmithCorrelated,
+        diffuse: DiffuseLobe::Burley,
+        compensated: true,
+    },
 };

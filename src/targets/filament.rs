@@ -13,6 +13,12 @@ use crate::plan::chain::MipRoughness;
 use crate::stages::light::BakedEnvironment;
 use crate::targets::{engine_sh, FileContext, FileSet, Orientation, Target, BRDF_LUT_PNG};
 use crate::{Error, Result};
+use crate::math::lookup::SpecularLookup;
+use crate::plan::lut::LutModel;
+use crate::plan::shading::{
+    DiffuseLobe, IblTerms, IrradianceSource, LightBrdf, Masking, Shading, ShaderLut,
+    ShadingTerms,
+};
 
 /// The smallest mip of the Filament target's chain: cmgen's default (`--ibl-min-lod-size`).
 pub const FILAMENT_MIN_MIP_SIZE: u32 = 16;
@@ -66,6 +72,36 @@ pub const FILAMENT: Target = Target {
         "Filament samples lod = (levels - 1) * r * (2 - r) (perceptualRoughnessToLod); without SH it reads diffuse from the last level, which holds E / pi",
         "sh.txt: the same SH as cmgen --sh-shader writes them",
     ],
+    shading: Some(FILAMENT_SHADING),
+};
+
+/// How Filament 1.53's standard lit model shades (`light_indirect.fs` `evaluateIBL`,
+/// `shading_model_standard.fs`): roughness at least 0.045 (`MIN_PERCEPTUAL_ROUGHNESS` on
+/// desktop; 0.089 where materials are built for mobile, which changes only r = 0); the
+/// chain read along mix(R, n, α²) (`getSpecularDominantDirection` with α = r²); its
+/// 128² DFG of (∫ Fc V, ∫ V) with the height-correlated Smith; E = mix(dfg.x, dfg.y, F0)
+/// (= FssEss), the specular S E times `energyCompensation` 1 + F0 (1/dfg.y − 1), the
+/// diffuse c E/π (1 − E) from the last level (`createIblFromKtx1` gives no SH, the README's
+/// recipe); lights with `V_SmithGGXCorrelated` times the same compensation and
+/// `Fd_Lambert` unweighted by F.
+pub const FILAMENT_SHADING: Shading = Shading {
+    name: "Filament 1.53",
+    lookup: SpecularLookup::AlphaSquared,
+    min_roughness: 0.045,
+    lut: ShaderLut::Table {
+        model: LutModel::MultiscatterSmithCorrelated,
+        size: Some(128),
+    },
+    terms: ShadingTerms {
+        ibl: IblTerms::EnergyCompensated,
+        roughness_fresnel: false,
+    },
+    irradiance: IrradianceSource::LastLevel,
+    light: LightBrdf {
+        masking: Masking::SmithCorrelated,
+        diffuse: DiffuseLobe::Lambert,
+        compensated: true,
+    },
 };
 
 /// cmgen's deploy set: `<stem>_ibl.ktx` (KTX 1: the specular chain, with the SH

@@ -15,6 +15,7 @@ use crate::stages::light::BakedEnvironment;
 use crate::stages::sh::ShCoefficients;
 use crate::targets::{FileContext, FileSet, Orientation, Target, BRDF_LUT_PNG};
 use crate::{Error, Result};
+use crate::plan::shading::Shading;
 
 /// The standard file set ([`write_standard`]), in the bake's container.
 pub const STANDARD: FileSet = FileSet {
@@ -47,6 +48,7 @@ pub const GENERIC: Target = Target {
         "sample specular at lod = roughness * (levels - 1), seamless trilinear",
         "irradiance holds E / pi: multiply by the diffuse albedo",
     ],
+    shading: Some(Shading::GENERIC),
 };
 
 /// The standard file set: `specular.<ext>` and (when [`Target::irradiance`]) `irradiance.<ext>`

@@ -13,6 +13,11 @@ use crate::stages::light::BakedEnvironment;
 use crate::targets::{FileContext, FileSet, LutChannels, LutSpec, Orientation, Target};
 use crate::Result;
 use serde_json::json;
+use crate::math::lookup::SpecularLookup;
+use crate::plan::shading::{
+    DiffuseLobe, IblTerms, IrradianceSource, LightBrdf, Masking, Shading, ShaderLut,
+    ShadingTerms,
+};
 
 /// The glTF Sample Viewer (npm `@khronosgroup/gltf-viewer` 1.1), with glTF-IBL-Sampler's
 /// file set and its own chain layout.
@@ -60,6 +65,34 @@ pub const GLTF: Target = Target {
         "the viewer samples lod = roughness * (u_MipCount - 1), GGX and sheen alike, at u_EnvRotation * direction",
         "lut_ggx.png (height-correlated Smith scale and bias), lut_charlie.png (the Charlie albedo in B) and lut_sheen_E.png (the sheen albedo in R) at uv = (n.v, roughness)",
     ],
+    shading: Some(GLTF_SHADING),
+};
+
+/// How the glTF Sample Viewer 1.1 shades a metallic-roughness material (its `ibl.glsl`
+/// and `pbr.frag`, read in `@khronosgroup/gltf-viewer`'s bundle): no minimum roughness;
+/// the chain read along R; `lut_ggx` (A, B) with the height-correlated Smith (the bake's
+/// file); `getIBLGGXFresnel`'s roughness-aware kS, FssEss + FmsEms all lit by the
+/// prefiltered radiance, the Lambertian cube's E/π mixed in by 1 − that (`mix(f_diffuse,
+/// f_specular, fresnel)`); lights with `V_GGX` (correlated Smith), no compensation, and
+/// the dielectric's Lambert mixed by F(v·h).
+pub const GLTF_SHADING: Shading = Shading {
+    name: "glTF Sample Viewer 1.1",
+    lookup: SpecularLookup::Reflect,
+    min_roughness: 0.0,
+    lut: ShaderLut::Table {
+        model: LutModel::SmithCorrelated,
+        size: None,
+    },
+    terms: ShadingTerms {
+        ibl: IblTerms::MultiscatterRadiance,
+        roughness_fresnel: true,
+    },
+    irradiance: IrradianceSource::Cube,
+    light: LightBrdf {
+        masking: Masking::SmithCorrelated,
+        diffuse: DiffuseLobe::FresnelWeighted,
+        compensated: false,
+    },
 };
 
 /// glTF-IBL-Sampler's folders: `lambertian/diffuse.ktx2` (E/π), `ggx/specular.ktx2` and

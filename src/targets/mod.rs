@@ -33,6 +33,7 @@ use crate::math::cubemap::AxisMap;
 use crate::math::sh::{sh_prescaled, sh_rotated};
 use crate::plan::chain::MipRoughness;
 use crate::plan::lut::{BrdfLut, LutModel};
+use crate::plan::shading::Shading;
 use crate::stages::light::BakedEnvironment;
 use crate::stages::sh::ShCoefficients;
 use crate::{Error, Result};
@@ -164,6 +165,10 @@ pub struct Target {
     pub format_refusals: &'static [(PixelFormat, &'static str)],
     /// How the engine reads the files, for the manifest.
     pub notes: &'static [&'static str],
+    /// How the engine's shader shades from the files, as read in its source (the preview's
+    /// mode for this target, `preview --target`); `None` where the preview does not model
+    /// it (the engine's LUT or BRDF has terms the kernels lack: see docs/targets.md).
+    pub shading: Option<Shading>,
 }
 
 /// What a target's writer receives besides the baked light.

@@ -7,6 +7,11 @@ use crate::plan::chain::MipRoughness;
 use crate::plan::lut::LutModel;
 use crate::targets::generic::STANDARD;
 use crate::targets::{LutChannels, LutSpec, Orientation, Target};
+use crate::math::lookup::SpecularLookup;
+use crate::plan::shading::{
+    DiffuseLobe, IblTerms, IrradianceSource, LightBrdf, Masking, Shading, ShaderLut,
+    ShadingTerms,
+};
 
 /// three.js r187 (`MeshStandardMaterial`, `MeshPhysicalMaterial`, `scene.background`).
 pub const THREE: Target = Target {
@@ -49,4 +54,35 @@ pub const THREE: Target = Target {
         "the last level holds E / pi: three reads diffuse as PI * textureLod(envMap, N, maxLod)",
         "sh.json radiance_sh9 is the SphericalHarmonics3 of a THREE.LightProbe as is (world space, not mirrored)",
     ],
+    shading: Some(THREE_SHADING),
+};
+
+/// How three.js r187's `MeshStandardMaterial` shades (`lights_physical_fragment`,
+/// `lights_fragment_begin`, `lights_physical_pars_fragment`,
+/// `envmap_physical_pars_fragment`): roughness at least 0.045 (plus `geometryRoughness`,
+/// the screen-space normal variation, which the preview's resolution-free spheres leave
+/// out); the chain read along normalize(mix(R, n, r⁴)); its own 16² DFG (`DFGLUTData`,
+/// (A, B) with the height-correlated Smith, at uv = (r, n·v)); `computeMultiscattering`'s
+/// FssEss and FmsEms, the multiple scattering lit by `iblIrradiance`, the last level
+/// (`textureLod(envMap, n, ENVMAP_MAX_LOD)`), the diffuse by 1 − FssEss − FmsEms of the
+/// dielectric; lights with `BRDF_GGX` (correlated Smith) times
+/// `multiScatteringCompensation` = 1 + F0 (1/(A + B) − 1), Lambert times 1 − F(v·h).
+pub const THREE_SHADING: Shading = Shading {
+    name: "three.js r187",
+    lookup: SpecularLookup::AlphaSquared,
+    min_roughness: 0.045,
+    lut: ShaderLut::Table {
+        model: LutModel::SmithCorrelated,
+        size: Some(16),
+    },
+    terms: ShadingTerms {
+        ibl: IblTerms::MultiscatterIrradiance,
+        roughness_fresnel: false,
+    },
+    irradiance: IrradianceSource::LastLevel,
+    light: LightBrdf {
+        masking: Masking::SmithCorrelated,
+        diffuse: DiffuseLobe::FresnelWeighted,
+        compensated: true,
+    },
 };

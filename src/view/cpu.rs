@@ -16,6 +16,7 @@ use crate::environment::sample::sample_cube_lod;
 use crate::math::brdf::alpha_from_roughness;
 use crate::math::color::linear_to_srgb;
 use crate::plan::material::{directional_light, point_light, ShadeMaterial};
+use crate::plan::shading::LightBrdf;
 use crate::stages::preview::picture::{luminance, pbr_neutral, HEAT_BACKGROUND};
 use crate::view::camera::CameraFrame;
 use crate::view::frame::{unpack_material, FrameUniform, Mode, PresentUniform, Surface, ViewLight};
@@ -115,8 +116,17 @@ fn sun_texels_shade(
             let (t, r) = (texels[2 * i as usize], texels[2 * i as usize + 1]);
             let e = Vec3::from_slice(&r[..3]) * t[3];
             let l = Vec3::from_slice(&t[..3]);
-            let (spec, diff) =
-                directional_light(px.n, px.v, px.n_dot_v, alpha, px.m.f0, px.m.metallic, l, e);
+            let (spec, diff) = directional_light(
+                px.n,
+                px.v,
+                px.n_dot_v,
+                alpha,
+                px.m.f0,
+                px.m.metallic,
+                l,
+                e,
+                LightBrdf::GENERIC,
+            );
             let c = spec + diff * px.m.albedo;
             if r[3] < 0.5 {
                 c * visibility

@@ -18,6 +18,7 @@ use crate::plan::chain::SpecularChain;
 use crate::plan::lut::BrdfLut;
 use crate::plan::material::{ShadeMaterial, MIN_DIRECT_ALPHA};
 use crate::plan::scene::{SplitSumLight, TruthLight, MIN_N_DOT_V};
+use crate::plan::shading::{LightBrdf, ShadingTerms};
 use crate::stages::light::BakedEnvironment;
 use crate::stages::preview::picture::{auto_exposure, luminance, HEAT_LOG10_RANGE};
 use crate::stages::preview::{sun_texels, truth_environment};
@@ -224,6 +225,8 @@ impl ViewLight {
             specular: &self.specular,
             irradiance: &self.irradiance,
             lut: &self.lut,
+            // The viewer shades as the README's recipe.
+            terms: ShadingTerms::GENERIC,
         }
     }
 
@@ -234,6 +237,7 @@ impl ViewLight {
             cold: &self.cold,
             hot: &self.hot,
             points,
+            brdf: LightBrdf::GENERIC,
         }
     }
 }

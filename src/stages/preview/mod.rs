@@ -20,17 +20,22 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::backend::Backend;
+use std::borrow::Cow;
+
+use crate::cpu::preview_split_sum::{sample_lut, specular_compensation};
 use crate::cpu::preview_truth::hot_texels_shade;
 use crate::environment::sun::Sun;
 use crate::environment::texels::SourceTexel;
 use crate::environment::Cubemap;
-use crate::math::lookup::SpecularLookup;
 use crate::plan::chain::SpecularChain;
-use crate::plan::lut::{BrdfLut, DEFAULT_LUT_SIZE};
+use crate::plan::lut::{BrdfLut, LutLayout, DEFAULT_LUT_SIZE};
 use crate::plan::scene::{
     disk_points, material_table, pixel_geometry, preview_material, PixelGeometry, Scene,
     SceneUniform, SplitSumInputs, SplitSumLight, TruthInputs, TruthLight, DEFAULT_CELL,
     DEFAULT_TRUTH_SAMPLES, MATERIALS, MIN_N_DOT_V, ROUGHNESS,
+};
+use crate::plan::shading::{
+    env_brdf_approx_table, IrradianceSource, LightBrdf, ShaderLut, Shading,
 };
 use crate::plan::sources::{split_hot_texels, SampledSource};
 use crate::stages::light::BakedEnvironment;
@@ -70,9 +75,10 @@ pub struct PreviewOptions {
     /// Quasi-Monte Carlo points per lobe and pixel of the ground truth (0 ..= 65536; 0
     /// renders the split-sum alone, without the truth, the heat map or the stats).
     pub truth_samples: u32,
-    /// Where the split-sum reads the specular chain ([`SpecularLookup::GENERIC`], the
-    /// README's recipe, by default).
-    pub lookup: SpecularLookup,
+    /// How the split-sum shades the spheres and which BRDF the truth integrates
+    /// ([`Shading::GENERIC`], the README's recipe, by default; an engine target's own
+    /// shows what that engine's shader makes of its files).
+    pub shading: Shading,
 }
 
 impl Default for PreviewOptions {
@@ -81,7 +87,7 @@ impl Default for PreviewOptions {
             cell: DEFAULT_CELL,
             exposure_ev: None,
             truth_samples: DEFAULT_TRUTH_SAMPLES,
-            lookup: SpecularLookup::GENERIC,
+            shading: Shading::GENERIC,
         }
     }
 }
@@ -126,8 +132,8 @@ pub struct Preview {
     pub truth_seconds: f64,
     /// The lights shaded beside the IBL (`--sun split`), the sun first.
     pub lights: Vec<Sun>,
-    /// Where the split-sum read the specular chain.
-    pub lookup: SpecularLookup,
+    /// How the split-sum shaded and the truth's BRDF.
+    pub shading: Shading,
 }
 
 impl PreviewOptions {
@@ -163,10 +169,10 @@ pub fn validate_options(opts: &PreviewOptions) -> Result<()> {
     Ok(())
 }
 
-/// The per-column table of the kernels: (roughness, the chain's lod for it, `lookup`'s
-/// bend for it, its stretch).
-pub fn column_table(chain: SpecularChain, lookup: SpecularLookup) -> Vec<[f32; 4]> {
-    column_table_at(&ROUGHNESS, chain, lookup)
+/// The per-column table of the kernels: (the roughness `shading` uses, the chain's lod
+/// for it, its lookup's bend for it, its stretch).
+pub fn column_table(chain: SpecularChain, shading: &Shading) -> Vec<[f32; 4]> {
+    column_table_at(&ROUGHNESS, chain, shading)
 }
 
 /// [`column_table`] for the columns' roughness `roughness` (one per column of the
@@ -174,11 +180,13 @@ pub fn column_table(chain: SpecularChain, lookup: SpecularLookup) -> Vec<[f32; 4
 pub fn column_table_at(
     roughness: &[f32],
     chain: SpecularChain,
-    lookup: SpecularLookup,
+    shading: &Shading,
 ) -> Vec<[f32; 4]> {
+    let lookup = shading.lookup;
     roughness
         .iter()
         .map(|&r| {
+            let r = shading.roughness(r);
             let lod = chain.roughness.lod(r, chain.levels);
             [r, lod, lookup.bend(r), lookup.stretch()]
         })
@@ -253,15 +261,19 @@ pub fn sun_texels(sun: &Sun) -> Vec<SourceTexel> {
 }
 
 /// Adds the sun, a directional light of irradiance E⊥ from its direction, to every sphere
-/// pixel of the split-sum panel: E⊥ f(l, v) (n·l) with the preview's BRDF, evaluated by
-/// the truth's exact sum over one texel (`cpu::preview_truth::hot_texels_shade`), so the
-/// light is shaded as the truth shades its hot texels. At r = 0 a mirror reflects no
-/// directional light (the truth's mirror reads the residual too).
+/// pixel of the split-sum panel: E⊥ f(l, v) (n·l) with `brdf` (its specular scaled by the
+/// compensation of `lut` where it is compensated), evaluated by the truth's exact sum over
+/// one texel (`cpu::preview_truth::hot_texels_shade`), so the light is shaded as the truth
+/// shades its hot texels. At r = 0 a mirror reflects no directional light (the truth's
+/// mirror reads the residual too).
+#[allow(clippy::too_many_arguments)]
 pub fn add_sun_light(
     scene: &SceneUniform,
     columns: &[[f32; 4]],
     materials: &[[f32; 4]],
     sun: &Sun,
+    brdf: LightBrdf,
+    lut: &BrdfLut,
     panel: &mut [[f32; 3]],
 ) {
     let d = sun.direction;
@@ -281,7 +293,11 @@ pub fn add_sun_light(
                 let m = preview_material(columns, materials, material, column);
                 let n_dot_v = n.dot(v).max(MIN_N_DOT_V);
                 let alpha = crate::math::brdf::alpha_from_roughness(m.roughness);
-                let (spec, diff) = hot_texels_shade(&light, n, v, n_dot_v, alpha, m.f0, m.metallic);
+                let (mut spec, diff) =
+                    hot_texels_shade(&light, n, v, n_dot_v, alpha, m.f0, m.metallic, brdf);
+                if brdf.compensated {
+                    spec *= specular_compensation(sample_lut(lut, n_dot_v, m.roughness), m.f0);
+                }
                 let c = spec + diff * m.albedo;
                 let p = &mut panel[(y * scene.width + x) as usize];
                 *p = [p[0] + c.x, p[1] + c.y, p[2] + c.z];
@@ -292,9 +308,9 @@ pub fn add_sun_light(
 
 /// The ground-truth panel of `light` on `backend` for the kernels' tables (of the columns
 /// only each one's roughness is read) with `samples` quasi-Monte Carlo points per lobe and
-/// pixel: the chain's level 0 split into its hot texels and the cold rest
-/// ([`truth_environment`]), the lights taken out of it added to the hot texels as discs
-/// ([`sun_texels`]).
+/// pixel and the BRDF `brdf` (compensated with `light`'s LUT where it is): the chain's
+/// level 0 split into its hot texels and the cold rest ([`truth_environment`]), the lights
+/// taken out of it added to the hot texels as discs ([`sun_texels`]).
 pub fn render_truth(
     backend: &dyn Backend,
     scene: &SceneUniform,
@@ -302,6 +318,7 @@ pub fn render_truth(
     columns: &[[f32; 4]],
     materials: &[[f32; 4]],
     samples: u32,
+    brdf: LightBrdf,
 ) -> Result<Vec<[f32; 3]>> {
     let (env, mut split) = truth_environment(light.specular);
     for sun in light.lights {
@@ -316,9 +333,11 @@ pub fn render_truth(
                 cold: &split.rest,
                 hot: &split.hot,
                 points: &points,
+                brdf,
             },
             columns,
             materials,
+            lut: light.lut,
         },
     )
 }
@@ -332,7 +351,8 @@ pub fn render_preview(
     validate_options(opts)?;
     let scene = Scene { cell: opts.cell };
     let uniform = scene.uniform();
-    let columns = column_table(light.chain, opts.lookup);
+    let shading = &opts.shading;
+    let columns = column_table(light.chain, shading);
     let materials = material_table();
 
     let t = Instant::now();
@@ -343,13 +363,22 @@ pub fn render_preview(
                 specular: light.specular,
                 irradiance: light.irradiance,
                 lut: light.lut,
+                terms: shading.terms,
             },
             columns: &columns,
             materials: &materials,
         },
     )?;
     for sun in light.lights {
-        add_sun_light(&uniform, &columns, &materials, sun, &mut split_sum);
+        add_sun_light(
+            &uniform,
+            &columns,
+            &materials,
+            sun,
+            shading.light,
+            light.lut,
+            &mut split_sum,
+        );
     }
     let split_sum_seconds = t.elapsed().as_secs_f64();
 
@@ -364,6 +393,7 @@ pub fn render_preview(
             &columns,
             &materials,
             opts.truth_samples,
+            shading.light,
         )?
     };
     let truth_seconds = t.elapsed().as_secs_f64();
@@ -406,7 +436,7 @@ pub fn render_preview(
         split_sum_seconds,
         truth_seconds,
         lights: light.lights.to_vec(),
-        lookup: opts.lookup,
+        shading: opts.shading,
     })
 }
 
@@ -424,8 +454,77 @@ impl<'a> BakedLight<'a> {
     }
 }
 
-/// The preview of `baked` with `lut`, or without one with the default model's
-/// [`DEFAULT_LUT_SIZE`]² LUT computed on `backend`.
+/// The diffuse light E/π `shading` reads from `baked`: the irradiance cube, or a cube of
+/// the chain's last level alone (which the bake fits to E/π).
+pub fn shading_irradiance<'a>(shading: &Shading, baked: &'a BakedEnvironment) -> Cow<'a, Cubemap> {
+    match shading.irradiance {
+        IrradianceSource::Cube => Cow::Borrowed(&baked.irradiance),
+        IrradianceSource::LastLevel => {
+            let last = baked.specular.levels.len() - 1;
+            Cow::Owned(Cubemap {
+                size: baked.specular.level_size(last),
+                levels: vec![baked.specular.levels[last].clone()],
+            })
+        }
+    }
+}
+
+/// Whether `lut` is the table `shading`'s shader reads: its model, and its engine's own
+/// size where the engine ships one.
+pub fn is_shading_lut(shading: &Shading, lut: &BrdfLut) -> bool {
+    match shading.lut {
+        ShaderLut::Table { model, size } => {
+            lut.model == model && size.is_none_or(|n| lut.width == n && lut.height == n)
+        }
+        ShaderLut::EnvBrdfApprox => false,
+    }
+}
+
+/// The split-sum's (A, B) table of `shading`'s LUT: `lut` where it is that table
+/// ([`is_shading_lut`]), otherwise computed on `backend` (its engine's size, or
+/// [`DEFAULT_LUT_SIZE`]²); a model stored as (B, A + B) (Filament's) is rearranged.
+pub fn shading_lut(backend: &dyn Backend, shading: &Shading, lut: Option<&BrdfLut>) -> Result<BrdfLut> {
+    let model = match shading.lut {
+        ShaderLut::Table { model, .. } => model,
+        ShaderLut::EnvBrdfApprox => {
+            return Ok(env_brdf_approx_table(DEFAULT_LUT_SIZE, DEFAULT_LUT_SIZE))
+        }
+    };
+    let table = match lut.filter(|l| is_shading_lut(shading, l)) {
+        Some(l) => l.clone(),
+        None => {
+            let n = match shading.lut {
+                ShaderLut::Table { size: Some(n), .. } => n,
+                _ => DEFAULT_LUT_SIZE,
+            };
+            backend.brdf_lut_model(n, n, model)?
+        }
+    };
+    let layout = model.layout();
+    if layout == LutLayout::ScaleBias {
+        return Ok(table);
+    }
+    let data = table
+        .data
+        .iter()
+        .map(|&t| {
+            layout.scale_bias(t).ok_or_else(|| Error::InvalidOption {
+                option: "preview.shading",
+                message: format!(
+                    "the {} LUT holds no (A, B) for the split-sum",
+                    model.name()
+                ),
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    Ok(BrdfLut {
+        data,
+        ..table
+    })
+}
+
+/// The preview of `baked` with its shading's LUT (`lut` where it is that table,
+/// [`shading_lut`]) and diffuse light ([`shading_irradiance`]).
 pub fn preview_baked(
     backend: &dyn Backend,
     name: &str,
@@ -433,13 +532,11 @@ pub fn preview_baked(
     lut: Option<&BrdfLut>,
     opts: &PreviewOptions,
 ) -> Result<Preview> {
-    let own;
-    let lut = match lut {
-        Some(l) => l,
-        None => {
-            own = backend.brdf_lut(DEFAULT_LUT_SIZE, DEFAULT_LUT_SIZE)?;
-            &own
-        }
+    let lut = shading_lut(backend, &opts.shading, lut)?;
+    let irradiance = shading_irradiance(&opts.shading, baked);
+    let light = BakedLight {
+        irradiance: &irradiance,
+        ..BakedLight::of(name, baked, &lut)
     };
-    render_preview(backend, &BakedLight::of(name, baked, lut), opts)
+    render_preview(backend, &light, opts)
 }

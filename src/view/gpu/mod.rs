@@ -24,6 +24,7 @@ use crate::gpu::shaders;
 use crate::gpu::texture::{
     create_texture_2d, upload_bordered_cube, upload_lut_pairs, write_texels,
 };
+use crate::plan::shading::ShadingTerms;
 use crate::view::frame::{heat_table, light_table, FrameUniform, Mode, PresentUniform, ViewLight};
 use crate::view::model::{Model, Shape};
 use crate::view::raster::{scene_vertices, sphere_box_vertices};
@@ -328,9 +329,10 @@ impl GpuRenderer {
                 irradiance_size: light.irradiance.size,
                 lut_width: light.lut.width,
                 lut_height: light.lut.height,
-                _pad0: 0,
-                _pad1: 0,
-                _pad2: 0,
+                // The viewer shades as the README's recipe.
+                ibl_terms: ShadingTerms::GENERIC.ibl as u32,
+                roughness_fresnel: ShadingTerms::GENERIC.roughness_fresnel as u32,
+                _pad: 0,
             };
             LightTextures {
                 specular: upload_bordered_cube(

@@ -5,6 +5,7 @@
 
 use crate::gpu::compute::bind_group;
 use crate::gpu::preview::TruthUniform;
+use crate::plan::shading::LightBrdf;
 use crate::Result;
 
 use super::{
@@ -152,7 +153,12 @@ impl GpuRenderer {
                 env_size: light.truth_env_size,
                 hot_count: light.hot_count,
                 point_count: n as u32,
-                _pad: 0,
+                // The recipe's BRDF, uncompensated (the viewer's truth binds no LUT).
+                masking: LightBrdf::GENERIC.masking as u32,
+                diffuse: LightBrdf::GENERIC.diffuse as u32,
+                compensated: 0,
+                lut_width: 0,
+                lut_height: 0,
             };
             self.queue
                 .write_buffer(&self.truth_params, 0, bytemuck::bytes_of(&params));
