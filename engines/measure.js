@@ -315,13 +315,14 @@ export function turnedFrom(sun, angle) {
 // Renders through `renderAt(e)` (→ { px, max }: the decoded radiance and the largest 8-bit
 // channel value read back) at exposure `e0`, then 8× lower each time until no channel
 // reaches 254 or the exposure reaches `minExposure`; `clipped` says whether pixels are
-// still saturated then (a sun may be: its centroid is still the saturated disc's).
+// still saturated then (a sun may be: its centroid is still the saturated disc's), and
+// `exposure` which exposure the pixels were read at.
 export async function renderUnclipped(renderAt, e0, minExposure) {
   let e = Math.max(e0, minExposure);
   for (;;) {
     const { px, max } = await renderAt(e);
-    if (max < 254) return { px, clipped: false };
-    if (e <= minExposure) return { px, clipped: true };
+    if (max < 254) return { px, clipped: false, exposure: e };
+    if (e <= minExposure) return { px, clipped: true, exposure: e };
     e = Math.max(e / 8, minExposure);
   }
 }

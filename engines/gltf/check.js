@@ -217,11 +217,13 @@ window.runCheck = async function ({ hdrUrl, dir, controlDir, levels, roughness, 
   // Spheres, the camera 40° from the sun.
   const eye = scale(measure.turnedFrom(sun, 40), SPHERE_DISTANCE);
   const sphereCam = pinhole(eye, [0, 0, 0], SPHERE_FOV);
+  let exposure = 0;
   const sphereAt = async (env, metallic, r, size, e) => {
     state.environment = env;
     await setSphere(metallic, r);
-    const { px, clipped } = await render(sphereCam, size, e);
+    const { px, clipped, exposure: used } = await render(sphereCam, size, e);
     if (clipped && r > 0) throw new Error(`sphere r = ${r} saturates`);
+    exposure = used;
     return measure.maskSphere(px, eye, (p) => pixelRay(sphereCam, p, size), size);
   };
   const reflected = (px) => measure.mirrorSun(px, eye, (p) => pixelRay(sphereCam, p, MIRROR_SIZE), MIRROR_SIZE);
@@ -230,10 +232,18 @@ window.runCheck = async function ({ hdrUrl, dir, controlDir, levels, roughness, 
   out.mirror = { sunError: degrees(reflected(gotMirror), reflected(refMirror)), viewerVsCube: degrees(reflected(refMirror), sun) };
   out.background.viewerVsCube = degrees(refSun, sun);
   out.spheres = [];
+  // The spheres as rendered from the bake (decoded to linear, RGBA float rows from the
+  // bottom), for the preview's glTF mode to be held against (tests/engine_renders.rs): the
+  // camera as measure.pinhole takes it, the viewer's environment rotation, and each
+  // sphere's exposure (its 8-bit read-back decodes as (v/255)^2.2 / exposure).
+  const raw = {};
+  out.sphereCamera = { eye, fov: SPHERE_FOV, size: SIZE, environmentRotationDegrees: state.renderingParameters.environmentRotation, exposures: {} };
   for (const metallic of [1, 0]) {
     for (const r of roughness) {
       const want = await sphereAt(own, metallic, r, SIZE, 0.6 / ownStats.mean);
       const got = await sphereAt(ours, metallic, r, SIZE, 0.6 / ourStats.mean);
+      raw[`sphere_m${metallic}_r${r}.rgba32f`] = measure.base64(got);
+      out.sphereCamera.exposures[`sphere_m${metallic}_r${r}`] = exposure;
       const sphere = { metallic, roughness: r, ...measure.compareSpheres(got, want, SIZE) };
       if (!metallic) {
         const wantExact = await sphereAt(ownExactDiffuse, metallic, r, SIZE, 0.6 / ownStats.mean);
@@ -268,7 +278,7 @@ window.runCheck = async function ({ hdrUrl, dir, controlDir, levels, roughness, 
     };
   }
   out.renderer = gl.getParameter(gl.VERSION);
-  return { out, images };
+  return { out, images, raw };
 };
 
 window.checkReady = true;
