@@ -534,7 +534,8 @@ fn failure_message(out: &std::process::Output) -> String {
 
 /// `splitsum preview` of an environment and of a bake folder, and `bake --preview`: the
 /// PNG exists with the picture's size, the table is printed, the manifest lists the preview
-/// with its per-sphere numbers; a bake for another target is refused with a message.
+/// with its per-sphere numbers; a bake for another target is refused with a message; an
+/// engine's mode names its shading.
 #[test]
 fn preview_command_line() {
     let dir = common::output_dir("preview_cli");
@@ -635,6 +636,40 @@ fn preview_command_line() {
         err.contains("target bevy") && err.contains("bake --preview"),
         "{err}"
     );
+
+    // An engine's mode: the JSON names the shading and its lookup; an engine the preview
+    // does not model says so and shades as the recipe.
+    let small = [
+        "--specular-size",
+        "64",
+        "--preview-cell",
+        "16",
+        "--truth-samples",
+        "16",
+    ];
+    let json = dir.join("three.json");
+    let out = common::splitsum()
+        .args(["preview", hdr, "--target", "three", "-o"])
+        .arg(dir.join("three.png"))
+        .arg("--json")
+        .arg(&json)
+        .args(small)
+        .output()
+        .unwrap();
+    assert_succeeded(&out);
+    let figures: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(figures["shading"], "three.js r187");
+    assert_eq!(figures["lookup"], "alpha2");
+    let out = common::splitsum()
+        .args(["preview", hdr, "--target", "babylon", "-o"])
+        .arg(dir.join("babylon.png"))
+        .args(small)
+        .output()
+        .unwrap();
+    assert_succeeded(&out);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("does not shade as babylon"), "{err}");
 
     // A folder that is not a bake, and a cell outside the range, are one clear line each.
     let empty = dir.join("empty");

@@ -83,6 +83,15 @@ pub(super) fn print_preview(path: &Path, p: &Preview, verbose: bool) {
 
 /// `splitsum preview`.
 pub fn preview(args: PreviewArgs) -> anyhow::Result<()> {
+    if args.input.is_dir() && args.target.shading != Some(Shading::GENERIC) {
+        return Err(Usage(format!(
+            "invalid --target {}: {} is a bake folder, previewed as the generic target it was baked for; preview the HDRI itself with --target {}",
+            args.target.name,
+            args.input.display(),
+            args.target.name
+        ))
+        .into());
+    }
     let popts = preview_options(&args.render, args.exposure, args.target);
     warn(unmodelled_shading(args.target));
     let output = args.output.clone().unwrap_or_else(|| {
