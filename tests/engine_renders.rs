@@ -18,7 +18,7 @@ use splitsum::io::ktx2::{read_cube, read_cube_chain};
 use splitsum::io::lut::read_lut_png;
 use splitsum::plan::material::ShadeMaterial;
 use splitsum::plan::scene::{SplitSumLight, MIN_N_DOT_V};
-use splitsum::stages::preview::shading_lut;
+use splitsum::stages::preview::{last_level, shading_lut};
 use splitsum::targets::gltf::{GLTF, GLTF_SHADING};
 use splitsum::targets::three::{THREE, THREE_SHADING};
 use splitsum::{BrdfLut, Manifest, Shading, Target};
@@ -105,11 +105,7 @@ struct Engine {
 fn read_three(dir: &Path) -> (Cubemap, Cubemap, BrdfLut) {
     let stored = read_cube_chain(&dir.join("specular.ktx2")).unwrap();
     let chain = stored.remapped(THREE.orientation.texel_map().inverse());
-    let last = chain.levels.len() - 1;
-    let irradiance = Cubemap {
-        size: chain.level_size(last),
-        levels: vec![chain.levels[last].clone()],
-    };
+    let irradiance = last_level(&chain);
     let lut = shading_lut(&CpuBackend, &THREE_SHADING, None).unwrap();
     (chain, irradiance, lut)
 }

@@ -43,13 +43,18 @@ fn white_furnace() -> Environment {
 /// W(n·v) = ∫ (1 − v·h)⁵ (n·l)/π dl over the hemisphere, h = normalize(v + l): the
 /// Fresnel weight the truth's diffuse lobe loses, kD(h) = (1 − F0)(1 − W-integrand).
 fn diffuse_fresnel_weight(n_dot_v: f64) -> f64 {
+    cosine_mean(n_dot_v, |_, v_dot_h| (1.0 - v_dot_h).powi(5))
+}
+
+/// ∫ g(n·l, v·h) (n·l)/π dl over the hemisphere, h = normalize(v + l) (v·h = l·h): the
+/// cosine-weighted mean of g, by nested adaptive Gauss-Kronrod over θ and φ.
+fn cosine_mean(n_dot_v: f64, g: impl Fn(f64, f64) -> f64) -> f64 {
     let sv = (1.0 - n_dot_v * n_dot_v).max(0.0).sqrt();
     let mut outer = |theta: f64| {
         let (st, ct) = theta.sin_cos();
         let mut inner = |phi: f64| {
             let v_dot_l = sv * st * phi.cos() + n_dot_v * ct;
-            let v_dot_h = (0.5 * (1.0 + v_dot_l)).max(0.0).sqrt();
-            (1.0 - v_dot_h).powi(5)
+            g(ct, (0.5 * (1.0 + v_dot_l)).max(0.0).sqrt())
         };
         // Symmetric in φ: twice the integral over [0, π].
         2.0 * adaptive(&mut inner, 0.0, PI, 1e-10) * ct * st / PI
@@ -60,18 +65,11 @@ fn diffuse_fresnel_weight(n_dot_v: f64) -> f64 {
 /// Burley's diffuse albedo over Lambert's, ∫ (1 + (f90 − 1)(1 − n·l)⁵)(1 + (f90 − 1)(1 − n·v)⁵)
 /// (n·l)/π dl with f90 = 1/2 + 2 α (l·h)² (Burley 2012), written here from the paper.
 fn burley_albedo(n_dot_v: f64, alpha: f64) -> f64 {
-    let sv = (1.0 - n_dot_v * n_dot_v).max(0.0).sqrt();
-    let mut outer = |theta: f64| {
-        let (st, ct) = theta.sin_cos();
-        let mut inner = |phi: f64| {
-            let v_dot_l = sv * st * phi.cos() + n_dot_v * ct;
-            let l_dot_h = (0.5 * (1.0 + v_dot_l)).max(0.0).sqrt();
-            let f90 = 0.5 + 2.0 * alpha * l_dot_h * l_dot_h;
-            (1.0 + (f90 - 1.0) * (1.0 - ct).powi(5)) * (1.0 + (f90 - 1.0) * (1.0 - n_dot_v).powi(5))
-        };
-        2.0 * adaptive(&mut inner, 0.0, PI, 1e-10) * ct * st / PI
-    };
-    adaptive(&mut outer, 0.0, 0.5 * PI, 1e-7)
+    cosine_mean(n_dot_v, |n_dot_l, l_dot_h| {
+        let f90 = 0.5 + 2.0 * alpha * l_dot_h * l_dot_h;
+        (1.0 + (f90 - 1.0) * (1.0 - n_dot_l).powi(5))
+            * (1.0 + (f90 - 1.0) * (1.0 - n_dot_v).powi(5))
+    })
 }
 
 /// Each sphere pixel's n·v, material and column, with its index in the panel.

@@ -65,28 +65,32 @@ fn lut_params_layout_matches_rust() {
     assert_eq!(size_of::<LutParams>() % 16, 0);
 }
 
-/// The value of the WGSL `const` named `name`, an f32 literal.
-fn wgsl_f32_constant(module: &naga::Module, name: &str) -> f32 {
+/// The literal the WGSL `const` named `name` is initialised with.
+fn wgsl_constant(module: &naga::Module, name: &str) -> naga::Literal {
     let (_, c) = module
         .constants
         .iter()
         .find(|(_, c)| c.name.as_deref() == Some(name))
         .unwrap_or_else(|| panic!("{name} missing"));
     match module.global_expressions[c.init] {
-        naga::Expression::Literal(naga::Literal::F32(v)) => v,
+        naga::Expression::Literal(l) => l,
         ref other => panic!("{name}: {other:?}"),
     }
 }
 
+/// The value of the WGSL `const` named `name`, an f32 literal.
+fn wgsl_f32_constant(module: &naga::Module, name: &str) -> f32 {
+    match wgsl_constant(module, name) {
+        naga::Literal::F32(v) => v,
+        other => panic!("{name}: {other:?}"),
+    }
+}
+
+/// The value of the WGSL `const` named `name`, a u32 literal.
 fn wgsl_u32_constant(module: &naga::Module, name: &str) -> u32 {
-    let (_, c) = module
-        .constants
-        .iter()
-        .find(|(_, c)| c.name.as_deref() == Some(name))
-        .unwrap_or_else(|| panic!("{name} missing"));
-    match module.global_expressions[c.init] {
-        naga::Expression::Literal(naga::Literal::U32(v)) => v,
-        ref other => panic!("{name}: {other:?}"),
+    match wgsl_constant(module, name) {
+        naga::Literal::U32(v) => v,
+        other => panic!("{name}: {other:?}"),
     }
 }
 

@@ -459,13 +459,17 @@ impl<'a> BakedLight<'a> {
 pub fn shading_irradiance<'a>(shading: &Shading, baked: &'a BakedEnvironment) -> Cow<'a, Cubemap> {
     match shading.irradiance {
         IrradianceSource::Cube => Cow::Borrowed(&baked.irradiance),
-        IrradianceSource::LastLevel => {
-            let last = baked.specular.levels.len() - 1;
-            Cow::Owned(Cubemap {
-                size: baked.specular.level_size(last),
-                levels: vec![baked.specular.levels[last].clone()],
-            })
-        }
+        IrradianceSource::LastLevel => Cow::Owned(last_level(&baked.specular)),
+    }
+}
+
+/// A chain's last level alone, as a one-level cube (what three.js and Filament read E/π
+/// from).
+pub fn last_level(chain: &Cubemap) -> Cubemap {
+    let last = chain.levels.len() - 1;
+    Cubemap {
+        size: chain.level_size(last),
+        levels: vec![chain.levels[last].clone()],
     }
 }
 

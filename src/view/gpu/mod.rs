@@ -24,7 +24,6 @@ use crate::gpu::shaders;
 use crate::gpu::texture::{
     create_texture_2d, upload_bordered_cube, upload_lut_pairs, write_texels,
 };
-use crate::plan::shading::ShadingTerms;
 use crate::view::frame::{heat_table, light_table, FrameUniform, Mode, PresentUniform, ViewLight};
 use crate::view::model::{Model, Shape};
 use crate::view::raster::{scene_vertices, sphere_box_vertices};
@@ -323,17 +322,8 @@ impl GpuRenderer {
         let lut = upload_lut_pairs(device, queue, "view lut", &light.lut)?;
         let textures = with_error_scope(device, "uploading the viewer's light", || {
             let spec = &light.specular;
-            let split_sum = SplitSumUniform {
-                specular_size: spec.size,
-                specular_levels: spec.levels.len() as u32,
-                irradiance_size: light.irradiance.size,
-                lut_width: light.lut.width,
-                lut_height: light.lut.height,
-                // The viewer shades as the README's recipe.
-                ibl_terms: ShadingTerms::GENERIC.ibl as u32,
-                roughness_fresnel: ShadingTerms::GENERIC.roughness_fresnel as u32,
-                _pad: 0,
-            };
+            // The viewer shades as the README's recipe (`ViewLight::split_sum`).
+            let split_sum = SplitSumUniform::new(&light.split_sum(), spec.levels.len() as u32);
             LightTextures {
                 specular: upload_bordered_cube(
                     device,
