@@ -15,6 +15,7 @@ use splitsum::plan::scene::{pixel_geometry, PixelGeometry, Scene, MATERIALS, ROU
 use splitsum::stages::preview::{
     render_preview, shading_irradiance, shading_lut, BakedLight, Preview, PreviewOptions,
 };
+use splitsum::targets::babylon::BABYLON_SHADING;
 use splitsum::targets::bevy::BEVY_SHADING;
 use splitsum::targets::filament::FILAMENT_SHADING;
 use splitsum::targets::gltf::GLTF_SHADING;
@@ -380,12 +381,13 @@ fn gpu_renders_match_cpu() {
         FILAMENT_SHADING,
         GLTF_SHADING,
         BEVY_SHADING,
+        BABYLON_SHADING,
     ] {
         let table = match shading == Shading::GENERIC {
             true => lut.clone(),
             false => shading_lut(&CpuBackend, &shading, None).unwrap(),
         };
-        let irradiance = shading_irradiance(&shading, &bake);
+        let irradiance = shading_irradiance(&shading, &bake).unwrap();
         let light = BakedLight {
             irradiance: &irradiance,
             ..BakedLight::of("test", &bake, &table)
@@ -411,14 +413,16 @@ fn gpu_renders_match_cpu() {
 /// - the truth is the directional albedo of the engine's own BRDF: (F0 A_c + B_c) times
 ///   its compensation 1 + F0 (1/(A + B) − 1) where it has one ((A, B) the engine's table
 ///   as the kernel reads it), plus c (1 − m) times (1 − F0)(1 − W(n·v)) for a
-///   Fresnel-weighted Lambert, 1 for a plain one or Burley's albedo (`burley_albedo`),
+///   Fresnel-weighted Lambert, 1 for a plain one, 1 − F0 for Babylon's or Burley's albedo
+///   (`burley_albedo`),
 ///   (A_c, B_c) the converged height-correlated integrals (`reference_lut_model`) and W the
 ///   integral above: within
 ///   1.5e-3, the quadrature's 6.9e-4 at 2048 points times the compensation (up to 1.6 on a
 ///   rough metal) and the dielectric's c = 0.8;
 /// - the split-sum is the engine's combination of S = 1, E = 1 and its table's (A, B),
 ///   written here from `plan::shading`'s formulas: FssEss = kS A + B, Ems = 1 − A − B,
-///   Favg = F0 + (1 − F0)/21, FmsEms = Ems FssEss Favg / (1 − Ems Favg); within 1e-4 (the
+///   Favg = F0 + (1 − F0)/21, FmsEms = Ems FssEss Favg / (1 − Ems Favg), Babylon's mix of S
+///   and E the furnace's 1; within 1e-4 (the
 ///   furnace chain's levels and irradiance are within 1.5e-5 of 1, the rest is f32).
 #[test]
 fn engine_modes_in_a_white_furnace() {
@@ -450,9 +454,15 @@ fn engine_modes_in_a_white_furnace() {
     };
     for backend in common::backends() {
         let bake = baked(backend.as_ref(), white_furnace(), 32);
-        for shading in [THREE_SHADING, FILAMENT_SHADING, GLTF_SHADING, BEVY_SHADING] {
+        for shading in [
+            THREE_SHADING,
+            FILAMENT_SHADING,
+            GLTF_SHADING,
+            BEVY_SHADING,
+            BABYLON_SHADING,
+        ] {
             let table = shading_lut(&CpuBackend, &shading, None).unwrap();
-            let irradiance = shading_irradiance(&shading, &bake);
+            let irradiance = shading_irradiance(&shading, &bake).unwrap();
             let light = BakedLight {
                 irradiance: &irradiance,
                 ..BakedLight::of("test", &bake, &table)
@@ -480,6 +490,7 @@ fn engine_modes_in_a_white_furnace() {
                         DiffuseLobe::FresnelWeighted => (1.0 - f0) * (1.0 - w),
                         DiffuseLobe::Lambert => 1.0,
                         DiffuseLobe::Burley => burley,
+                        DiffuseLobe::DielectricLambert => 1.0 - f0,
                     };
                     let truth = (f0 * ac + bc) * compensation + albedo * (1.0 - metallic) * lambert;
                     let ks = match shading.terms.roughness_fresnel {
@@ -497,6 +508,10 @@ fn engine_modes_in_a_white_furnace() {
                         }
                         IblTerms::MultiscatterIrradiance | IblTerms::MultiscatterRadiance => {
                             fss + fms + diffuse * (1.0 - fss - fms)
+                        }
+                        // mix(S, E, α) is 1 where S = E = 1.
+                        IblTerms::MixedRadiance => {
+                            fss * (1.0 + f0 * (1.0 / (a + b) - 1.0)) + diffuse * (1.0 - f0)
                         }
                         IblTerms::Splitsum => unreachable!("engines only"),
                     };
@@ -635,8 +650,8 @@ fn preview_command_line() {
         "{err}"
     );
 
-    // An engine's mode: the JSON names the shading and its lookup; an engine the preview
-    // does not model says so and shades as the recipe.
+    // An engine's mode: the JSON names the shading and its lookup; Babylon.js's reads the
+    // bake's SH.
     let small = [
         "--specular-size",
         "64",
@@ -659,15 +674,20 @@ fn preview_command_line() {
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert_eq!(figures["shading"], "three.js r187");
     assert_eq!(figures["lookup"], "alpha2");
+    let json = dir.join("babylon.json");
     let out = common::splitsum()
         .args(["preview", hdr, "--target", "babylon", "-o"])
         .arg(dir.join("babylon.png"))
+        .arg("--json")
+        .arg(&json)
         .args(small)
         .output()
         .unwrap();
     assert_succeeded(&out);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("does not shade as babylon"), "{err}");
+    let figures: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(figures["shading"], "Babylon.js 9.35");
+    assert_eq!(figures["lookup"], "reflect");
 
     // A folder that is not a bake, and a cell outside the range, are one clear line each.
     let empty = dir.join("empty");

@@ -155,6 +155,11 @@ fn shading_codes_match_rust() {
             "IBL_TERMS_MULTISCATTER_RADIANCE",
             IblTerms::MultiscatterRadiance as u32,
         ),
+        (
+            &split,
+            "IBL_TERMS_MIXED_RADIANCE",
+            IblTerms::MixedRadiance as u32,
+        ),
         (&module, "MASKING_SCHLICK_GGX", Masking::SchlickGgx as u32),
         (
             &module,
@@ -168,6 +173,11 @@ fn shading_codes_match_rust() {
         ),
         (&module, "DIFFUSE_LAMBERT", DiffuseLobe::Lambert as u32),
         (&module, "DIFFUSE_BURLEY", DiffuseLobe::Burley as u32),
+        (
+            &module,
+            "DIFFUSE_DIELECTRIC_LAMBERT",
+            DiffuseLobe::DielectricLambert as u32,
+        ),
     ] {
         assert_eq!(wgsl_u32_constant(m, name), rust, "{name}");
     }

@@ -194,6 +194,12 @@ window.runCheck = async function ({ hdrUrl, exactUrl, envUrl, controlUrl, roughn
     return spheres;
   };
   const ourSpheres = await renderSpheres(ours, 'splitsum', ourStats.mean);
+  // The spheres as rendered from the bake, linear RGBA float rows from the bottom, for the
+  // preview's Babylon.js mode to be held against (tests/engine_renders.rs): the camera as
+  // measure.pinhole takes it, in Babylon's (left-handed) world.
+  const raw = {};
+  out.sphereCamera = { eye, fov: SPHERE_FOV, size: SIZE };
+  for (const { metallic, roughness: r, px } of ourSpheres) raw[`sphere_m${metallic}_r${r}.rgba32f`] = measure.base64(px);
   const compareWith = async (reference, tag, refMean) => (await renderSpheres(reference, tag, refMean))
     .map(({ metallic, roughness: r, px }, k) => ({ metallic, roughness: r, ...measure.compareSpheres(ourSpheres[k].px, px, SIZE) }));
   out.vsOwn = await compareWith(own, 'babylon', ownStats.mean);
@@ -222,7 +228,7 @@ window.runCheck = async function ({ hdrUrl, exactUrl, envUrl, controlUrl, roughn
     residual.dispose();
   }
   out.renderer = engine.description;
-  return { out, images };
+  return { out, images, raw };
 };
 
 // The sun of a split bake's sun.json as a Babylon DirectionalLight, as the README recipe

@@ -35,19 +35,23 @@ struct LightBrdf {
 const MASKING_SCHLICK_GGX: u32 = 0u;
 const MASKING_SMITH_CORRELATED: u32 = 1u;
 // plan::shading::DiffuseLobe: Lambert weighted by (1 - F(v.h))(1 - metallic), by
-// (1 - metallic) alone, or Burley's times (1 - metallic).
+// (1 - metallic) alone, Burley's times (1 - metallic), or Lambert by (1 - F0)(1 - metallic).
 const DIFFUSE_FRESNEL_WEIGHTED: u32 = 0u;
 const DIFFUSE_LAMBERT: u32 = 1u;
 const DIFFUSE_BURLEY: u32 = 2u;
+const DIFFUSE_DIELECTRIC_LAMBERT: u32 = 3u;
 
 // What a diffuse lobe of `brdf` weights Lambert by besides (1 - metallic), for light from
-// l_t and the view v_t (any frame) with n.l, n.v given: 1 - F(v.h), 1, or Burley's.
+// l_t and the view v_t (any frame) with n.l, n.v given: 1 - F(v.h), 1, Burley's, or 1 - F0.
 fn diffuse_weight(brdf: LightBrdf, f0: vec3<f32>, n_dot_l: f32, n_dot_v: f32, v_dot_h: f32, alpha: f32) -> vec3<f32> {
     if (brdf.diffuse == DIFFUSE_FRESNEL_WEIGHTED) {
         return vec3<f32>(1.0) - fresnel3(f0, v_dot_h);
     }
     if (brdf.diffuse == DIFFUSE_BURLEY) {
         return vec3<f32>(burley_weight(n_dot_l, n_dot_v, v_dot_h, alpha));
+    }
+    if (brdf.diffuse == DIFFUSE_DIELECTRIC_LAMBERT) {
+        return vec3<f32>(1.0) - f0;
     }
     return vec3<f32>(1.0);
 }

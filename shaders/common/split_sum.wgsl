@@ -28,6 +28,7 @@ const IBL_TERMS_SPLITSUM: u32 = 0u;
 const IBL_TERMS_ENERGY_COMPENSATED: u32 = 1u;
 const IBL_TERMS_MULTISCATTER_IRRADIANCE: u32 = 2u;
 const IBL_TERMS_MULTISCATTER_RADIANCE: u32 = 3u;
+const IBL_TERMS_MIXED_RADIANCE: u32 = 4u;
 // The cosine-weighted mean of (1 - cos)^5, 1/21 (plan::shading::FRESNEL_MEAN_WEIGHT).
 const FRESNEL_MEAN_WEIGHT: f32 = 0.04761904761904762;
 
@@ -80,8 +81,13 @@ fn ibl_terms(s: vec3<f32>, e: vec3<f32>, ab: vec2<f32>, n_dot_v: f32, m: ShadeMa
     let fss_ess = ks * ab.x + vec3<f32>(ab.y);
     let ess = ab.x + ab.y;
     if (light.ibl_terms == IBL_TERMS_ENERGY_COMPENSATED) {
-        let compensation = vec3<f32>(1.0) + m.f0 * (1.0 / ess - 1.0);
+        let compensation = specular_compensation(ab, m.f0);
         return s * fss_ess * compensation + e * m.albedo * (vec3<f32>(1.0) - fss_ess) * (1.0 - m.metallic);
+    }
+    if (light.ibl_terms == IBL_TERMS_MIXED_RADIANCE) {
+        let compensation = specular_compensation(ab, m.f0);
+        let mixed = mix(s, e, alpha_from_roughness(m.roughness));
+        return mixed * fss_ess * compensation + e * m.albedo * (vec3<f32>(1.0) - m.f0) * (1.0 - m.metallic);
     }
     let ems = 1.0 - ess;
     let f_avg = m.f0 + (vec3<f32>(1.0) - m.f0) * FRESNEL_MEAN_WEIGHT;

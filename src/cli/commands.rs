@@ -14,7 +14,7 @@ use splitsum::{
 };
 
 use super::args::{BakeArgs, CubemapArgs, LutArgs, VerifyArgs, ViewArgs};
-use super::preview::{preview_options, print_preview, unmodelled_shading};
+use super::preview::{preview_options, print_preview};
 use super::shared::{open_baker, progress_bar, sun_line, warn};
 use super::{for_user, Usage};
 
@@ -42,9 +42,6 @@ pub fn bake(args: BakeArgs) -> anyhow::Result<()> {
         sun: args.sun.sun,
         ..defaults
     };
-    if args.preview {
-        warn(unmodelled_shading(target));
-    }
     let mut baker = open_baker("bake", opts, &args.common)?;
     let mut failed = 0;
     for input in &args.inputs {

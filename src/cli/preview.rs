@@ -14,14 +14,14 @@ use super::args::{PreviewArgs, PreviewRenderArgs};
 use super::shared::{open_baker, progress_bar, sun_line, warn};
 use super::{for_user, Usage};
 
-/// The preview's options for a bake for `target`: its engine's shading where the preview
-/// models it ([`unmodelled_shading`] otherwise), its lookup replaced by `--lookup`.
+/// The preview's options for a bake for `target`: its engine's shading, its lookup
+/// replaced by `--lookup`.
 pub(super) fn preview_options(
     render: &PreviewRenderArgs,
     exposure_ev: Option<f32>,
     target: &Target,
 ) -> PreviewOptions {
-    let shading = target.shading.unwrap_or(Shading::GENERIC);
+    let shading = target.shading;
     PreviewOptions {
         cell: render.preview_cell,
         exposure_ev,
@@ -30,17 +30,6 @@ pub(super) fn preview_options(
             .lookup
             .map_or(shading, |lookup| shading.with_lookup(lookup)),
     }
-}
-
-/// The warning for a preview of `target`'s files where the preview does not shade as its
-/// engine: the spheres are then shaded as the README's recipe.
-pub(super) fn unmodelled_shading(target: &Target) -> Option<String> {
-    target.shading.is_none().then(|| {
-        format!(
-            "the preview does not shade as {}'s shader (docs/targets.md, \"What each engine's shader gets\"): its spheres show {}'s files shaded as the README's recipe",
-            target.name, target.name
-        )
-    })
 }
 
 /// Prints a preview's table: per material and roughness, mean / worst relative difference
@@ -83,7 +72,7 @@ pub(super) fn print_preview(path: &Path, p: &Preview, verbose: bool) {
 
 /// `splitsum preview`.
 pub fn preview(args: PreviewArgs) -> anyhow::Result<()> {
-    if args.input.is_dir() && args.target.shading != Some(Shading::GENERIC) {
+    if args.input.is_dir() && args.target.shading != Shading::GENERIC {
         return Err(Usage(format!(
             "invalid --target {}: {} is a bake folder, previewed as the generic target it was baked for; preview the HDRI itself with --target {}",
             args.target.name,
@@ -93,7 +82,6 @@ pub fn preview(args: PreviewArgs) -> anyhow::Result<()> {
         .into());
     }
     let popts = preview_options(&args.render, args.exposure, args.target);
-    warn(unmodelled_shading(args.target));
     let output = args.output.clone().unwrap_or_else(|| {
         if args.input.is_dir() {
             args.input.join("preview.png")

@@ -28,7 +28,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use crate::environment::sample::sample_cube_lod;
-use crate::math::brdf::{diffuse_fresnel_weight, fresnel_schlick_weight};
+use crate::math::brdf::{alpha_from_roughness, diffuse_fresnel_weight, fresnel_schlick_weight};
 use crate::math::lookup::{bent_reflection, stretched_taps};
 use crate::plan::lut::BrdfLut;
 use crate::plan::material::ShadeMaterial;
@@ -104,8 +104,13 @@ pub fn ibl_terms(terms: ShadingTerms, s: Vec3, e: Vec3, ab: [f32; 2], n_dot_v: f
     let fss_ess = ks * a + Vec3::splat(b);
     let ess = a + b;
     if terms.ibl == IblTerms::EnergyCompensated {
-        let compensation = Vec3::ONE + m.f0 * (1.0 / ess - 1.0);
+        let compensation = specular_compensation(ab, m.f0);
         return s * fss_ess * compensation + e * m.albedo * (Vec3::ONE - fss_ess) * (1.0 - m.metallic);
+    }
+    if terms.ibl == IblTerms::MixedRadiance {
+        let compensation = specular_compensation(ab, m.f0);
+        let mixed = s.lerp(e, alpha_from_roughness(m.roughness));
+        return mixed * fss_ess * compensation + e * m.albedo * (Vec3::ONE - m.f0) * (1.0 - m.metallic);
     }
     let ems = 1.0 - ess;
     let f_avg = m.f0 + (Vec3::ONE - m.f0) * FRESNEL_MEAN_WEIGHT;
@@ -171,4 +176,45 @@ fn render_with(
             })
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn material(f0: f32, metallic: f32, roughness: f32) -> ShadeMaterial {
+        ShadeMaterial {
+            f0: Vec3::splat(f0),
+            metallic,
+            albedo: Vec3::splat(0.5),
+            roughness,
+            lod: 0.0,
+            bend: 0.0,
+            stretch: 0.0,
+        }
+    }
+
+    /// Babylon.js's terms where S and E differ (a white furnace has S = E and cannot tell
+    /// the blend's weight): the specular reads α = r² of E and 1 − α of S, scaled by
+    /// FssEss and the compensation; the diffuse is c (1 − F0)(1 − m), whatever FssEss.
+    #[test]
+    fn mixed_radiance_blends_toward_the_irradiance_by_alpha() {
+        let terms = ShadingTerms {
+            ibl: IblTerms::MixedRadiance,
+            roughness_fresnel: false,
+        };
+        let (ab, n_dot_v) = ([0.3, 0.2], 0.7);
+        // A metal at r = 0.5 (α = 0.25): FssEss = 0.9 · 0.3 + 0.2 = 0.47, the compensation
+        // 1 + 0.9 (1/0.5 − 1) = 1.9.
+        let metal = material(0.9, 1.0, 0.5);
+        let spec = 0.47 * 1.9;
+        let from_e = ibl_terms(terms, Vec3::ZERO, Vec3::ONE, ab, n_dot_v, &metal);
+        let from_s = ibl_terms(terms, Vec3::splat(2.0), Vec3::ZERO, ab, n_dot_v, &metal);
+        assert!((from_e.x - 0.25 * spec).abs() < 1e-6, "{from_e}");
+        assert!((from_s.x - 0.75 * 2.0 * spec).abs() < 1e-6, "{from_s}");
+        // A dielectric mirror: S alone in the specular, E c (1 − 0.04) in the diffuse.
+        let dielectric = material(0.04, 0.0, 0.0);
+        let got = ibl_terms(terms, Vec3::ZERO, Vec3::ONE, ab, n_dot_v, &dielectric);
+        assert!((got.x - 0.5 * 0.96).abs() < 1e-6, "{got}");
+    }
 }

@@ -58,7 +58,7 @@ pub fn light_masking(brdf: LightBrdf, n_dot_l: f32, n_dot_v: f32, alpha: f32) ->
 }
 
 /// What `brdf`'s diffuse lobe weights Lambert by besides (1 − metallic), for n·l, n·v and
-/// v·h (= l·h): 1 − F(v·h), 1, or Burley's ([`burley_weight`]). Mirror of `diffuse_weight`
+/// v·h (= l·h): 1 − F(v·h), 1, Burley's ([`burley_weight`]), or 1 − F0. Mirror of `diffuse_weight`
 /// in `shaders/common/material.wgsl`.
 pub fn diffuse_weight(
     brdf: LightBrdf,
@@ -72,6 +72,7 @@ pub fn diffuse_weight(
         DiffuseLobe::FresnelWeighted => Vec3::ONE - fresnel3(f0, v_dot_h),
         DiffuseLobe::Lambert => Vec3::ONE,
         DiffuseLobe::Burley => Vec3::splat(burley_weight(n_dot_l, n_dot_v, v_dot_h, alpha)),
+        DiffuseLobe::DielectricLambert => Vec3::ONE - f0,
     }
 }
 

@@ -45,6 +45,13 @@ pub enum IblTerms {
     /// The glTF Sample Viewer: S (FssEss + FmsEms) + E c (1 − FssEss − FmsEms)(1 − m): the
     /// multiple scattering lit by the prefiltered radiance.
     MultiscatterRadiance = 3,
+    /// Babylon.js: mix(S, E, α) FssEss (1 + F0 (1/Ess − 1)) + E c (1 − F0)(1 − m), α = r²:
+    /// the radiance blended toward the irradiance as the lobe widens
+    /// (`MIX_IBL_RADIANCE_WITH_IRRADIANCE`), Filament's compensation of the specular, and
+    /// the diffuse weighted by the dielectric's 1 − F0 whatever the specular takes
+    /// (`LEGACY_SPECULAR_ENERGY_CONSERVATION`; the preview's materials are metal, m = 1, or
+    /// dielectric, m = 0, so their F0 is the dielectric's wherever the diffuse counts).
+    MixedRadiance = 4,
 }
 
 /// The split-sum LUT a shader reads, as (A, B) at (n·v, r).
@@ -90,6 +97,10 @@ pub enum IrradianceSource {
     /// `textureLod(envMap, n, ENVMAP_MAX_LOD)`, Filament's `Irradiance_RoughnessOne`
     /// without SH): the bake fits that level to E/π.
     LastLevel,
+    /// The bake's irradiance SH9 (`sh.json`'s `irradiance_sh9`, deringed where the exact
+    /// projection rings), evaluated at n (Babylon.js's spherical polynomial, per vertex or
+    /// per fragment alike on the preview's smooth spheres).
+    Sh9,
 }
 
 /// The masking-shadowing term of a light's specular BRDF (of the LUT models' visibilities,
@@ -119,6 +130,10 @@ pub enum DiffuseLobe {
     /// Burley's diffuse (`brdf::burley_weight` × c/π) × (1 − m), unweighted by F (bevy_pbr's
     /// `Fd_Burley`).
     Burley = 2,
+    /// Lambert c/π × (1 − F0)(1 − m), the reflectance at normal incidence taken off
+    /// whatever F(v·h) is (Babylon.js's legacy energy conservation of `surfaceAlbedo`; its
+    /// default E-Oren-Nayar diffuse is Lambert at its default diffuse roughness 0).
+    DielectricLambert = 3,
 }
 
 /// The BRDF a shader lights with: GGX D (α = r²) and Fresnel-Schlick, with these terms.
@@ -202,6 +217,7 @@ impl Shading {
         let irradiance = match self.irradiance {
             IrradianceSource::Cube => "the irradiance cube",
             IrradianceSource::LastLevel => "the chain's last level",
+            IrradianceSource::Sh9 => "the irradiance SH9",
         };
         format!(
             "lookup {}, roughness at least {}, {lut}, terms {:?}{}, E/pi from {irradiance}; lights with {:?} masking, {:?} diffuse{}",

@@ -8,7 +8,12 @@ use crate::io::cubemap::Container;
 use crate::io::staging::Staging;
 use crate::io::{env, PixelFormat};
 use crate::math::cubemap::AxisMap;
+use crate::math::lookup::SpecularLookup;
 use crate::plan::chain::MipRoughness;
+use crate::plan::lut::LutModel;
+use crate::plan::shading::{
+    DiffuseLobe, IblTerms, IrradianceSource, LightBrdf, Masking, ShaderLut, Shading, ShadingTerms,
+};
 use crate::stages::light::BakedEnvironment;
 use crate::targets::{engine_sh, FileContext, FileSet, Orientation, Target, BRDF_LUT_PNG};
 use crate::{Error, Result};
@@ -49,7 +54,41 @@ pub const BABYLON: Target = Target {
         "the irradiance is the header's spherical polynomial (E / pi, in the cube's frame)",
         "RGBD holds radiance up to 255: brighter texels (a sun) are clipped; scale with --exposure and scene.environmentIntensity to keep them",
     ],
-    shading: None,
+    shading: BABYLON_SHADING,
+};
+
+/// How Babylon.js 9.35's `PBRMaterial` shades with its defaults (`pbrBlockReflection`,
+/// `pbrBlockReflectivity`, `pbrBlockReflectance`, `pbrBlockFinalLitComponents`,
+/// `pbrDirectLightingFunctions`; its `PBRBRDFConfiguration` turns on the height-correlated
+/// Smith, the energy conservation, the spherical harmonics, the radiance mixed with the
+/// irradiance and the legacy specular energy conservation): the chain read along R
+/// (`computeReflectionCoords`); its 256² `environmentBrdfSampler` (the RGBD PNG in
+/// `GetEnvironmentBRDFTexture`, (∫ Fc V, ∫ V) with the height-correlated Smith at
+/// uv = (n·v, r): Filament's model, which it matches within its 8-bit steps);
+/// [`IblTerms::MixedRadiance`] with E/π the `.env`'s spherical polynomial
+/// (`computeEnvironmentIrradiance`); lights with `smithVisibility_GGXCorrelated` times the
+/// same energy conservation, and the diffuse `surfaceAlbedo` c (1 − F0)(1 − m) with its
+/// default E-Oren-Nayar at diffuse roughness 0, Lambert. Left out: the 0.0005 Babylon adds
+/// to α = r² (`MINIMUMVARIANCE`), 0.8 % of α at r = 0.25, and the RGBD PNGs' 8-bit steps
+/// (the preview shades the bake's floats, as for every engine).
+pub const BABYLON_SHADING: Shading = Shading {
+    name: "Babylon.js 9.35",
+    lookup: SpecularLookup::Reflect,
+    min_roughness: 0.0,
+    lut: ShaderLut::Table {
+        model: LutModel::MultiscatterSmithCorrelated,
+        size: Some(256),
+    },
+    terms: ShadingTerms {
+        ibl: IblTerms::MixedRadiance,
+        roughness_fresnel: false,
+    },
+    irradiance: IrradianceSource::Sh9,
+    light: LightBrdf {
+        masking: Masking::SmithCorrelated,
+        diffuse: DiffuseLobe::DielectricLambert,
+        compensated: true,
+    },
 };
 
 /// Babylon's prefiltered environment: `<stem>.env`, the whole chain as RGBD PNGs and the

@@ -43,7 +43,7 @@ pub const BEVY: Target = Target {
         "radiance is the HDRI's: at Bevy's default exposure (EV100 9.7) use intensity = brightness = 2^9.7 * 1.2 = 998 to see it as is",
         "Bevy uses its own environment BRDF, no LUT and no SH",
     ],
-    shading: Some(BEVY_SHADING),
+    shading: BEVY_SHADING,
 };
 
 /// How bevy_pbr 0.19's `StandardMaterial` shades with an `EnvironmentMapLight` and its

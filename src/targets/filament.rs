@@ -72,7 +72,7 @@ pub const FILAMENT: Target = Target {
         "Filament samples lod = (levels - 1) * r * (2 - r) (perceptualRoughnessToLod); without SH it reads diffuse from the last level, which holds E / pi",
         "sh.txt: the same SH as cmgen --sh-shader writes them",
     ],
-    shading: Some(FILAMENT_SHADING),
+    shading: FILAMENT_SHADING,
 };
 
 /// How Filament 1.53's standard lit model shades (`light_indirect.fs` `evaluateIBL`,

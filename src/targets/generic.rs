@@ -48,7 +48,7 @@ pub const GENERIC: Target = Target {
         "sample specular at lod = roughness * (levels - 1), seamless trilinear",
         "irradiance holds E / pi: multiply by the diffuse albedo",
     ],
-    shading: Some(Shading::GENERIC),
+    shading: Shading::GENERIC,
 };
 
 /// The standard file set: `specular.<ext>` and (when [`Target::irradiance`]) `irradiance.<ext>`

@@ -65,7 +65,7 @@ pub const GLTF: Target = Target {
         "the viewer samples lod = roughness * (u_MipCount - 1), GGX and sheen alike, at u_EnvRotation * direction",
         "lut_ggx.png (height-correlated Smith scale and bias), lut_charlie.png (the Charlie albedo in B) and lut_sheen_E.png (the sheen albedo in R) at uv = (n.v, roughness)",
     ],
-    shading: Some(GLTF_SHADING),
+    shading: GLTF_SHADING,
 };
 
 /// How the glTF Sample Viewer 1.1 shades a metallic-roughness material (its `ibl.glsl`

@@ -166,9 +166,8 @@ pub struct Target {
     /// How the engine reads the files, for the manifest.
     pub notes: &'static [&'static str],
     /// How the engine's shader shades from the files, as read in its source (the preview's
-    /// mode for this target, `preview --target`); `None` where the preview does not model
-    /// it (the engine's LUT or BRDF has terms the kernels lack: see docs/targets.md).
-    pub shading: Option<Shading>,
+    /// mode for this target, `preview --target`; the README's recipe for the generic one).
+    pub shading: Shading,
 }
 
 /// What a target's writer receives besides the baked light.

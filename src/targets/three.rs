@@ -54,7 +54,7 @@ pub const THREE: Target = Target {
         "the last level holds E / pi: three reads diffuse as PI * textureLod(envMap, N, maxLod)",
         "sh.json radiance_sh9 is the SphericalHarmonics3 of a THREE.LightProbe as is (world space, not mirrored)",
     ],
-    shading: Some(THREE_SHADING),
+    shading: THREE_SHADING,
 };
 
 /// How three.js r187's `MeshStandardMaterial` shades (`lights_physical_fragment`,
