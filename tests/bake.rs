@@ -80,8 +80,8 @@ fn bake_writes_every_output_with_a_manifest() {
             r.header().level_count,
             r.header().pixel_width
         ),
-        // 64² down to the default smallest mip, 4²: five levels.
-        (6, 5, 64)
+        // 64² down to the generic target's smallest mip, 1²: seven levels.
+        (6, 7, 64)
     );
     assert_eq!(
         r.header().supercompression_scheme,

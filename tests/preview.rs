@@ -421,8 +421,8 @@ fn gpu_renders_match_cpu() {
 ///   rough metal) and the dielectric's c = 0.8;
 /// - the split-sum is the engine's combination of S = 1, E = 1 and its table's (A, B),
 ///   written here from `plan::shading`'s formulas: FssEss = kS A + B, Ems = 1 − A − B,
-///   Favg = F0 + (1 − F0)/21, FmsEms = Ems FssEss Favg / (1 − Ems Favg), Babylon's mix of S
-///   and E the furnace's 1; within 1e-4 (the
+///   Favg = F0 + (1 − F0)/21, FmsEms = Ems FssEss Favg / (1 − Ems Favg) (a blend of S
+///   toward E is the furnace's 1); within 1e-4 (the
 ///   furnace chain's levels and irradiance are within 1.5e-5 of 1, the rest is f32).
 #[test]
 fn engine_modes_in_a_white_furnace() {
@@ -509,8 +509,7 @@ fn engine_modes_in_a_white_furnace() {
                         IblTerms::MultiscatterIrradiance | IblTerms::MultiscatterRadiance => {
                             fss + fms + diffuse * (1.0 - fss - fms)
                         }
-                        // mix(S, E, α) is 1 where S = E = 1.
-                        IblTerms::MixedRadiance => {
+                        IblTerms::LegacyDiffuse => {
                             fss * (1.0 + f0 * (1.0 / (a + b) - 1.0)) + diffuse * (1.0 - f0)
                         }
                         IblTerms::Splitsum => unreachable!("engines only"),

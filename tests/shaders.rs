@@ -128,7 +128,9 @@ fn split_sum_constants_match_rust() {
 /// the same on both sides.
 #[test]
 fn shading_codes_match_rust() {
-    use splitsum::plan::shading::{DiffuseLobe, IblTerms, Masking, FRESNEL_MEAN_WEIGHT};
+    use splitsum::plan::shading::{
+        DiffuseLobe, IblTerms, Masking, RadianceBlend, FRESNEL_MEAN_WEIGHT,
+    };
     let module = parse("preview_truth", splitsum::gpu::shaders::PREVIEW_TRUTH);
     let split = parse(
         "preview_split_sum",
@@ -157,8 +159,15 @@ fn shading_codes_match_rust() {
         ),
         (
             &split,
-            "IBL_TERMS_MIXED_RADIANCE",
-            IblTerms::MixedRadiance as u32,
+            "IBL_TERMS_LEGACY_DIFFUSE",
+            IblTerms::LegacyDiffuse as u32,
+        ),
+        (&split, "RADIANCE_BLEND_NONE", RadianceBlend::None as u32),
+        (&split, "RADIANCE_BLEND_ALPHA", RadianceBlend::Alpha as u32),
+        (
+            &split,
+            "RADIANCE_BLEND_ALPHA_SQUARED",
+            RadianceBlend::AlphaSquared as u32,
         ),
         (&module, "MASKING_SCHLICK_GGX", Masking::SchlickGgx as u32),
         (
@@ -286,7 +295,7 @@ fn preview_uniforms_match_rust() {
             lut_height,
             ibl_terms,
             roughness_fresnel,
-            _pad
+            radiance_blend
         ]
     );
     assert_layout!(

@@ -1,7 +1,8 @@
 //! The lookup the README's recipe, the preview and the viewer make
 //! (`SpecularLookup::GENERIC`: R bent toward n as the GGX lobe leans, Frostbite's dominant
-//! direction, read as two sharper taps along the plane of incidence toward grazing views)
-//! against plain R, through what a user sees: the preview's figure per sphere
+//! direction, read as two sharper taps along the plane of incidence toward grazing views,
+//! the read blended toward E/π by α², `RadianceBlend::AlphaSquared`) against plain R (the
+//! chain along R as read, no blend), through what a user sees: the preview's figure per sphere
 //! (the energy-weighted relative difference from the full reflectance integral), both
 //! lookups against the same ground truth of the same bake.
 //!
@@ -43,6 +44,7 @@ fn figures(name: &str, sun: SunMode) -> Figures {
     let popts = PreviewOptions {
         cell: 32,
         truth_samples: 1024,
+        // Plain R: `with_lookup` drops the recipe's blend with its lookup.
         shading: Shading::GENERIC.with_lookup(SpecularLookup::Reflect),
         ..PreviewOptions::default()
     };
@@ -83,12 +85,19 @@ fn describe(name: &str, r: &SphereStats, g: &SphereStats) -> String {
     )
 }
 
-/// Every metal at r ≥ 0.5: the generic lookup's figure below R's, and at r = 1 (where it
-/// reads along n) at most half of it.
+/// How far above R's figure the generic lookup's may be on a sphere, in the figure's units:
+/// a tenth of a point. Measured: below R on every metal at every r ≥ 0.25 of the five
+/// HDRIs but studio_small_03's titanium at r = 0.5 (23.32 against 23.25 %, where its soft
+/// boxes' edges sit in the lobe), so a lookup or blend that loses to R anywhere by more
+/// fails.
+const SLACK: f32 = 0.001;
+
+/// Every metal at r ≥ 0.25: the generic lookup's figure at most R's (within [`SLACK`]),
+/// and at r = 1 (where it reads E/π) at most half of it.
 fn bent_beats_r_on_rough_metals(name: &str, f: &Figures) {
-    for (r, g) in metals(f, 0.5) {
+    for (r, g) in metals(f, 0.25) {
         assert!(
-            g.mean_relative < r.mean_relative,
+            g.mean_relative <= r.mean_relative + SLACK,
             "{}",
             describe(name, r, g)
         );
@@ -101,24 +110,32 @@ fn bent_beats_r_on_rough_metals(name: &str, f: &Figures) {
 
 #[test]
 fn bent_lookup_closes_the_gap_with_the_sun_split() {
-    // With the sun split, the bent lookup at r ≥ 0.5 is below R on every metal, and at
-    // r = 1 (where it reads along n) at most half of R's figure (measured: a fifteenth
-    // on quarry_01, a quarter on royal_esplanade). At r = 0.25 it is not everywhere: on
-    // royal_esplanade it is 5.1 against R's 4.9 % (a narrow lobe wants R), so r = 0.25
-    // is held only by the bar below.
+    // With the sun split, the generic lookup is at most R's figure on every metal at
+    // r ≥ 0.25, and at r = 1 (where it reads E/π) at most half of it (measured: a
+    // fifteenth on quarry_01, a quarter on royal_esplanade).
     //
-    // Every sphere at r ≥ 0.25 within 7 %: not the 5 % a person should see (here
-    // quarry_01 measures 3.4 / 5.3 / 6.6 / 2.6 % at r = 0.25 / 0.5 / 0.75 / 1,
-    // royal_esplanade 5.1 / 3.0 / 2.3 / 2.5 %, docs/accuracy.md), but today's worst with
-    // under half a point of margin for the truth's sampling noise at 1024 points, so that
-    // a change losing what the split sun and the lookup bought fails here (Frostbite's
-    // single tap is 8.5 % at r = 0.5 on quarry_01).
+    // Every sphere at r ≥ 0.25 within 5 %, what a person should see: quarry_01's worst
+    // sphere measures 3.4 / 4.5 / 3.8 / 2.5 % at r = 0.25 / 0.5 / 0.75 / 1 here,
+    // royal_esplanade's 3.7 / 3.2 / 2.2 / 2.4 % (docs/accuracy.md), half a point under the
+    // bar at its closest, several times the truth's sampling noise at 1024 points (0.1
+    // point), so that a change losing what the split sun, the lookup, the chain's layout and
+    // the blend toward E/π bought fails here (with the previous layout, r·(M − 1), and no
+    // blend quarry_01 was 6.6 % at r = 0.75; Frostbite's single tap 8.5 % at r = 0.5).
     for name in ["quarry_01_1k.hdr", "royal_esplanade_1k.hdr"] {
         let f = figures(name, SunMode::Split);
         bent_beats_r_on_rough_metals(name, &f);
+        for rough in [0.25, 0.5, 0.75, 1.0] {
+            let worst = f
+                .generic
+                .iter()
+                .filter(|g| g.roughness == rough)
+                .map(|g| g.mean_relative)
+                .fold(0.0f32, f32::max);
+            eprintln!("{name} r = {rough}: worst sphere {:.2} %", 100.0 * worst);
+        }
         for (r, g) in f.reflect.iter().zip(&f.generic) {
             if r.roughness >= 0.25 {
-                assert!(g.mean_relative <= 0.07, "{}", describe(name, r, g));
+                assert!(g.mean_relative <= 0.05, "{}", describe(name, r, g));
             }
         }
     }
@@ -126,12 +143,10 @@ fn bent_lookup_closes_the_gap_with_the_sun_split() {
 
 #[test]
 fn bent_lookup_on_sunless_hdris() {
-    // On the bundled HDRIs without a sun: every metal at r ≥ 0.5 below R and at r = 1 at
-    // most half of R's figure (measured: a twentieth on venice_sunset, a fifth on
-    // pedestrian_overpass, a third on studio_small_03's soft boxes). What it does not do
-    // (docs/accuracy.md): at r = 0.25 it is 0.6 points above R on studio_small_03 in this
-    // view (below it over four views), and there the dielectric's figure rises by up to
-    // 0.35 points at r = 0.25–0.5 (it falls on the other two).
+    // On the bundled HDRIs without a sun: every metal at r ≥ 0.25 at most R's figure (but
+    // the slack above) and at r = 1 at most half of it (measured: a nineteenth on
+    // venice_sunset, a quarter on pedestrian_overpass, a third on studio_small_03's soft
+    // boxes).
     for name in [
         "venice_sunset_1k.hdr",
         "pedestrian_overpass_1k.hdr",

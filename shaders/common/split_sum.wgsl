@@ -20,7 +20,7 @@ struct SplitSumParams {
     lut_height: u32,
     ibl_terms: u32,          // IBL_TERMS_* (plan::shading::IblTerms)
     roughness_fresnel: u32,  // 1: kS is the roughness-aware Fresnel
-    _pad: u32,
+    radiance_blend: u32,     // RADIANCE_BLEND_* (plan::shading::RadianceBlend)
 }
 
 // plan::shading::IblTerms: how the prefiltered radiance, (A, B) and E/pi combine.
@@ -28,7 +28,11 @@ const IBL_TERMS_SPLITSUM: u32 = 0u;
 const IBL_TERMS_ENERGY_COMPENSATED: u32 = 1u;
 const IBL_TERMS_MULTISCATTER_IRRADIANCE: u32 = 2u;
 const IBL_TERMS_MULTISCATTER_RADIANCE: u32 = 3u;
-const IBL_TERMS_MIXED_RADIANCE: u32 = 4u;
+const IBL_TERMS_LEGACY_DIFFUSE: u32 = 4u;
+// plan::shading::RadianceBlend: how far S leans toward E/pi, w = 0, alpha or alpha^2.
+const RADIANCE_BLEND_NONE: u32 = 0u;
+const RADIANCE_BLEND_ALPHA: u32 = 1u;
+const RADIANCE_BLEND_ALPHA_SQUARED: u32 = 2u;
 // The cosine-weighted mean of (1 - cos)^5, 1/21 (plan::shading::FRESNEL_MEAN_WEIGHT).
 const FRESNEL_MEAN_WEIGHT: f32 = 0.04761904761904762;
 
@@ -84,10 +88,9 @@ fn ibl_terms(s: vec3<f32>, e: vec3<f32>, ab: vec2<f32>, n_dot_v: f32, m: ShadeMa
         let compensation = specular_compensation(ab, m.f0);
         return s * fss_ess * compensation + e * m.albedo * (vec3<f32>(1.0) - fss_ess) * (1.0 - m.metallic);
     }
-    if (light.ibl_terms == IBL_TERMS_MIXED_RADIANCE) {
+    if (light.ibl_terms == IBL_TERMS_LEGACY_DIFFUSE) {
         let compensation = specular_compensation(ab, m.f0);
-        let mixed = mix(s, e, alpha_from_roughness(m.roughness));
-        return mixed * fss_ess * compensation + e * m.albedo * (vec3<f32>(1.0) - m.f0) * (1.0 - m.metallic);
+        return s * fss_ess * compensation + e * m.albedo * (vec3<f32>(1.0) - m.f0) * (1.0 - m.metallic);
     }
     let ems = 1.0 - ess;
     let f_avg = m.f0 + (vec3<f32>(1.0) - m.f0) * FRESNEL_MEAN_WEIGHT;
@@ -99,6 +102,19 @@ fn ibl_terms(s: vec3<f32>, e: vec3<f32>, ab: vec2<f32>, n_dot_v: f32, m: ShadeMa
     return s * fss_ess + e * fms_ems + diffuse;
 }
 
+// The weight w of E/pi in the blended radiance mix(S, E, w) for roughness r, as the params'
+// radiance_blend says. Mirror of plan::shading::RadianceBlend::weight.
+fn radiance_blend_weight(r: f32) -> f32 {
+    let alpha = alpha_from_roughness(r);
+    if (light.radiance_blend == RADIANCE_BLEND_ALPHA) {
+        return alpha;
+    }
+    if (light.radiance_blend == RADIANCE_BLEND_ALPHA_SQUARED) {
+        return alpha * alpha;
+    }
+    return 0.0;
+}
+
 // The split-sum radiance towards v of a point with normal n; n_dot_v is n.v clamped
 // away from 0 by the caller (silhouette normals are perpendicular to v).
 fn split_sum_shade(n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, m: ShadeMaterial) -> vec3<f32> {
@@ -106,5 +122,6 @@ fn split_sum_shade(n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, m: ShadeMaterial) -
     let prefiltered = stretched_prefiltered(n, dir, n_dot_v, m);
     let ab = sample_lut(n_dot_v, m.roughness);
     let e = sample_cube_lod(irradiance, light.irradiance_size, 1u, n, 0.0);
-    return ibl_terms(prefiltered, e, ab, n_dot_v, m);
+    let s = mix(prefiltered, e, radiance_blend_weight(m.roughness));
+    return ibl_terms(s, e, ab, n_dot_v, m);
 }

@@ -286,9 +286,9 @@ pub struct PreviewRenderArgs {
     pub preview_cell: u32,
 
     /// Where the split-sum reads the specular chain [default: the shading's own: for the
-    /// generic target the README's recipe, which bends R toward the normal and reads two
-    /// sharper taps toward grazing views (stretched); the others are the lookups engines
-    /// make].
+    /// generic target the README's recipe, which bends R toward the normal, reads two
+    /// sharper taps toward grazing views and blends the read toward the irradiance by r⁴
+    /// (stretched); the others are the lookups engines make, read plainly].
     #[arg(long, value_parser = lookup_parser())]
     pub lookup: Option<splitsum::SpecularLookup>,
 }

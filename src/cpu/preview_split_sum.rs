@@ -28,7 +28,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use crate::environment::sample::sample_cube_lod;
-use crate::math::brdf::{alpha_from_roughness, diffuse_fresnel_weight, fresnel_schlick_weight};
+use crate::math::brdf::{diffuse_fresnel_weight, fresnel_schlick_weight};
 use crate::math::lookup::{bent_reflection, stretched_taps};
 use crate::plan::lut::BrdfLut;
 use crate::plan::material::ShadeMaterial;
@@ -83,7 +83,8 @@ pub fn split_sum_shade_along(
             + Vec3::from(sample_cube_lod(light.specular, b.into(), lod)));
     let ab = sample_lut(light.lut, n_dot_v, m.roughness);
     let irradiance = Vec3::from(sample_cube_lod(light.irradiance, n.into(), 0.0));
-    ibl_terms(light.terms, prefiltered, irradiance, ab, n_dot_v, m)
+    let s = prefiltered.lerp(irradiance, light.terms.radiance_blend.weight(m.roughness));
+    ibl_terms(light.terms, s, irradiance, ab, n_dot_v, m)
 }
 
 /// The light towards v from the prefiltered radiance `s`, the LUT's `ab` = (A, B) and the
@@ -107,10 +108,9 @@ pub fn ibl_terms(terms: ShadingTerms, s: Vec3, e: Vec3, ab: [f32; 2], n_dot_v: f
         let compensation = specular_compensation(ab, m.f0);
         return s * fss_ess * compensation + e * m.albedo * (Vec3::ONE - fss_ess) * (1.0 - m.metallic);
     }
-    if terms.ibl == IblTerms::MixedRadiance {
+    if terms.ibl == IblTerms::LegacyDiffuse {
         let compensation = specular_compensation(ab, m.f0);
-        let mixed = s.lerp(e, alpha_from_roughness(m.roughness));
-        return mixed * fss_ess * compensation + e * m.albedo * (Vec3::ONE - m.f0) * (1.0 - m.metallic);
+        return s * fss_ess * compensation + e * m.albedo * (Vec3::ONE - m.f0) * (1.0 - m.metallic);
     }
     let ems = 1.0 - ess;
     let f_avg = m.f0 + (Vec3::ONE - m.f0) * FRESNEL_MEAN_WEIGHT;
@@ -181,6 +181,7 @@ fn render_with(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::plan::shading::RadianceBlend;
 
     fn material(f0: f32, metallic: f32, roughness: f32) -> ShadeMaterial {
         ShadeMaterial {
@@ -194,27 +195,37 @@ mod tests {
         }
     }
 
-    /// Babylon.js's terms where S and E differ (a white furnace has S = E and cannot tell
-    /// the blend's weight): the specular reads α = r² of E and 1 − α of S, scaled by
-    /// FssEss and the compensation; the diffuse is c (1 − F0)(1 − m), whatever FssEss.
+    /// Babylon.js's terms: the specular scaled by FssEss and the compensation; the diffuse
+    /// c (1 − F0)(1 − m), whatever FssEss.
     #[test]
-    fn mixed_radiance_blends_toward_the_irradiance_by_alpha() {
+    fn legacy_diffuse_terms() {
         let terms = ShadingTerms {
-            ibl: IblTerms::MixedRadiance,
+            ibl: IblTerms::LegacyDiffuse,
             roughness_fresnel: false,
+            radiance_blend: RadianceBlend::None,
         };
         let (ab, n_dot_v) = ([0.3, 0.2], 0.7);
-        // A metal at r = 0.5 (α = 0.25): FssEss = 0.9 · 0.3 + 0.2 = 0.47, the compensation
-        // 1 + 0.9 (1/0.5 − 1) = 1.9.
+        // A metal: FssEss = 0.9 · 0.3 + 0.2 = 0.47, the compensation 1 + 0.9 (1/0.5 − 1).
         let metal = material(0.9, 1.0, 0.5);
-        let spec = 0.47 * 1.9;
-        let from_e = ibl_terms(terms, Vec3::ZERO, Vec3::ONE, ab, n_dot_v, &metal);
-        let from_s = ibl_terms(terms, Vec3::splat(2.0), Vec3::ZERO, ab, n_dot_v, &metal);
-        assert!((from_e.x - 0.25 * spec).abs() < 1e-6, "{from_e}");
-        assert!((from_s.x - 0.75 * 2.0 * spec).abs() < 1e-6, "{from_s}");
-        // A dielectric mirror: S alone in the specular, E c (1 − 0.04) in the diffuse.
+        let got = ibl_terms(terms, Vec3::splat(2.0), Vec3::ONE, ab, n_dot_v, &metal);
+        assert!((got.x - 2.0 * 0.47 * 1.9).abs() < 1e-6, "{got}");
+        // A dielectric lit by E alone: E c (1 − 0.04).
         let dielectric = material(0.04, 0.0, 0.0);
         let got = ibl_terms(terms, Vec3::ZERO, Vec3::ONE, ab, n_dot_v, &dielectric);
         assert!((got.x - 0.5 * 0.96).abs() < 1e-6, "{got}");
+    }
+
+    /// The blend's weight of E/π: none, α or α² (a white furnace has S = E and cannot
+    /// tell them apart).
+    #[test]
+    fn radiance_blend_weights() {
+        for (blend, want) in [
+            (RadianceBlend::None, 0.0),
+            (RadianceBlend::Alpha, 0.25),
+            (RadianceBlend::AlphaSquared, 0.0625),
+        ] {
+            assert_eq!(blend.weight(0.5), want, "{blend:?}");
+            assert_eq!(blend.weight(1.0), if blend == RadianceBlend::None { 0.0 } else { 1.0 });
+        }
     }
 }

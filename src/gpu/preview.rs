@@ -34,8 +34,8 @@ pub struct SplitSumUniform {
     pub ibl_terms: u32,
     /// 1 where kS is the roughness-aware Fresnel.
     pub roughness_fresnel: u32,
-    /// Padding to a whole 16-byte block.
-    pub _pad: u32,
+    /// How far S leans toward E/π (`RadianceBlend` as u32).
+    pub radiance_blend: u32,
 }
 
 impl SplitSumUniform {
@@ -49,7 +49,7 @@ impl SplitSumUniform {
             lut_height: light.lut.height,
             ibl_terms: light.terms.ibl as u32,
             roughness_fresnel: light.terms.roughness_fresnel as u32,
-            _pad: 0,
+            radiance_blend: light.terms.radiance_blend as u32,
         }
     }
 }

@@ -26,7 +26,8 @@ pub enum MipRoughness {
     /// (`PMREMGenerator` `lodToRoughness`, `roughnessToMip` in
     /// envmap_common_pars_fragment) and Filament's `perceptualRoughnessToLod`.
     Quadratic,
-    /// Babylon.js, for a full chain of level-0 edge N = 2^(M − 1): mip m > 0 holds GGX at
+    /// Babylon.js (and the generic target), for a chain of M levels, N = 2^(M − 1) (the
+    /// level-0 edge of a whole chain down to 1×1): mip m > 0 holds GGX at
     /// α = 2^(m/s) / N (`HDRFiltering`, s = 0.8, Babylon's `lodGenerationScale`; m = 0 the environment),
     /// r = √min(α, 1), and the shader reads lod = s·log2(N·(r² + ε)), ε = 0.0005,
     /// Babylon's `MINIMUMVARIANCE` (`getLodFromAlphaG`, `convertRoughnessToAverageSlope`).
@@ -76,7 +77,7 @@ impl MipRoughness {
             MipRoughness::Linear => "m / (levels - 1)",
             MipRoughness::Quadratic => "1 - sqrt(1 - m / (levels - 1))",
             MipRoughness::Babylon => {
-                "sqrt(min(1, 2^(m / 0.8) / size)) for m > 0 (Babylon's lodGenerationScale 0.8), 0 for m = 0"
+                "sqrt(min(1, 2^(m / 0.8 - (levels - 1)))) for m > 0 (Babylon's lodGenerationScale 0.8), 0 for m = 0"
             }
         }
     }
@@ -166,8 +167,9 @@ pub fn level_method(env_size: u32, m: u32, r: f32, samples: u32) -> LevelMethod 
     }
 }
 
-/// Default edge of the smallest specular mip: the chain stops there instead of at 1×1
-/// (see [`chain_levels`]). A 256 chain then has 7 levels, r = m/6. Chosen by the lookup
+/// Default edge of the smallest mip of a [`MipRoughness::Linear`] chain (Bevy's): the chain
+/// stops there instead of at 1×1 (see [`chain_levels`]). A 256 chain then has 7 levels,
+/// r = m/6. Chosen by the lookup
 /// error a shader sees (seamless trilinear at lod = r·(M − 1), `tests/lookup.rs`
 /// `layout_scan`): a 1×1 or 2×2 level cannot hold the r = 1 lobe (quarry_01: 30 % and
 /// 11 % at r = 1), while fewer levels blend lobes farther apart (16² and 32² minima:

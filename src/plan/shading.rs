@@ -45,13 +45,41 @@ pub enum IblTerms {
     /// The glTF Sample Viewer: S (FssEss + FmsEms) + E c (1 − FssEss − FmsEms)(1 − m): the
     /// multiple scattering lit by the prefiltered radiance.
     MultiscatterRadiance = 3,
-    /// Babylon.js: mix(S, E, α) FssEss (1 + F0 (1/Ess − 1)) + E c (1 − F0)(1 − m), α = r²:
-    /// the radiance blended toward the irradiance as the lobe widens
-    /// (`MIX_IBL_RADIANCE_WITH_IRRADIANCE`), Filament's compensation of the specular, and
-    /// the diffuse weighted by the dielectric's 1 − F0 whatever the specular takes
-    /// (`LEGACY_SPECULAR_ENERGY_CONSERVATION`; the preview's materials are metal, m = 1, or
-    /// dielectric, m = 0, so their F0 is the dielectric's wherever the diffuse counts).
-    MixedRadiance = 4,
+    /// Babylon.js: S FssEss (1 + F0 (1/Ess − 1)) + E c (1 − F0)(1 − m): Filament's
+    /// compensation of the specular, and the diffuse weighted by the dielectric's 1 − F0
+    /// whatever the specular takes (`LEGACY_SPECULAR_ENERGY_CONSERVATION`; the preview's
+    /// materials are metal, m = 1, or dielectric, m = 0, so their F0 is the dielectric's
+    /// wherever the diffuse counts).
+    LegacyDiffuse = 4,
+}
+
+/// How far the shader blends the prefiltered radiance S toward the irradiance E/π at n
+/// before it combines them, S ← mix(S, E, w(r)): a wide lobe reads what the cosine lobe
+/// at n reads, where the chain's lobe along the lookup reaches below the horizon. The
+/// value is the kernels' code (`RADIANCE_BLEND_*` in `shaders/common/split_sum.wgsl`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u32)]
+pub enum RadianceBlend {
+    /// S as read.
+    None = 0,
+    /// w = α = r² (Babylon.js's `MIX_IBL_RADIANCE_WITH_IRRADIANCE`).
+    Alpha = 1,
+    /// w = α² = r⁴ (the README's recipe; docs/accuracy.md, "The chain's layout and the
+    /// blend toward E/π": chosen on quarry_01 against w = α, which leans too far at mid
+    /// roughness, and checked on the other bundled HDRIs).
+    AlphaSquared = 2,
+}
+
+impl RadianceBlend {
+    /// The weight w of E/π for roughness `r`.
+    pub fn weight(self, r: f32) -> f32 {
+        let alpha = r * r;
+        match self {
+            RadianceBlend::None => 0.0,
+            RadianceBlend::Alpha => alpha,
+            RadianceBlend::AlphaSquared => alpha * alpha,
+        }
+    }
 }
 
 /// The split-sum LUT a shader reads, as (A, B) at (n·v, r).
@@ -78,6 +106,8 @@ pub struct ShadingTerms {
     pub ibl: IblTerms,
     /// Whether kS is the roughness-aware Fresnel (the module's kS).
     pub roughness_fresnel: bool,
+    /// How far S is blended toward E/π first.
+    pub radiance_blend: RadianceBlend,
 }
 
 impl ShadingTerms {
@@ -85,6 +115,7 @@ impl ShadingTerms {
     pub const GENERIC: ShadingTerms = ShadingTerms {
         ibl: IblTerms::Splitsum,
         roughness_fresnel: false,
+        radiance_blend: RadianceBlend::AlphaSquared,
     };
 }
 
@@ -195,9 +226,23 @@ impl Shading {
         light: LightBrdf::GENERIC,
     };
 
-    /// This model with the chain read along `lookup` (the lookup study, `preview --lookup`).
+    /// This model with the chain read along `lookup` (the lookup study, `preview --lookup`):
+    /// the recipe's lookup with the recipe's blend toward E/π, any other plainly, as the
+    /// engines that read along it do (so `--lookup reflect` is the glTF Sample Viewer's read,
+    /// not Babylon.js's blended one).
     pub const fn with_lookup(self, lookup: SpecularLookup) -> Shading {
-        Shading { lookup, ..self }
+        let radiance_blend = match lookup {
+            SpecularLookup::Stretched => RadianceBlend::AlphaSquared,
+            _ => RadianceBlend::None,
+        };
+        Shading {
+            lookup,
+            terms: ShadingTerms {
+                radiance_blend,
+                ..self.terms
+            },
+            ..self
+        }
     }
 
     /// The roughness the shader uses for a material of perceptual roughness `r`.
@@ -220,11 +265,16 @@ impl Shading {
             IrradianceSource::Sh9 => "the irradiance SH9",
         };
         format!(
-            "lookup {}, roughness at least {}, {lut}, terms {:?}{}, E/pi from {irradiance}; lights with {:?} masking, {:?} diffuse{}",
+            "lookup {}, roughness at least {}, {lut}, terms {:?}{}{}, E/pi from {irradiance}; lights with {:?} masking, {:?} diffuse{}",
             self.lookup.id(),
             self.min_roughness,
             self.terms.ibl,
             if self.terms.roughness_fresnel { " with the roughness-aware kS" } else { "" },
+            match self.terms.radiance_blend {
+                RadianceBlend::None => "",
+                RadianceBlend::Alpha => ", the radiance blended toward E/pi by alpha",
+                RadianceBlend::AlphaSquared => ", the radiance blended toward E/pi by alpha^2",
+            },
             self.light.masking,
             self.light.diffuse,
             if self.light.compensated { ", compensated by 1 + F0 (1/(A + B) - 1)" } else { "" },

@@ -12,7 +12,8 @@ use crate::math::lookup::SpecularLookup;
 use crate::plan::chain::MipRoughness;
 use crate::plan::lut::LutModel;
 use crate::plan::shading::{
-    DiffuseLobe, IblTerms, IrradianceSource, LightBrdf, Masking, ShaderLut, Shading, ShadingTerms,
+    DiffuseLobe, IblTerms, IrradianceSource, LightBrdf, Masking, RadianceBlend, ShaderLut, Shading,
+    ShadingTerms,
 };
 use crate::stages::light::BakedEnvironment;
 use crate::targets::{engine_sh, FileContext, FileSet, Orientation, Target, BRDF_LUT_PNG};
@@ -65,7 +66,8 @@ pub const BABYLON: Target = Target {
 /// (`computeReflectionCoords`); its 256² `environmentBrdfSampler` (the RGBD PNG in
 /// `GetEnvironmentBRDFTexture`, (∫ Fc V, ∫ V) with the height-correlated Smith at
 /// uv = (n·v, r): Filament's model, which it matches within its 8-bit steps);
-/// [`IblTerms::MixedRadiance`] with E/π the `.env`'s spherical polynomial
+/// the radiance blended toward E/π by α ([`RadianceBlend::Alpha`]) and
+/// [`IblTerms::LegacyDiffuse`], E/π the `.env`'s spherical polynomial
 /// (`computeEnvironmentIrradiance`); lights with `smithVisibility_GGXCorrelated` times the
 /// same energy conservation, and the diffuse `surfaceAlbedo` c (1 − F0)(1 − m) with its
 /// default E-Oren-Nayar at diffuse roughness 0, Lambert. Left out: the 0.0005 Babylon adds
@@ -80,8 +82,9 @@ pub const BABYLON_SHADING: Shading = Shading {
         size: Some(256),
     },
     terms: ShadingTerms {
-        ibl: IblTerms::MixedRadiance,
+        ibl: IblTerms::LegacyDiffuse,
         roughness_fresnel: false,
+        radiance_blend: RadianceBlend::Alpha,
     },
     irradiance: IrradianceSource::Sh9,
     light: LightBrdf {

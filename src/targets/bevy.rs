@@ -7,7 +7,7 @@ use crate::plan::chain::{MipRoughness, DEFAULT_MIN_MIP_SIZE};
 use crate::targets::generic::STANDARD;
 use crate::math::lookup::SpecularLookup;
 use crate::plan::shading::{
-    DiffuseLobe, IblTerms, IrradianceSource, LightBrdf, Masking, ShaderLut, Shading,
+    DiffuseLobe, IblTerms, IrradianceSource, RadianceBlend, LightBrdf, Masking, ShaderLut, Shading,
     ShadingTerms,
 };
 use crate::targets::{Orientation, Target, BRDF_LUT_PNG};
@@ -65,6 +65,7 @@ pub const BEVY_SHADING: Shading = Shading {
     terms: ShadingTerms {
         ibl: IblTerms::MultiscatterIrradiance,
         roughness_fresnel: false,
+        radiance_blend: RadianceBlend::None,
     },
     irradiance: IrradianceSource::Cube,
     light: LightBrdf {

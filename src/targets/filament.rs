@@ -16,7 +16,7 @@ use crate::{Error, Result};
 use crate::math::lookup::SpecularLookup;
 use crate::plan::lut::LutModel;
 use crate::plan::shading::{
-    DiffuseLobe, IblTerms, IrradianceSource, LightBrdf, Masking, Shading, ShaderLut,
+    DiffuseLobe, IblTerms, IrradianceSource, RadianceBlend, LightBrdf, Masking, Shading, ShaderLut,
     ShadingTerms,
 };
 
@@ -95,6 +95,7 @@ pub const FILAMENT_SHADING: Shading = Shading {
     terms: ShadingTerms {
         ibl: IblTerms::EnergyCompensated,
         roughness_fresnel: false,
+        radiance_blend: RadianceBlend::None,
     },
     irradiance: IrradianceSource::LastLevel,
     light: LightBrdf {

@@ -1,7 +1,8 @@
 //! The generic target: the conventions of `docs/conventions.md` (right-handed, +Y up, the
-//! texel at d holds the light arriving from d, lod = r·(M − 1), irradiance E/π), and the
-//! standard file set it writes, which the Bevy and three.js targets share: `specular` and
-//! `irradiance` cubes in the bake's container, `sh.json` and the LUTs.
+//! texel at d holds the light arriving from d, the chain's levels geometric in α,
+//! irradiance E/π), and the standard file set it writes, which the Bevy and three.js
+//! targets share: `specular` and `irradiance` cubes in the bake's container, `sh.json` and
+//! the LUTs.
 
 use serde::Serialize;
 
@@ -10,7 +11,7 @@ use crate::io::cubemap::Container;
 use crate::io::staging::Staging;
 use crate::io::{to_json, PixelFormat};
 use crate::math::sh::{sinc_window, SH_ORDER};
-use crate::plan::chain::{MipRoughness, DEFAULT_MIN_MIP_SIZE};
+use crate::plan::chain::MipRoughness;
 use crate::stages::light::BakedEnvironment;
 use crate::stages::sh::ShCoefficients;
 use crate::targets::{FileContext, FileSet, Orientation, Target, BRDF_LUT_PNG};
@@ -28,15 +29,21 @@ pub const STANDARD: FileSet = FileSet {
     write: write_standard,
 };
 
-/// The conventions of `docs/conventions.md`: right-handed, +Y up, lod = r·(M − 1), irradiance E/π.
+/// The conventions of `docs/conventions.md`: right-handed, +Y up, the chain down to 1×1 with
+/// mip m > 0 at α = 2^(m/0.8 − (M − 1)) (the layout Babylon.js's `HDRFiltering` writes;
+/// chosen by what a user sees: docs/accuracy.md, "The chain's layout and the blend toward
+/// E/π"), irradiance E/π.
 pub const GENERIC: Target = Target {
     name: "generic",
-    summary: "the conventions of docs/conventions.md: right-handed, +Y up, lod = r·(levels − 1)",
+    summary: "the conventions of docs/conventions.md: right-handed, +Y up, lod = 0.8 (levels - 1 + log2(r² + 0.0005)), irradiance E/π",
     orientation: Orientation::GENERIC,
     pixel_format: PixelFormat::Rgba16f,
     zstd: None,
-    roughness: MipRoughness::Linear,
-    min_mip_size: DEFAULT_MIN_MIP_SIZE,
+    // Levels geometric in α, down to 1×1: the recipe's figures against the truth drop at
+    // r = 0.25 on every bundled HDRI, and with its blend toward E/π at every r on all but
+    // one (docs/accuracy.md).
+    roughness: MipRoughness::Babylon,
+    min_mip_size: 1,
     irradiance: true,
     sh: true,
     lut: true,
@@ -45,7 +52,7 @@ pub const GENERIC: Target = Target {
     format_warnings: &[],
     format_refusals: &[],
     notes: &[
-        "sample specular at lod = roughness * (levels - 1), seamless trilinear",
+        "sample specular at lod = clamp(0.8 * (levels - 1 + log2(roughness^2 + 0.0005)), 0, levels - 1), seamless trilinear; blend it toward the irradiance by roughness^4 (the README's recipe)",
         "irradiance holds E / pi: multiply by the diffuse albedo",
     ],
     shading: Shading::GENERIC,

@@ -15,7 +15,7 @@ use crate::Result;
 use serde_json::json;
 use crate::math::lookup::SpecularLookup;
 use crate::plan::shading::{
-    DiffuseLobe, IblTerms, IrradianceSource, LightBrdf, Masking, Shading, ShaderLut,
+    DiffuseLobe, IblTerms, IrradianceSource, RadianceBlend, LightBrdf, Masking, Shading, ShaderLut,
     ShadingTerms,
 };
 
@@ -86,6 +86,7 @@ pub const GLTF_SHADING: Shading = Shading {
     terms: ShadingTerms {
         ibl: IblTerms::MultiscatterRadiance,
         roughness_fresnel: true,
+        radiance_blend: RadianceBlend::None,
     },
     irradiance: IrradianceSource::Cube,
     light: LightBrdf {

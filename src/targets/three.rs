@@ -9,7 +9,7 @@ use crate::targets::generic::STANDARD;
 use crate::targets::{LutChannels, LutSpec, Orientation, Target};
 use crate::math::lookup::SpecularLookup;
 use crate::plan::shading::{
-    DiffuseLobe, IblTerms, IrradianceSource, LightBrdf, Masking, Shading, ShaderLut,
+    DiffuseLobe, IblTerms, IrradianceSource, RadianceBlend, LightBrdf, Masking, Shading, ShaderLut,
     ShadingTerms,
 };
 
@@ -78,6 +78,7 @@ pub const THREE_SHADING: Shading = Shading {
     terms: ShadingTerms {
         ibl: IblTerms::MultiscatterIrradiance,
         roughness_fresnel: false,
+        radiance_blend: RadianceBlend::None,
     },
     irradiance: IrradianceSource::LastLevel,
     light: LightBrdf {
