@@ -30,7 +30,7 @@ use splitsum::math::lookup::{BlendFit, SpecularLookup, FITTED};
 use splitsum::plan::lut::BrdfLut;
 use splitsum::plan::material::ShadeMaterial;
 use splitsum::plan::scene::{material_table, Scene, SplitSumInputs, SplitSumLight, ROUGHNESS};
-use splitsum::plan::shading::{LightBrdf, Shading, ShadingTerms};
+use splitsum::plan::shading::{LightBrdf, RadianceBlend, Shading, ShadingTerms};
 use splitsum::stages::preview::{
     add_sun_light, column_table, column_table_at, compare, render_truth, BakedLight, PreviewOptions,
 };
@@ -158,7 +158,12 @@ fn figures_with(
             specular: light.specular,
             irradiance: light.irradiance,
             lut,
-            terms: ShadingTerms::GENERIC,
+            // The lookups alone: none blended toward E/π (the recipe's blend is measured
+            // apart, docs/accuracy.md, "The chain's layout and the blend toward E/π").
+            terms: ShadingTerms {
+                radiance_blend: RadianceBlend::None,
+                ..ShadingTerms::GENERIC
+            },
         },
         columns,
         materials: &materials,
