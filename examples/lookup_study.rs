@@ -1,7 +1,8 @@
 //! The lookup study: where should a shader read the prefiltered chain? For each bundled
 //! HDRI, with the sun kept and split (`--sun`), and the environment turned to four azimuths
 //! (four views of it), the preview's spheres are shaded with each [`SpecularLookup`] and
-//! the fitted blend ([`FITTED`]), and
+//! the fitted blend ([`FITTED`]), each read plainly, and with the README's recipe (the
+//! stretched lookup blended toward E/π by α²), and
 //! compared with the preview's ground truth (the full reflectance integral, which does not
 //! depend on the lookup), sphere by sphere: the energy-weighted relative difference of the
 //! light each sends to the camera (`preview --json`'s `mean`). Prints a Markdown table per
@@ -54,8 +55,9 @@ const LOD_HDRIS: [&str; 3] = [
     "royal_esplanade_1k.hdr",
     "venice_sunset_1k.hdr",
 ];
-/// The table's rows: every [`SpecularLookup`], then the fitted blend.
-const ROWS: usize = SpecularLookup::ALL.len() + 1;
+/// The table's rows: every [`SpecularLookup`], then the fitted blend, then the README's
+/// recipe (the stretched lookup blended toward E/π by α²).
+const ROWS: usize = SpecularLookup::ALL.len() + 2;
 /// The four views: the environment turned about +Y.
 const AZIMUTHS: [f32; 4] = [0.0, 90.0, 180.0, 270.0];
 /// The preview's pixels and truth points the study renders with.
@@ -109,16 +111,18 @@ fn figures(
     lookup: impl Fn(glam::Vec3, glam::Vec3, f32) -> glam::Vec3 + Sync,
     stretch: f32,
 ) -> Vec<f32> {
-    figures_at(view, lut, lookup, stretch, 1.0)
+    figures_at(view, lut, lookup, stretch, 1.0, RadianceBlend::None)
 }
 
-/// As [`figures`], each roughness read at `lod_scale` × the chain's lod for it.
+/// As [`figures`], each roughness read at `lod_scale` × the chain's lod for it, the read
+/// blended toward E/π as `blend` says.
 fn figures_at(
     view: &View,
     lut: &BrdfLut,
     lookup: impl Fn(glam::Vec3, glam::Vec3, f32) -> glam::Vec3 + Sync,
     stretch: f32,
     lod_scale: f32,
+    blend: RadianceBlend,
 ) -> Vec<f32> {
     let mut columns = column_table(
         view.baked.chain,
@@ -133,6 +137,7 @@ fn figures_at(
         lut,
         &columns,
         &view.truth,
+        blend,
         |light, n, v, n_dot_v, m| {
             split_sum_shade_along(light, n, lookup(n, v, m.roughness), n_dot_v, m)
         },
@@ -141,13 +146,14 @@ fn figures_at(
 
 /// Each sphere's figure of `baked` against `truth` (materials in row order, columns in
 /// order), its spheres shaded by `shade(light, n, v, n·v, material)` with the kernels'
-/// per-column table `columns`, and the lights taken out of it shaded as the preview
-/// shades them.
+/// per-column table `columns` and the read blended toward E/π as `blend` says, and the
+/// lights taken out of it shaded as the preview shades them.
 fn figures_with(
     baked: &BakedEnvironment,
     lut: &BrdfLut,
     columns: &[[f32; 4]],
     truth: &[[f32; 3]],
+    blend: RadianceBlend,
     shade: impl Fn(&SplitSumLight, glam::Vec3, glam::Vec3, f32, &ShadeMaterial) -> glam::Vec3 + Sync,
 ) -> Vec<f32> {
     let scene = Scene { cell: OPTS.cell }.uniform();
@@ -158,10 +164,9 @@ fn figures_with(
             specular: light.specular,
             irradiance: light.irradiance,
             lut,
-            // The lookups alone: none blended toward E/π (the recipe's blend is measured
-            // apart, docs/accuracy.md, "The chain's layout and the blend toward E/π").
+            // The lookups alone unless `blend` (the recipe's row).
             terms: ShadingTerms {
-                radiance_blend: RadianceBlend::None,
+                radiance_blend: blend,
                 ..ShadingTerms::GENERIC
             },
         },
@@ -248,7 +253,10 @@ fn lod(lut: &BrdfLut) -> Result<(), splitsum::Error> {
         let mut sums = vec![(0.0f32, 0u32); ROUGHNESS.len()];
         for view in &all {
             let lookup = |n, v, r| SpecularLookup::Frostbite.direction(n, v, r);
-            for (i, e) in figures_at(view, lut, lookup, 0.0, scale).iter().enumerate() {
+            for (i, e) in figures_at(view, lut, lookup, 0.0, scale, RadianceBlend::None)
+                .iter()
+                .enumerate()
+            {
                 let s = &mut sums[i % ROUGHNESS.len()];
                 *s = (s.0 + e, s.1 + 1);
             }
@@ -316,6 +324,7 @@ fn grazing_figures(view: &View, lut: &BrdfLut, g: Grazing) -> Vec<f32> {
         lut,
         &columns,
         &view.truth,
+        RadianceBlend::None,
         |light, n, v, n_dot_v, m| g.shade(light, max_lod, n, v, n_dot_v, m),
     )
 }
@@ -412,7 +421,14 @@ fn high(lut: &BrdfLut) -> Result<(), splitsum::Error> {
                     chain,
                     &Shading::GENERIC.with_lookup(lookup),
                 );
-                let figures = figures_with(&view.baked, lut, &columns, &truth, split_sum_shade);
+                let figures = figures_with(
+                    &view.baked,
+                    lut,
+                    &columns,
+                    &truth,
+                    RadianceBlend::None,
+                    split_sum_shade,
+                );
                 for (i, e) in figures.into_iter().enumerate() {
                     row[i % HIGH_ROUGHNESS.len()].push(e);
                 }
@@ -455,6 +471,7 @@ fn main() -> Result<(), splitsum::Error> {
             let mut errors = vec![vec![Vec::new(); ROUGHNESS.len()]; ROWS];
             for view in &views {
                 for (k, errors) in errors.iter_mut().enumerate() {
+                    let stretched = SpecularLookup::Stretched;
                     let f = match SpecularLookup::ALL.get(k) {
                         Some(lookup) => figures(
                             view,
@@ -462,7 +479,17 @@ fn main() -> Result<(), splitsum::Error> {
                             |n, v, r| lookup.direction(n, v, r),
                             lookup.stretch(),
                         ),
-                        None => figures(view, &lut, |n, v, r| FITTED.direction(n, v, r), 0.0),
+                        None if k == SpecularLookup::ALL.len() => {
+                            figures(view, &lut, |n, v, r| FITTED.direction(n, v, r), 0.0)
+                        }
+                        None => figures_at(
+                            view,
+                            &lut,
+                            |n, v, r| stretched.direction(n, v, r),
+                            stretched.stretch(),
+                            1.0,
+                            RadianceBlend::AlphaSquared,
+                        ),
                     };
                     for (i, e) in f.into_iter().enumerate() {
                         errors[i % ROUGHNESS.len()].push(e);
@@ -487,9 +514,11 @@ fn main() -> Result<(), splitsum::Error> {
             ROUGHNESS.iter().for_each(|r| print!(" r = {r} |"));
             println!("\n|---|{}", "---|".repeat(ROUGHNESS.len()));
             for (k, errors) in errors.iter().enumerate() {
-                let name = SpecularLookup::ALL
-                    .get(k)
-                    .map_or("fitted blend", |l| l.name());
+                let name = match SpecularLookup::ALL.get(k) {
+                    Some(l) => l.name(),
+                    None if k == SpecularLookup::ALL.len() => "fitted blend",
+                    None => "the recipe: stretched, blended toward E/π by α²",
+                };
                 print!("| {name} |");
                 for e in errors {
                     let mean = e.iter().sum::<f32>() / e.len() as f32;
