@@ -1,6 +1,7 @@
 // Split-sum shading of one surface point, exactly as the README tells an engine to (or as
 // an engine's own shader does, plan::shading, with the params' ibl_terms):
-// L = prefiltered(d, lod(r)) (F0 A + B) + E/pi(n) albedo kD,
+// L = mix(prefiltered(d, lod(r)), E/pi(n), w(r)) (F0 A + B) + E/pi(n) albedo kD,
+// w(r) = r^4 the blend toward the irradiance (params' radiance_blend: RADIANCE_BLEND_*),
 // kD = (1 - F0)(1 - W(n.v))(1 - metallic), the BRDF's diffuse weight averaged over the light
 // directions (diffuse_fresnel_weight in common/brdf.wgsl), and
 // d = normalize(mix(R, n, bend(r))) the lookup direction, R = reflect(-v, n) bent toward

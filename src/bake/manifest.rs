@@ -240,7 +240,7 @@ impl Manifest {
                 tone_mapping: "Khronos PBR Neutral, then sRGB".into(),
                 truth_samples: o.truth_samples,
                 split_sum: match o.shading == Shading::GENERIC {
-                    true => "prefiltered(d, lod(r)) * (F0 * A + B) + irradiance(n) * albedo * (1 - F0) * (1 - W(n.v)) * (1 - metallic), d and lod as the README's recipe reads them (math::lookup), W the cosine-weighted mean of (1 - v.h)^5 (math::brdf::diffuse_fresnel_weight)".into(),
+                    true => "mix(prefiltered(d, lod(r)), irradiance(n), r^4) * (F0 * A + B) + irradiance(n) * albedo * (1 - F0) * (1 - W(n.v)) * (1 - metallic), d and lod as the README's recipe reads them (math::lookup), W the cosine-weighted mean of (1 - v.h)^5 (math::brdf::diffuse_fresnel_weight)".into(),
                     false => format!("as {}'s shader: {}", o.shading.name, o.shading.describe()),
                 },
                 truth: match o.shading == Shading::GENERIC {

@@ -5,8 +5,9 @@
 //!
 //! For normal n, view v, roughness r and a material (F0, albedo c, metallic m):
 //!
-//! L = prefiltered(d, lod(r)) · (F0·A + B) + E/π(n) · c · kD,
-//! kD = (1 − F0)(1 − W(n·v))(1 − m),
+//! L = mix(prefiltered(d, lod(r)), E/π(n), w(r)) · (F0·A + B) + E/π(n) · c · kD,
+//! kD = (1 − F0)(1 − W(n·v))(1 − m), w(r) = r⁴ the blend toward the irradiance
+//! (`plan::shading::RadianceBlend`),
 //!
 //! (an engine's mode combines the same reads as that engine's shader does: [`ibl_terms`],
 //! `plan::shading`),

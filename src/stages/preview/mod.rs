@@ -3,7 +3,8 @@
 //!
 //! - **split-sum** ([`crate::cpu::preview_split_sum`]): each sphere pixel shaded from the
 //!   bake's files exactly as the README tells engines to (prefiltered specular at the
-//!   documented lod, the LUT, irradiance × albedo × kD);
+//!   documented lod blended toward the irradiance by r⁴, the LUT, irradiance × albedo ×
+//!   kD);
 //! - **ground truth** ([`crate::cpu::preview_truth`]): the full reflectance integral of the
 //!   same BRDF over the same environment (the chain's level 0) per pixel, with the real
 //!   view direction.
