@@ -40,8 +40,8 @@ pub const GENERIC: Target = Target {
     pixel_format: PixelFormat::Rgba16f,
     zstd: None,
     // Levels geometric in α, down to 1×1: the recipe's figures against the truth drop at
-    // r = 0.25 on every bundled HDRI, and with its blend toward E/π at every r on all but
-    // one (docs/accuracy.md).
+    // r = 0.25 on every bundled HDRI, and with its blend toward E/π they are at or below
+    // the previous layout's at every r but 0.5 on two HDRIs (docs/accuracy.md).
     roughness: MipRoughness::Babylon,
     min_mip_size: 1,
     irradiance: true,
