@@ -34,7 +34,7 @@ use splitsum::{BrdfLut, Manifest, Shading, Target};
 /// it on quarry_01's r = 0.25 metal, whose exposure is low enough for the sun's highlight
 /// not to clip); Babylon.js at most 0.27 % (quarry_01's metal at r = 0.25), 0.04 % on
 /// venice_sunset. 1 % leaves room for what differs between the renders: the engines'
-/// meshes (interpolated normals, Babylon's SH per vertex), three's `geometryRoughness`
+/// meshes (interpolated normals), three's `geometryRoughness`
 /// (modelled here from the exact normals of neighbouring pixels, where three takes screen
 /// derivatives over 2 × 2 quads), Babylon's 0.0005 added to α, half-float LUTs and
 /// SwiftShader's filtering. (The recipe's terms in place of three's are 2.4 % off at
@@ -123,18 +123,21 @@ fn read_gltf(dir: &Path) -> (Cubemap, Cubemap, BrdfLut) {
     )
 }
 
-/// Babylon.js: `<stem>.env` (x and z swapped), its spherical polynomial as Babylon evaluates
-/// it at each generic texel's direction turned into Babylon's frame, Babylon's 256² LUT as
-/// the preview computes it (its PNG is that model within its 8-bit steps; docs/targets.md).
+/// Babylon.js: `<stem>.env` (x and z swapped), `<stem>_irradiance.env`'s level 0 as the
+/// irradianceTexture the check sets (the README recipe's), Babylon's 256² LUT as the
+/// preview computes it (its PNG is that model within its 8-bit steps; docs/targets.md).
 fn read_babylon(dir: &Path) -> (Cubemap, Cubemap, BrdfLut) {
-    let stem = dir.file_name().unwrap().to_string_lossy();
-    let path = dir.join(format!("{stem}.env"));
-    let file = env::decode(&path, &std::fs::read(&path).unwrap()).unwrap();
-    let chain = file
-        .cube
-        .remapped(BABYLON.orientation.texel_map().inverse());
-    let frame = BABYLON.orientation.frame;
-    let irradiance = Cubemap::from_directions(32, |d| file.irradiance.shade(frame.apply(d)));
+    let stem = dir.file_name().unwrap().to_string_lossy().into_owned();
+    let read = |name: String| {
+        let path = dir.join(name);
+        env::decode(&path, &std::fs::read(&path).unwrap())
+            .unwrap()
+            .cube
+            .remapped(BABYLON.orientation.texel_map().inverse())
+    };
+    let chain = read(format!("{stem}.env"));
+    let mut irradiance = read(format!("{stem}_irradiance.env"));
+    irradiance.levels.truncate(1);
     let lut = shading_lut(&CpuBackend, &BABYLON_SHADING, None).unwrap();
     (chain, irradiance, lut)
 }

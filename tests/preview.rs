@@ -387,7 +387,7 @@ fn gpu_renders_match_cpu() {
             true => lut.clone(),
             false => shading_lut(&CpuBackend, &shading, None).unwrap(),
         };
-        let irradiance = shading_irradiance(&shading, &bake).unwrap();
+        let irradiance = shading_irradiance(&shading, &bake);
         let light = BakedLight {
             irradiance: &irradiance,
             ..BakedLight::of("test", &bake, &table)
@@ -462,7 +462,7 @@ fn engine_modes_in_a_white_furnace() {
             BABYLON_SHADING,
         ] {
             let table = shading_lut(&CpuBackend, &shading, None).unwrap();
-            let irradiance = shading_irradiance(&shading, &bake).unwrap();
+            let irradiance = shading_irradiance(&shading, &bake);
             let light = BakedLight {
                 irradiance: &irradiance,
                 ..BakedLight::of("test", &bake, &table)

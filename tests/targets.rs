@@ -568,7 +568,8 @@ fn filament_frame_is_cmgens() {
 /// `--target babylon`: one `<stem>.env` holding the whole chain (32² to 1², six levels) at
 /// Babylon's roughness per mip, level 0 the generic cube in Babylon's left-handed frame
 /// (texel at (z, y, x) holds L(x, y, z)) to RGBD's precision, and a polynomial that Babylon
-/// shades (its band factors undone) to the generic E/π at the engine's direction.
+/// shades (its band factors undone) to the generic E/π at the engine's direction; and
+/// `<stem>_irradiance.env`, the generic irradiance cube in the same frame.
 #[test]
 fn babylon_target_is_an_env_in_babylons_frame() {
     let dir = common::output_dir("targets-babylon");
@@ -579,9 +580,12 @@ fn babylon_target_is_an_env_in_babylons_frame() {
     assert_eq!(m["parameters"]["container"], "env (Babylon.js)");
     assert_eq!(m["parameters"]["specular_levels"], 6, "32² to 1²");
     let files = output_files(&m);
-    assert_eq!(files, ["quarry_01_1k.env"]);
-    let path = babylon.join("quarry_01_1k.env");
-    let env = splitsum::io::env::decode(&path, &std::fs::read(&path).unwrap()).unwrap();
+    assert_eq!(files, ["quarry_01_1k.env", "quarry_01_1k_irradiance.env"]);
+    let decode = |name: &str| {
+        let path = babylon.join(name);
+        splitsum::io::env::decode(&path, &std::fs::read(&path).unwrap()).unwrap()
+    };
+    let env = decode("quarry_01_1k.env");
     assert_eq!((env.cube.size, env.cube.levels.len()), (32, 6));
     assert_eq!(env.lod_generation_scale, 0.8);
     let frame = splitsum::math::cubemap::AxisMap {
@@ -589,19 +593,28 @@ fn babylon_target_is_an_env_in_babylons_frame() {
         sign: [1, 1, 1],
     };
     assert_eq!(splitsum::targets::BABYLON.orientation.texel_map(), frame);
+    // RGBD: 8 bits a channel under a shared divisor.
+    let rgbd_close = |got: &[[f32; 4]], want: &[[f32; 4]]| {
+        assert_eq!(got.len(), want.len());
+        for (a, b) in got.iter().zip(want) {
+            let top = b[0].max(b[1]).max(b[2]);
+            if top > splitsum::io::env::RGBD_MAX {
+                continue; // clipped, with a warning
+            }
+            for c in 0..3 {
+                assert!(
+                    (a[c] - b[c]).abs() <= 0.04 * b[c] + 0.015 * top + 1e-4,
+                    "{a:?} vs {b:?}"
+                );
+            }
+        }
+    };
     let g = cube(&generic.join("specular.ktx2")).remapped(frame);
-    for (a, b) in env.cube.levels[0].iter().zip(&g.levels[0]) {
-        let top = b[0].max(b[1]).max(b[2]);
-        if top > splitsum::io::env::RGBD_MAX {
-            continue; // clipped, with a warning
-        }
-        for c in 0..3 {
-            assert!(
-                (a[c] - b[c]).abs() <= 0.04 * b[c] + 0.015 * top + 1e-4,
-                "{a:?} vs {b:?}"
-            );
-        }
-    }
+    rgbd_close(&env.cube.levels[0], &g.levels[0]);
+    let irradiance = decode("quarry_01_1k_irradiance.env");
+    let g = cube(&generic.join("irradiance.ktx2")).remapped(frame);
+    assert_eq!(irradiance.cube.size, g.size);
+    rgbd_close(&irradiance.cube.levels[0], &g.levels[0]);
     let v: serde_json::Value =
         serde_json::from_slice(&std::fs::read(generic.join("sh.json")).unwrap()).unwrap();
     let world: [[f32; 3]; 9] = std::array::from_fn(|k| {

@@ -96,7 +96,7 @@ const ready = (texture) => new Promise((ok, fail) => {
   setTimeout(() => fail(new Error(`${texture.name} did not load`)), 120000);
 });
 
-window.runCheck = async function ({ hdrUrl, exactUrl, envUrl, controlUrl, roughness, split }) {
+window.runCheck = async function ({ hdrUrl, exactUrl, envUrl, irradianceUrl, controlUrl, roughness, split }) {
   const own = await ready(new B.HDRCubeTexture(hdrUrl, scene, 256, false, true, false, true));
   // Babylon's own path from splitsum's exact cube (engines/panorama.mjs): its SH and its
   // prefiltering of the cube splitsum bakes from, with the clamp its SH projection puts on
@@ -194,16 +194,25 @@ window.runCheck = async function ({ hdrUrl, exactUrl, envUrl, controlUrl, roughn
     return spheres;
   };
   const ourSpheres = await renderSpheres(ours, 'splitsum', ourStats.mean);
-  // The spheres as rendered from the bake, linear RGBA float rows from the bottom, for the
-  // preview's Babylon.js mode to be held against (tests/engine_renders.rs): the camera as
-  // measure.pinhole takes it, in Babylon's (left-handed) world.
-  const raw = {};
-  out.sphereCamera = { eye, fov: SPHERE_FOV, size: SIZE };
-  for (const { metallic, roughness: r, px } of ourSpheres) raw[`sphere_m${metallic}_r${r}.rgba32f`] = measure.base64(px);
   const compareWith = async (reference, tag, refMean) => (await renderSpheres(reference, tag, refMean))
     .map(({ metallic, roughness: r, px }, k) => ({ metallic, roughness: r, ...measure.compareSpheres(ourSpheres[k].px, px, SIZE) }));
   out.vsOwn = await compareWith(own, 'babylon', ownStats.mean);
   out.vsOwnExact = await compareWith(ownExact, 'babylon_exact', ownExactStats.mean);
+  // The README recipe's environment: the .env with its irradiance cube as the
+  // irradianceTexture (the comparisons above read the .env's SH, as Babylon's own path
+  // does). Its spheres, linear RGBA float rows from the bottom, for the preview's
+  // Babylon.js mode to be held against (tests/engine_renders.rs): the camera as
+  // measure.pinhole takes it, in Babylon's (left-handed) world.
+  ours.irradianceTexture = await ready(new B.CubeTexture(irradianceUrl, scene));
+  const raw = {};
+  out.sphereCamera = { eye, fov: SPHERE_FOV, size: SIZE };
+  for (const metallic of [1, 0]) {
+    for (const r of roughness) {
+      const px = await sphereAt(ours, metallic, r, SIZE, 0.6 / ourStats.mean);
+      raw[`sphere_m${metallic}_r${r}.rgba32f`] = measure.base64(px);
+      images[`sphere_m${metallic}_r${r}_splitsum_recipe`] = measure.toPng(px, SIZE);
+    }
+  }
   if (split) {
     out.sunLight = await sunLight(ours, split, images);
     // The split bake's skybox: its _background.env keeps the sun; its .env does not.
@@ -245,12 +254,14 @@ function sunLightFrom(sun) {
   return light;
 }
 
-// The sun as a light (`split`: a `--sun split` bake's .env and sun.json, beside `full`, the
-// kept bake): a white Lambertian PBR sphere lit by the full IBL against the residual IBL
-// plus the DirectionalLight, seen 90° from the sun (half lit, half shaded); then a box
+// The sun as a light (`split`: a `--sun split` bake's .env, irradiance .env and sun.json,
+// beside `full`, the kept bake, both with their irradiance cubes as the README recipe sets
+// them): a white Lambertian PBR sphere lit by the full IBL against the residual IBL plus
+// the DirectionalLight, seen 90° from the sun (half lit, half shaded); then a box
 // floating above a floor, lit by the sun alone with a ShadowGenerator, seen from above.
 async function sunLight(full, split, images) {
   const residual = await ready(new B.CubeTexture(split.env, scene));
+  residual.irradianceTexture = await ready(new B.CubeTexture(split.irradiance, scene));
   const sun = await (await fetch(split.sun)).json();
   const toSun = sun.direction;
   const light = sunLightFrom(sun);

@@ -16,7 +16,7 @@ pub use hot::IrradianceSource;
 pub use integral::EquirectIntegral;
 pub use pyramid::{pyramid_level_count, EquirectReducer};
 
-use crate::math::cubemap::{cube_texel_direction, AxisMap, FACES};
+use crate::math::cubemap::{AxisMap, FACES};
 
 /// A linear-RGB equirectangular image, rows top (+Y) to bottom.
 #[derive(Clone, Debug, PartialEq)]
@@ -65,23 +65,6 @@ pub struct Cubemap {
 }
 
 impl Cubemap {
-    /// A one-level cube of edge `size` holding `f` of each texel's centre direction.
-    pub fn from_directions(size: u32, f: impl Fn([f32; 3]) -> [f32; 3]) -> Cubemap {
-        let texels = (0..6u32)
-            .flat_map(|face| {
-                (0..size).flat_map(move |j| (0..size).map(move |i| (face, i, j)))
-            })
-            .map(|(face, i, j)| {
-                let [r, g, b] = f(cube_texel_direction(face, i as i32, j as i32, size));
-                [r, g, b, 1.0]
-            })
-            .collect();
-        Cubemap {
-            size,
-            levels: vec![texels],
-        }
-    }
-
     /// Edge of mip `m`.
     pub fn level_size(&self, m: usize) -> u32 {
         (self.size >> m).max(1)

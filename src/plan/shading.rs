@@ -128,10 +128,6 @@ pub enum IrradianceSource {
     /// `textureLod(envMap, n, ENVMAP_MAX_LOD)`, Filament's `Irradiance_RoughnessOne`
     /// without SH): the bake fits that level to E/π.
     LastLevel,
-    /// The bake's irradiance SH9 (`sh.json`'s `irradiance_sh9`, deringed where the exact
-    /// projection rings), evaluated at n (Babylon.js's spherical polynomial, per vertex or
-    /// per fragment alike on the preview's smooth spheres).
-    Sh9,
 }
 
 /// The masking-shadowing term of a light's specular BRDF (of the LUT models' visibilities,
@@ -262,7 +258,6 @@ impl Shading {
         let irradiance = match self.irradiance {
             IrradianceSource::Cube => "the irradiance cube",
             IrradianceSource::LastLevel => "the chain's last level",
-            IrradianceSource::Sh9 => "the irradiance SH9",
         };
         format!(
             "lookup {}, roughness at least {}, {lut}, terms {:?}{}{}, E/pi from {irradiance}; lights with {:?} masking, {:?} diffuse{}",

@@ -22,7 +22,7 @@ use crate::{Error, Result};
 /// Babylon.js (`CubeTexture` of a `.env`, `scene.environmentTexture`, `PBRMaterial`).
 pub const BABYLON: Target = Target {
     name: "babylon",
-    summary: "Babylon.js: <stem>.env, the whole chain as RGBD PNGs at Babylon's roughness per mip and the SH as its spherical polynomial, x and z swapped",
+    summary: "Babylon.js: <stem>.env, the whole chain as RGBD PNGs at Babylon's roughness per mip and the SH as its spherical polynomial, and <stem>_irradiance.env (E/π for irradianceTexture), x and z swapped",
     // Babylon's world is left-handed: its own HDRCubeTexture of an equirect holds the generic
     // direction (x, y, z) at (z, y, x) (measured texel for texel in engines/babylon), it
     // samples cubes with the world direction as it is, and evaluates the irradiance
@@ -41,7 +41,7 @@ pub const BABYLON: Target = Target {
     roughness: MipRoughness::Babylon,
     // Babylon reads a .env only with its whole chain.
     min_mip_size: 1,
-    irradiance: false,
+    irradiance: true,
     sh: true,
     lut: false,
     luts: BRDF_LUT_PNG,
@@ -50,6 +50,7 @@ pub const BABYLON: Target = Target {
     format_refusals: &[],
     notes: &[
         "<stem>.env: new CubeTexture(url, scene) (or CubeTexture.CreateFromPrefilteredData) as scene.environmentTexture; scene.createDefaultSkybox(texture) for the background",
+        "<stem>_irradiance.env: new CubeTexture(url, scene) as that texture's irradianceTexture: Babylon reads the diffuse light (E / pi) from it instead of the SH",
         "with --sun split: <stem>_background.env is the sky as seen, sun included, for scene.createDefaultSkybox (the <stem>.env lacks the sun)",
         "Babylon samples lod = 0.8 * log2(size * (r^2 + 0.0005)); mip m holds GGX at alpha = 2^(m / 0.8) / size",
         "the irradiance is the header's spherical polynomial (E / pi, in the cube's frame)",
@@ -67,10 +68,12 @@ pub const BABYLON: Target = Target {
 /// `GetEnvironmentBRDFTexture`, (∫ Fc V, ∫ V) with the height-correlated Smith at
 /// uv = (n·v, r): Filament's model, which it matches within its 8-bit steps);
 /// the radiance blended toward E/π by α ([`RadianceBlend::Alpha`]) and
-/// [`IblTerms::LegacyDiffuse`], E/π the `.env`'s spherical polynomial
-/// (`computeEnvironmentIrradiance`); lights with `smithVisibility_GGXCorrelated` times the
-/// same energy conservation, and the diffuse `surfaceAlbedo` c (1 − F0)(1 − m) with its
-/// default E-Oren-Nayar at diffuse roughness 0, Lambert. Left out: the 0.0005 Babylon adds
+/// [`IblTerms::LegacyDiffuse`], E/π the irradiance cube (`<stem>_irradiance.env`, which
+/// the README recipe sets as the environment's `irradianceTexture`: `USEIRRADIANCEMAP`;
+/// without it Babylon evaluates the `.env`'s spherical polynomial instead); lights with
+/// `smithVisibility_GGXCorrelated` times the same energy conservation, and the diffuse
+/// `surfaceAlbedo` c (1 − F0)(1 − m) with its default E-Oren-Nayar at diffuse roughness 0,
+/// Lambert. Left out: the 0.0005 Babylon adds
 /// to α = r² (`MINIMUMVARIANCE`), 0.8 % of α at r = 0.25, and the RGBD PNGs' 8-bit steps
 /// (the preview shades the bake's floats, as for every engine).
 pub const BABYLON_SHADING: Shading = Shading {
@@ -86,7 +89,7 @@ pub const BABYLON_SHADING: Shading = Shading {
         roughness_fresnel: false,
         radiance_blend: RadianceBlend::Alpha,
     },
-    irradiance: IrradianceSource::Sh9,
+    irradiance: IrradianceSource::Cube,
     light: LightBrdf {
         masking: Masking::SmithCorrelated,
         diffuse: DiffuseLobe::DielectricLambert,
@@ -133,6 +136,10 @@ fn write(ctx: &FileContext, baked: BakedEnvironment, out: &mut Staging) -> Resul
         bytes,
         ("specular", "rgbd png", specular.size, levels),
     );
+    // E/π as a cube for the environment's `irradianceTexture`: Babylon then reads the
+    // diffuse light from it (`USEIRRADIANCEMAP`) instead of the SH9, which cannot hold a
+    // kept sun.
+    add_env_cube(ctx, "irradiance", baked.irradiance, &polynomial, out)?;
     if let Some(background) = baked.background {
         add_background(ctx, background, &polynomial, out)?;
     }
@@ -149,31 +156,39 @@ fn write(ctx: &FileContext, baked: BakedEnvironment, out: &mut Staging) -> Resul
 }
 
 /// `<stem>_background.env`, written when lights were split out: the environment as seen,
-/// lights included, for `scene.createDefaultSkybox` (a background is seen, not lit by). A
-/// `.env` carries a whole chain, so its mips are the solid-angle-weighted means of level 0
-/// (what a skybox's blur reads), not a prefilter; its polynomial is the residual's, unused
-/// by a skybox. Radiance past RGBD's 255 (the sun's disc) is clipped: a skybox shows it
-/// saturated either way.
+/// lights included, for `scene.createDefaultSkybox` (a background is seen, not lit by). Its
+/// polynomial is the residual's, unused by a skybox. Radiance past RGBD's 255 (the sun's
+/// disc) is clipped: a skybox shows it saturated either way.
 fn add_background(
     ctx: &FileContext,
-    mut background: Cubemap,
+    background: Cubemap,
     polynomial: &env::SphericalPolynomial,
     out: &mut Staging,
 ) -> Result<()> {
-    let path = ctx.dir.join(format!("{}_background.env", ctx.stem));
-    let levels = Cubemap::full_mip_count(background.size);
-    build_mips(&mut background, levels);
-    let background = ctx.target.orientation.apply(background);
-    let bytes = env::encode(&background, polynomial).map_err(|message| Error::Encode {
+    add_env_cube(ctx, "background", background, polynomial, out)
+}
+
+/// `<stem>_<kind>.env`: `cube`'s level 0 as a `.env` of its own. A `.env` carries a whole
+/// chain, so its mips are the solid-angle-weighted means of level 0 (what a blurred read
+/// of it takes), not a prefilter; `polynomial` is the bake's.
+fn add_env_cube(
+    ctx: &FileContext,
+    kind: &'static str,
+    mut cube: Cubemap,
+    polynomial: &env::SphericalPolynomial,
+    out: &mut Staging,
+) -> Result<()> {
+    let path = ctx.dir.join(format!("{}_{kind}.env", ctx.stem));
+    cube.levels.truncate(1);
+    let levels = Cubemap::full_mip_count(cube.size);
+    build_mips(&mut cube, levels);
+    let cube = ctx.target.orientation.apply(cube);
+    let bytes = env::encode(&cube, polynomial).map_err(|message| Error::Encode {
         path: path.clone(),
         format: "Babylon .env",
         message,
     })?;
-    let levels = background.levels.len() as u32;
-    out.add(
-        path,
-        bytes,
-        ("background", "rgbd png", background.size, levels),
-    );
+    let levels = cube.levels.len() as u32;
+    out.add(path, bytes, (kind, "rgbd png", cube.size, levels));
     Ok(())
 }

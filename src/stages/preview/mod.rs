@@ -28,7 +28,6 @@ use crate::cpu::preview_truth::hot_texels_shade;
 use crate::environment::sun::Sun;
 use crate::environment::texels::SourceTexel;
 use crate::environment::Cubemap;
-use crate::math::sh::sh_eval;
 use crate::plan::chain::SpecularChain;
 use crate::plan::lut::{BrdfLut, LutLayout, DEFAULT_LUT_SIZE};
 use crate::plan::scene::{
@@ -456,31 +455,13 @@ impl<'a> BakedLight<'a> {
     }
 }
 
-/// The diffuse light E/π `shading` reads from `baked`: the irradiance cube, a cube of the
-/// chain's last level alone (which the bake fits to E/π), or a cube of the irradiance SH9
-/// evaluated at every texel's centre at the irradiance cube's size (read bilinearly, a
-/// quadratic polynomial on 32² faces is within 1e-4 of its value between the centres).
-/// Errors when the shading reads SH and `baked` has none.
-pub fn shading_irradiance<'a>(
-    shading: &Shading,
-    baked: &'a BakedEnvironment,
-) -> Result<Cow<'a, Cubemap>> {
-    Ok(match shading.irradiance {
+/// The diffuse light E/π `shading` reads from `baked`: the irradiance cube, or a cube of
+/// the chain's last level alone (which the bake fits to E/π).
+pub fn shading_irradiance<'a>(shading: &Shading, baked: &'a BakedEnvironment) -> Cow<'a, Cubemap> {
+    match shading.irradiance {
         IrradianceSource::Cube => Cow::Borrowed(&baked.irradiance),
         IrradianceSource::LastLevel => Cow::Owned(last_level(&baked.specular)),
-        IrradianceSource::Sh9 => {
-            let sh = baked.sh.as_ref().ok_or_else(|| Error::InvalidOption {
-                option: "preview.shading",
-                message: format!(
-                    "{} reads the irradiance SH, and the bake has none (bake with SH)",
-                    shading.name
-                ),
-            })?;
-            Cow::Owned(Cubemap::from_directions(baked.irradiance.size, |d| {
-                sh_eval(&sh.irradiance, d)
-            }))
-        }
-    })
+    }
 }
 
 /// A chain's last level alone, as a one-level cube (what three.js and Filament read E/π
@@ -557,7 +538,7 @@ pub fn preview_baked(
     opts: &PreviewOptions,
 ) -> Result<Preview> {
     let lut = shading_lut(backend, &opts.shading, lut)?;
-    let irradiance = shading_irradiance(&opts.shading, baked)?;
+    let irradiance = shading_irradiance(&opts.shading, baked);
     let light = BakedLight {
         irradiance: &irradiance,
         ..BakedLight::of(name, baked, &lut)
