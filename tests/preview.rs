@@ -659,34 +659,25 @@ fn preview_command_line() {
         "--truth-samples",
         "16",
     ];
-    let json = dir.join("three.json");
-    let out = common::splitsum()
-        .args(["preview", hdr, "--target", "three", "-o"])
-        .arg(dir.join("three.png"))
-        .arg("--json")
-        .arg(&json)
-        .args(small)
-        .output()
-        .unwrap();
-    assert_succeeded(&out);
-    let figures: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
-    assert_eq!(figures["shading"], "three.js r187");
-    assert_eq!(figures["lookup"], "alpha2");
-    let json = dir.join("babylon.json");
-    let out = common::splitsum()
-        .args(["preview", hdr, "--target", "babylon", "-o"])
-        .arg(dir.join("babylon.png"))
-        .arg("--json")
-        .arg(&json)
-        .args(small)
-        .output()
-        .unwrap();
-    assert_succeeded(&out);
-    let figures: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
-    assert_eq!(figures["shading"], "Babylon.js 9.35");
-    assert_eq!(figures["lookup"], "reflect");
+    for (target, shading, lookup) in [
+        ("three", "three.js r187", "alpha2"),
+        ("babylon", "Babylon.js 9.35", "reflect"),
+    ] {
+        let json = dir.join(format!("{target}.json"));
+        let out = common::splitsum()
+            .args(["preview", hdr, "--target", target, "-o"])
+            .arg(dir.join(format!("{target}.png")))
+            .arg("--json")
+            .arg(&json)
+            .args(small)
+            .output()
+            .unwrap();
+        assert_succeeded(&out);
+        let figures: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        assert_eq!(figures["shading"], shading);
+        assert_eq!(figures["lookup"], lookup);
+    }
 
     // A folder that is not a bake, and a cell outside the range, are one clear line each.
     let empty = dir.join("empty");

@@ -85,13 +85,13 @@ fn ibl_terms(s: vec3<f32>, e: vec3<f32>, ab: vec2<f32>, n_dot_v: f32, m: ShadeMa
     }
     let fss_ess = ks * ab.x + vec3<f32>(ab.y);
     let ess = ab.x + ab.y;
-    if (light.ibl_terms == IBL_TERMS_ENERGY_COMPENSATED) {
-        let compensation = specular_compensation(ab, m.f0);
-        return s * fss_ess * compensation + e * m.albedo * (vec3<f32>(1.0) - fss_ess) * (1.0 - m.metallic);
-    }
-    if (light.ibl_terms == IBL_TERMS_LEGACY_DIFFUSE) {
-        let compensation = specular_compensation(ab, m.f0);
-        return s * fss_ess * compensation + e * m.albedo * (vec3<f32>(1.0) - m.f0) * (1.0 - m.metallic);
+    if (light.ibl_terms == IBL_TERMS_ENERGY_COMPENSATED || light.ibl_terms == IBL_TERMS_LEGACY_DIFFUSE) {
+        // Filament's diffuse takes what the specular leaves, Babylon's legacy one 1 - F0.
+        var kd = vec3<f32>(1.0) - fss_ess;
+        if (light.ibl_terms == IBL_TERMS_LEGACY_DIFFUSE) {
+            kd = vec3<f32>(1.0) - m.f0;
+        }
+        return s * fss_ess * specular_compensation(ab, m.f0) + e * m.albedo * kd * (1.0 - m.metallic);
     }
     let ems = 1.0 - ess;
     let f_avg = m.f0 + (vec3<f32>(1.0) - m.f0) * FRESNEL_MEAN_WEIGHT;

@@ -105,13 +105,13 @@ pub fn ibl_terms(terms: ShadingTerms, s: Vec3, e: Vec3, ab: [f32; 2], n_dot_v: f
     };
     let fss_ess = ks * a + Vec3::splat(b);
     let ess = a + b;
-    if terms.ibl == IblTerms::EnergyCompensated {
-        let compensation = specular_compensation(ab, m.f0);
-        return s * fss_ess * compensation + e * m.albedo * (Vec3::ONE - fss_ess) * (1.0 - m.metallic);
-    }
-    if terms.ibl == IblTerms::LegacyDiffuse {
-        let compensation = specular_compensation(ab, m.f0);
-        return s * fss_ess * compensation + e * m.albedo * (Vec3::ONE - m.f0) * (1.0 - m.metallic);
+    if matches!(terms.ibl, IblTerms::EnergyCompensated | IblTerms::LegacyDiffuse) {
+        // Filament's diffuse takes what the specular leaves, Babylon's legacy one 1 − F0.
+        let kd = match terms.ibl {
+            IblTerms::LegacyDiffuse => Vec3::ONE - m.f0,
+            _ => Vec3::ONE - fss_ess,
+        };
+        return s * fss_ess * specular_compensation(ab, m.f0) + e * m.albedo * kd * (1.0 - m.metallic);
     }
     let ems = 1.0 - ess;
     let f_avg = m.f0 + (Vec3::ONE - m.f0) * FRESNEL_MEAN_WEIGHT;

@@ -140,8 +140,12 @@ fn write(ctx: &FileContext, baked: BakedEnvironment, out: &mut Staging) -> Resul
     // diffuse light from it (`USEIRRADIANCEMAP`) instead of the SH9, which cannot hold a
     // kept sun.
     add_env_cube(ctx, "irradiance", baked.irradiance, &polynomial, out)?;
+    // With lights split out, `<stem>_background.env`: the environment as seen, lights
+    // included, for `scene.createDefaultSkybox` (a background is seen, not lit by); its
+    // polynomial, the residual's, is unused by a skybox, and radiance past RGBD's 255 (the
+    // sun's disc) is clipped: a skybox shows it saturated either way.
     if let Some(background) = baked.background {
-        add_background(ctx, background, &polynomial, out)?;
+        add_env_cube(ctx, "background", background, &polynomial, out)?;
     }
     Ok((clipped > 0)
         .then(|| {
@@ -153,19 +157,6 @@ fn write(ctx: &FileContext, baked: BakedEnvironment, out: &mut Staging) -> Resul
         })
         .into_iter()
         .collect())
-}
-
-/// `<stem>_background.env`, written when lights were split out: the environment as seen,
-/// lights included, for `scene.createDefaultSkybox` (a background is seen, not lit by). Its
-/// polynomial is the residual's, unused by a skybox. Radiance past RGBD's 255 (the sun's
-/// disc) is clipped: a skybox shows it saturated either way.
-fn add_background(
-    ctx: &FileContext,
-    background: Cubemap,
-    polynomial: &env::SphericalPolynomial,
-    out: &mut Staging,
-) -> Result<()> {
-    add_env_cube(ctx, "background", background, polynomial, out)
 }
 
 /// `<stem>_<kind>.env`: `cube`'s level 0 as a `.env` of its own. A `.env` carries a whole
