@@ -21,9 +21,16 @@
 @group(0) @binding(8) var<storage, read> sun_texels: array<vec4<f32>>;
 @group(0) @binding(9) var shadow_map: texture_2d<f32>;
 
+// The frame's light counts (frame.light_count, frame.sun.x), constants of the pipeline
+// (src/view/gpu/mod.rs, `ForwardKey`): with them constant, the compiler unrolls the
+// lights' loops or removes them, which a software rasteriser's fragment stage otherwise
+// pays for even when they run zero times (docs/accuracy.md, "The viewer's cost").
+override POINT_LIGHTS: u32 = 0u;
+override SUN_LIGHTS: u32 = 0u;
+
 // The displayed split-sum colour of surface `s` at the pixel centred at `centre`.
 fn shade_fragment(centre: vec2<f32>, s: Surface) -> vec4<f32> {
-    return with_hud(display(surface_radiance(surface_view(centre, s))), vec2<u32>(centre));
+    return with_hud(display(surface_radiance(surface_view(centre, s), POINT_LIGHTS, SUN_LIGHTS)), vec2<u32>(centre));
 }
 
 @fragment

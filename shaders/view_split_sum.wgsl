@@ -26,7 +26,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if (px.s.id == 0u) {
         c = background_radiance(px.dir);
     } else {
-        c = surface_radiance(px);
+        c = surface_radiance(px, frame.light_count, frame.sun.x);
     }
     shaded[id.y * frame.width + id.x] = vec4<f32>(c, f32(px.s.id));
 }

@@ -31,7 +31,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         c = sample_cube_lod(env, truth.env_size, 1u, px.dir, 0.0);
     } else {
         let shift = pixel_shift(pixel + frame.truth_frame * frame.width * frame.height);
-        c = truth_shade(px.s.n, px.v, px.n_dot_v, px.m, shift) + direct_lights(px)
+        c = truth_shade(px.s.n, px.v, px.n_dot_v, px.m, shift) + direct_lights(px, frame.light_count)
             + sun_texels_shade(px, frame.sun.x, frame.sun.y);
     }
     let w = f32(truth.point_count);

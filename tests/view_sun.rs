@@ -189,9 +189,9 @@ fn sun_keys_and_hud() {
 fn gpu_and_cpu_agree_with_the_sun() {
     // Spot under quarry_01 with the sun split and its shadow: the split-sum frames agree
     // within 1e-3 on 99.5 % of the pixels (the GPU's and the CPU's rounding can put a
-    // receiver on either side of a map texel's edge, a ninth of the sun apart, and the
-    // two rasterisers can disagree on a silhouette pixel), and the truth's mean within
-    // 1e-3.
+    // receiver's depth on either side of a map texel's, up to a quarter of the sun apart
+    // where the bilinear filter weighs that texel most, and the two rasterisers can
+    // disagree on a silhouette pixel), and the truth's mean within 1e-3.
     let Some(ctx) = gpu() else { return };
     let light = quarry();
     let size = (160, 90);

@@ -8,8 +8,9 @@
 // src/view/cpu.rs.
 
 // The sun's visibility at surface point p with unit normal n, in [0, 1]: p moved off the
-// surface along n, projected into the map, and the lit fraction of the 3 x 3 texels
-// around it (lit: the object there stands further along the rays, less the bias).
+// surface along n, projected into the map, and the 2 x 2 texels around it, each lit (1)
+// where the object there stands further along the rays, less the bias, else 0,
+// interpolated bilinearly at the point (percentage-closer filtering).
 fn sun_visibility(p: vec3<f32>, n: vec3<f32>) -> f32 {
     if (frame.sun.z == 0u) {
         return 1.0;
@@ -23,18 +24,22 @@ fn sun_visibility(p: vec3<f32>, n: vec3<f32>) -> f32 {
     }
     let z = dot(d, frame.shadow[3].xyz) - frame.shadow[1].w;
     let size = i32(frame.sun.w);
-    let cx = i32(floor((x + 1.0) * 0.5 * f32(size)));
-    let cy = i32(floor((1.0 - y) * 0.5 * f32(size)));
-    var lit = 0.0;
-    for (var dy = -1; dy <= 1; dy++) {
-        for (var dx = -1; dx <= 1; dx++) {
-            let t = vec2<i32>(clamp(cx + dx, 0, size - 1), clamp(cy + dy, 0, size - 1));
-            if (textureLoad(shadow_map, t, 0).r >= z) {
-                lit += 1.0;
-            }
-        }
-    }
-    return lit / 9.0;
+    // Texel-centre coordinates (texel i's centre at i), the four around, clamped.
+    let u = (x + 1.0) * 0.5 * f32(size) - 0.5;
+    let w = (1.0 - y) * 0.5 * f32(size) - 0.5;
+    let u0 = floor(u);
+    let w0 = floor(w);
+    let fx = u - u0;
+    let fy = w - w0;
+    let i0 = clamp(i32(u0), 0, size - 1);
+    let i1 = clamp(i32(u0) + 1, 0, size - 1);
+    let j0 = clamp(i32(w0), 0, size - 1);
+    let j1 = clamp(i32(w0) + 1, 0, size - 1);
+    let l00 = select(0.0, 1.0, textureLoad(shadow_map, vec2<i32>(i0, j0), 0).r >= z);
+    let l10 = select(0.0, 1.0, textureLoad(shadow_map, vec2<i32>(i1, j0), 0).r >= z);
+    let l01 = select(0.0, 1.0, textureLoad(shadow_map, vec2<i32>(i0, j1), 0).r >= z);
+    let l11 = select(0.0, 1.0, textureLoad(shadow_map, vec2<i32>(i1, j1), 0).r >= z);
+    return (l00 * (1.0 - fx) + l10 * fx) * (1.0 - fy) + (l01 * (1.0 - fx) + l11 * fx) * fy;
 }
 
 // The entries `first` .. first + count of `sun_texels` shading the surface a pixel sees,
@@ -44,7 +49,8 @@ fn sun_texels_shade(px: PixelView, first: u32, count: u32) -> vec3<f32> {
     // The sun's visibility, looked up in a loop that runs once when there are entries and
     // not at all when there are none: a software rasteriser (lavapipe) runs both sides of
     // an `if` on every lane, but skips a loop no lane enters, so a frame without lights
-    // pays nothing for the map's nine loads.
+    // does not pay for the map's four loads (with `count` a constant, as in the forward
+    // pass, the compiler removes the loop).
     var visibility = 1.0;
     for (var once = 0u; once < min(count, 1u); once++) {
         visibility = sun_visibility(px.s.p, px.s.n);

@@ -15,11 +15,11 @@ fn unpack_material(m: array<vec4<f32>, 3>) -> ShadeMaterial {
     return s;
 }
 
-// The point lights on (frame.light_count of the including kernel's `lights` table:
-// (position, 0), (colour, 0) each) shading the surface a pixel sees.
-fn direct_lights(px: PixelView) -> vec3<f32> {
+// The point lights on (the first `count`, frame.light_count, of the including kernel's
+// `lights` table: (position, 0), (colour, 0) each) shading the surface a pixel sees.
+fn direct_lights(px: PixelView, count: u32) -> vec3<f32> {
     var sum = vec3<f32>(0.0);
-    for (var i = 0u; i < frame.light_count; i++) {
+    for (var i = 0u; i < count; i++) {
         sum += point_light(px.s.p, px.s.n, px.v, px.n_dot_v, px.m, lights[2u * i].xyz, lights[2u * i + 1u].xyz, frame.floor_plane.z);
     }
     return sum;

@@ -77,13 +77,42 @@ struct Targets {
 }
 
 /// The display passes for one target format: the present pass and the forward pass's
-/// model, sphere and background pipelines.
+/// background.
 struct DisplayPipelines {
     format: wgpu::TextureFormat,
     present: wgpu::RenderPipeline,
+    background: wgpu::RenderPipeline,
+}
+
+/// What the forward pass's surface pipelines are compiled for: the target's format and the
+/// frame's light counts, which are constants of the shader (`POINT_LIGHTS`, `SUN_LIGHTS`
+/// in `shaders/view_forward.wgsl`), so that its light loops are unrolled or gone. On
+/// lavapipe that takes a fifth to a quarter off a 1280×720 frame (docs/accuracy.md, "The
+/// viewer's cost"): a software rasteriser pays for a loop even when it runs zero times.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct ForwardKey {
+    format: wgpu::TextureFormat,
+    /// `FrameUniform::light_count`.
+    point_lights: u32,
+    /// `FrameUniform::sun[0]`.
+    sun_lights: u32,
+}
+
+impl ForwardKey {
+    fn of(frame: &FrameUniform, format: wgpu::TextureFormat) -> ForwardKey {
+        ForwardKey {
+            format,
+            point_lights: frame.light_count,
+            sun_lights: frame.sun[0],
+        }
+    }
+}
+
+/// The forward pass's model and sphere pipelines for one [`ForwardKey`].
+struct ForwardPipelines {
+    key: ForwardKey,
     mesh: wgpu::RenderPipeline,
     sphere: wgpu::RenderPipeline,
-    background: wgpu::RenderPipeline,
 }
 
 /// The viewer's renderer on one device.
@@ -96,6 +125,9 @@ pub struct GpuRenderer {
     forward_module: wgpu::ShaderModule,
     /// The display passes per target format, compiled on first use.
     display_pipelines: Vec<DisplayPipelines>,
+    /// The forward pass's surface pipelines per key, compiled on first use (a key the
+    /// viewer's toggles come back to is not compiled again).
+    forward_pipelines: Vec<ForwardPipelines>,
     /// Whether the split-sum view is drawn by the forward pass (else by the deferred one).
     forward: bool,
     /// Whether the G-buffer and the split-sum buffer hold the last frame drawn.
@@ -175,6 +207,7 @@ impl GpuRenderer {
                     &gtargets,
                     &[Some(layout.clone())],
                     Depth::Nearest,
+                    &[],
                 );
                 let sphere = render_pipeline(
                     &device,
@@ -183,6 +216,7 @@ impl GpuRenderer {
                     &gtargets,
                     &[Some(layout)],
                     Depth::Nearest,
+                    &[],
                 );
                 let present = device.create_shader_module(wgpu::ShaderModuleDescriptor {
                     label: Some("view_present"),
@@ -238,6 +272,7 @@ impl GpuRenderer {
             present_module,
             forward_module,
             display_pipelines: Vec::new(),
+            forward_pipelines: Vec::new(),
             forward: true,
             deferred_current: false,
             split_sum,
@@ -263,17 +298,6 @@ impl GpuRenderer {
                 (&self.device, &self.present_module, &self.forward_module);
             let pipelines = with_error_scope(device, "the viewer's display passes", || {
                 let targets = [Some(format.into())];
-                let layout = vertex_layout();
-                let mesh = |fragment| {
-                    render_pipeline(
-                        device,
-                        forward,
-                        ("vs_main", fragment),
-                        &targets,
-                        &[Some(layout.clone())],
-                        Depth::Nearest,
-                    )
-                };
                 DisplayPipelines {
                     format,
                     present: render_pipeline(
@@ -283,9 +307,8 @@ impl GpuRenderer {
                         &targets,
                         &[],
                         Depth::None,
+                        &[],
                     ),
-                    mesh: mesh("fs_mesh"),
-                    sphere: mesh("fs_sphere"),
                     background: render_pipeline(
                         device,
                         forward,
@@ -293,6 +316,7 @@ impl GpuRenderer {
                         &targets,
                         &[],
                         Depth::Behind,
+                        &[],
                     ),
                 }
             })?;
@@ -307,6 +331,47 @@ impl GpuRenderer {
             .iter()
             .find(|p| p.format == format)
             .ok_or_else(|| gpu_error("viewer frame", "no display passes"))
+    }
+
+    /// Compiles the forward pass's surface pipelines for `key` unless they are.
+    fn forward_pipelines(&mut self, key: ForwardKey) -> Result<()> {
+        if !self.forward_pipelines.iter().any(|p| p.key == key) {
+            let (device, forward) = (&self.device, &self.forward_module);
+            let pipelines = with_error_scope(device, "the viewer's forward pass", || {
+                let targets = [Some(key.format.into())];
+                let layout = vertex_layout();
+                let constants = [
+                    ("POINT_LIGHTS", key.point_lights as f64),
+                    ("SUN_LIGHTS", key.sun_lights as f64),
+                ];
+                let surface = |fragment| {
+                    render_pipeline(
+                        device,
+                        forward,
+                        ("vs_main", fragment),
+                        &targets,
+                        &[Some(layout.clone())],
+                        Depth::Nearest,
+                        &constants,
+                    )
+                };
+                ForwardPipelines {
+                    key,
+                    mesh: surface("fs_mesh"),
+                    sphere: surface("fs_sphere"),
+                }
+            })?;
+            self.forward_pipelines.push(pipelines);
+        }
+        Ok(())
+    }
+
+    /// The forward pass's surface pipelines compiled for `key` (by `forward_pipelines`).
+    fn compiled_forward(&self, key: ForwardKey) -> Result<&ForwardPipelines> {
+        self.forward_pipelines
+            .iter()
+            .find(|p| p.key == key)
+            .ok_or_else(|| gpu_error("viewer frame", "no forward pipelines"))
     }
 
     /// Whether the split-sum view is drawn by the forward pass while it changes (the
@@ -448,6 +513,10 @@ impl GpuRenderer {
         let split_sum_view = points.is_none() && present.mode == Mode::SplitSum as u32;
         let forward = self.forward && split_sum_view && geometry_changed;
         let deferred = !forward && (geometry_changed || !self.deferred_current);
+        let forward_key = ForwardKey::of(frame, format);
+        if forward {
+            self.forward_pipelines(forward_key)?;
+        }
         with_error_scope(&self.device, "viewer frame", || -> Result<()> {
             self.queue
                 .write_buffer(&self.frame, 0, bytemuck::bytes_of(frame));
@@ -458,7 +527,7 @@ impl GpuRenderer {
             }
             let mut encoder = self.device.create_command_encoder(&Default::default());
             if forward {
-                self.encode_forward(&mut encoder, (target, format))?;
+                self.encode_forward(&mut encoder, (target, forward_key))?;
             } else {
                 if deferred {
                     self.encode_deferred_split_sum(&mut encoder)?;

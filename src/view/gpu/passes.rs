@@ -9,7 +9,8 @@ use crate::plan::shading::LightBrdf;
 use crate::Result;
 
 use super::{
-    gpu_error, GpuRenderer, LightTextures, Targets, BACKGROUND_BINDINGS, MAX_TRUTH_POINTS,
+    gpu_error, ForwardKey, GpuRenderer, LightTextures, Targets, BACKGROUND_BINDINGS,
+    MAX_TRUTH_POINTS,
 };
 
 impl GpuRenderer {
@@ -56,10 +57,11 @@ impl GpuRenderer {
     pub(super) fn encode_forward(
         &self,
         encoder: &mut wgpu::CommandEncoder,
-        (target, format): (&wgpu::TextureView, wgpu::TextureFormat),
+        (target, key): (&wgpu::TextureView, ForwardKey),
     ) -> Result<()> {
         let (light, _, t) = self.frame_inputs()?;
-        let p = self.compiled_display(format)?;
+        let p = self.compiled_display(key.format)?;
+        let surfaces = self.compiled_forward(key)?;
         let hud = t.hud.create_view(&Default::default());
         let resources = [
             self.frame.as_entire_binding(),
@@ -80,7 +82,7 @@ impl GpuRenderer {
                 &[colour_attachment(target)],
                 Some(&t.depth),
             );
-            let drawn = self.draw_scene(&mut pass, (&p.mesh, &p.sphere), &resources);
+            let drawn = self.draw_scene(&mut pass, (&surfaces.mesh, &surfaces.sphere), &resources);
             pass.set_pipeline(&p.background);
             pass.set_bind_group(
                 0,

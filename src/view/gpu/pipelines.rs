@@ -93,7 +93,8 @@ pub(super) enum Depth {
     Behind,
 }
 
-/// A render pipeline of `module`'s `vertex` and `fragment` entry points.
+/// A render pipeline of `module`'s `vertex` and `fragment` entry points, the fragment
+/// stage's pipeline-overridable `constants` set (by name).
 pub(super) fn render_pipeline(
     device: &wgpu::Device,
     module: &wgpu::ShaderModule,
@@ -101,6 +102,7 @@ pub(super) fn render_pipeline(
     targets: &[Option<wgpu::ColorTargetState>],
     vertex_buffers: &[Option<wgpu::VertexBufferLayout>],
     depth: Depth,
+    constants: &[(&str, f64)],
 ) -> wgpu::RenderPipeline {
     let depth_state = |write: bool, compare: wgpu::CompareFunction| wgpu::DepthStencilState {
         format: DEPTH_FORMAT,
@@ -128,7 +130,10 @@ pub(super) fn render_pipeline(
         fragment: Some(wgpu::FragmentState {
             module,
             entry_point: Some(fragment),
-            compilation_options: Default::default(),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants,
+                ..Default::default()
+            },
             targets,
         }),
         multiview_mask: None,
