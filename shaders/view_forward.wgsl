@@ -8,18 +8,21 @@
 // heat views and the HDR readback use; both give the same picture (tests/view.rs). CPU
 // mirror: src/view/cpu.rs through the deferred path.
 
-// Bindings 0 to 4 are what the background reads, so its bind group is the first five of
-// the surfaces' (src/view/gpu/mod.rs, `BACKGROUND_BINDINGS`).
+// Bindings 0 to 5 are what the background reads, so its bind group is the first six of
+// the surfaces' (src/view/gpu/mod.rs, `BACKGROUND_BINDINGS`). The chains are read through
+// the sampler's bilinear filter (common/cube_filter_bordered.wgsl), where the deferred
+// kernels fetch four texels (common/cube_bilinear.wgsl).
 @group(0) @binding(0) var<uniform> frame: FrameParams;
 @group(0) @binding(1) var<uniform> light: SplitSumParams;
 @group(0) @binding(2) var specular: texture_2d_array<f32>;
 @group(0) @binding(3) var<uniform> present: PresentParams;
 @group(0) @binding(4) var hud: texture_2d<f32>;
-@group(0) @binding(5) var irradiance: texture_2d_array<f32>;
-@group(0) @binding(6) var lut: texture_2d<f32>;
-@group(0) @binding(7) var<storage, read> lights: array<vec4<f32>>;
-@group(0) @binding(8) var<storage, read> sun_texels: array<vec4<f32>>;
-@group(0) @binding(9) var shadow_map: texture_2d<f32>;
+@group(0) @binding(5) var cube_linear: sampler;
+@group(0) @binding(6) var irradiance: texture_2d_array<f32>;
+@group(0) @binding(7) var lut: texture_2d<f32>;
+@group(0) @binding(8) var<storage, read> lights: array<vec4<f32>>;
+@group(0) @binding(9) var<storage, read> sun_texels: array<vec4<f32>>;
+@group(0) @binding(10) var shadow_map: texture_2d<f32>;
 
 // The frame's light counts (frame.light_count, frame.sun.x), constants of the pipeline
 // (src/view/gpu/mod.rs, `ForwardKey`): with them constant, the compiler unrolls the

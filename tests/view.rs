@@ -8,7 +8,7 @@
 
 mod common;
 
-use common::{gpu, output_dir, run_ok, splitsum, test_equirect};
+use common::{gpu, output_dir, run_ok, splitsum, step_differences, test_equirect};
 use glam::Vec3;
 use splitsum::backend::{Backend, CpuBackend, GpuBackend};
 use splitsum::bake::{bake_environment, BakeOptions};
@@ -396,15 +396,28 @@ fn a_dropped_file_that_is_not_an_image_is_one_clear_line() {
 /// The GPU renderer's two paths to the split-sum picture, the forward pass the window
 /// draws while the view changes and the deferred passes (G-buffer, split-sum kernel,
 /// present pass) that draw it once it stands still, give the same picture (HUD, point
-/// lights, Spot and the ray-cast sphere): the same WGSL functions of the same surface, so
-/// at most one 8-bit step apart (the compiler may order a sum differently in the two
-/// shaders) and that in few pixels. Checked on a frame drawn forward against the same
-/// frame drawn by a renderer kept on the deferred passes, and (without the HUD, whose
-/// frame time may change between frames) against the same view's next two frames
-/// (standing still: deferred passes, then the present pass alone).
+/// lights, Spot and the ray-cast sphere): the same WGSL functions of the same surface,
+/// the chains read through the sampler's bilinear filter in the one and by four texel
+/// fetches in the other. On a software adapter (lavapipe, CI's), whose filter weighs the
+/// texels in floats, at most one 8-bit step apart (the compiler may order a sum
+/// differently in the two shaders) in 0.1 % of the pixels (measured: none differ). A
+/// hardware filter weighs them to its sub-texel precision (8 bits on most GPUs), which
+/// moves a read by up to 1/512 of two neighbouring texels' difference, up to about 1 % of
+/// the value at the background's sharpest edges: there at most two steps in 5 % of the
+/// pixels (an estimate; no hardware GPU was at hand to measure it). Checked on a frame
+/// drawn forward against the same frame drawn by a renderer kept on the deferred passes,
+/// and (without the HUD, whose frame time may change between frames) against the same
+/// view's next two frames (standing still: deferred passes, then the present pass alone).
 #[test]
 fn forward_and_deferred_pictures_are_the_same() {
     let Some(ctx) = gpu() else { return };
+    let software = ctx.adapter_info.device_type == wgpu::DeviceType::Cpu;
+    let (bar_steps, bar_per_mille) = if software { (1, 1) } else { (2, 50) };
+    let probe = GpuRenderer::new(ctx.device.clone(), ctx.queue.clone()).unwrap();
+    if !probe.draws_forward() {
+        println!("skipped: {} does not filter rgba32float textures, so every frame is drawn by the deferred passes", ctx.adapter_description());
+        return;
+    }
     let (baked, lut) = bake(&CpuBackend);
     let light = ViewLight::new("venice", &baked, lut);
     let size = (320, 180);
@@ -428,21 +441,13 @@ fn forward_and_deferred_pictures_are_the_same() {
             ("still", &moving, still),
             ("still again", &moving, still_again),
         ] {
-            let mut worst = 0u8;
-            let mut differing = 0usize;
-            for (a, b) in a.pixels().zip(b.pixels()) {
-                let step =
-                    a.0.iter()
-                        .zip(b.0.iter())
-                        .map(|(x, y)| x.abs_diff(*y))
-                        .max()
-                        .unwrap();
-                worst = worst.max(step);
-                differing += (step > 0) as usize;
-            }
+            let (worst, differing) = step_differences(a, &b);
             let n = (size.0 * size.1) as usize;
+            println!(
+                "model {model}, {name}: {differing} of {n} pixels differ, by up to {worst} steps"
+            );
             assert!(
-                worst <= 1 && differing * 1000 <= n,
+                worst <= bar_steps && differing * 1000 <= bar_per_mille * n,
                 "model {model}, {name}: {differing} of {n} pixels differ, by up to {worst} steps"
             );
         }

@@ -237,3 +237,47 @@ fn gpu_and_cpu_agree_with_the_sun() {
     let (g, c) = (mean(&gpu_accum), mean(&cpu_accum));
     assert!((g - c).abs() <= 1e-3 * c, "truth: {g} vs {c}");
 }
+
+#[test]
+fn forward_pass_draws_the_sun_as_the_deferred_passes_do() {
+    // The forward pass is compiled for the frame's light counts (here the sun, then with
+    // the point lights on too, then with the sun kept: none split out): each draws Spot
+    // under quarry_01 with the sun's shadow as the deferred passes do, to the bar of
+    // tests/view.rs (`forward_and_deferred_pictures_are_the_same`, which says why).
+    let Some(ctx) = gpu() else { return };
+    let software = ctx.adapter_info.device_type == wgpu::DeviceType::Cpu;
+    let (bar_steps, bar_per_mille) = if software { (1, 1) } else { (2, 50) };
+    let light = quarry();
+    let size = (320, 180);
+    let render = |forward: bool, keys: &str| {
+        let mut r = GpuRenderer::new(ctx.device.clone(), ctx.queue.clone()).unwrap();
+        r.set_forward(forward);
+        if forward && !r.draws_forward() {
+            return None;
+        }
+        let models = vec![Model::spot().unwrap()];
+        let mut v = Viewer::new(light.clone(), models, Renderer::Gpu(Box::new(r)), "test").unwrap();
+        v.state.hud = false;
+        for action in splitsum::parse_keys(keys).unwrap() {
+            v.apply(action).unwrap();
+        }
+        Some(v.render_image(size).unwrap())
+    };
+    for keys in ["", "l", "l u"] {
+        let Some(forward) = render(true, keys) else {
+            println!(
+                "skipped: {} does not filter rgba32float textures",
+                ctx.adapter_description()
+            );
+            return;
+        };
+        let deferred = render(false, keys).unwrap();
+        let (worst, differing) = common::step_differences(&forward, &deferred);
+        let n = (size.0 * size.1) as usize;
+        println!("keys {keys:?}: {differing} of {n} pixels differ, by up to {worst} steps");
+        assert!(
+            worst <= bar_steps && differing * 1000 <= bar_per_mille * n,
+            "keys {keys:?}: {differing} of {n} pixels differ, by up to {worst} steps"
+        );
+    }
+}

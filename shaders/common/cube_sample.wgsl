@@ -1,26 +1,11 @@
-// Seamless bilinear and trilinear lookups of a cube mip chain stored as a 2D array texture.
-// Mirror of src/environment/sample.rs (same function names). Mip sizes come from the
-// level-0 size, not textureDimensions (lavapipe answers it wrongly when the level differs
-// across lanes). The texel fetch, `fetch_cube_texel(src, size0, m, face, x, y)` for x, y
-// from -1 to n, comes from the file included before this one: cube_fetch.wgsl for a plain
-// chain (layers = faces, levels = mips), cube_fetch_bordered.wgsl for a bordered one.
-
-// Bilinear lookup of mip m at face coordinates (s, t) in [-1, 1]^2 of `face`.
-fn sample_face_bilinear(src: texture_2d_array<f32>, size0: u32, m: u32, face: u32, s: f32, t: f32) -> vec3<f32> {
-    let n = f32(max(size0 >> m, 1u));
-    let x = (s + 1.0) * 0.5 * n - 0.5;
-    let y = (t + 1.0) * 0.5 * n - 0.5;
-    let x0 = floor(x);
-    let y0 = floor(y);
-    let fx = x - x0;
-    let fy = y - y0;
-    let xi = i32(x0);
-    let yi = i32(y0);
-    return fetch_cube_texel(src, size0, m, face, xi, yi) * ((1.0 - fx) * (1.0 - fy))
-         + fetch_cube_texel(src, size0, m, face, xi + 1, yi) * (fx * (1.0 - fy))
-         + fetch_cube_texel(src, size0, m, face, xi, yi + 1) * ((1.0 - fx) * fy)
-         + fetch_cube_texel(src, size0, m, face, xi + 1, yi + 1) * (fx * fy);
-}
+// Seamless trilinear lookups of a cube mip chain stored as a 2D array texture. Mirror of
+// src/environment/sample.rs (same function names). Mip sizes come from the level-0 size,
+// not textureDimensions (lavapipe answers it wrongly when the level differs across
+// lanes). The bilinear lookup of one level, `sample_face_bilinear(src, size0, m, face, s,
+// t)`, comes from the files included before this one: cube_bilinear.wgsl over a texel
+// fetch (cube_fetch.wgsl for a plain chain, layers = faces and levels = mips;
+// cube_fetch_bordered.wgsl for a bordered one), or cube_filter_bordered.wgsl, the
+// sampler's filter on a bordered chain.
 
 // Trilinear lookup at fractional lod (clamped to the chain); face coordinates are found
 // once, and an integral lod reads one level only.

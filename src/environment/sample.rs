@@ -1,5 +1,5 @@
 //! Seamless bilinear and trilinear lookups of a cube mip chain. Mirror of
-//! `shaders/common/cube_sample.wgsl` (same function names).
+//! `shaders/common/cube_bilinear.wgsl` and `cube_sample.wgsl` (same function names).
 //!
 //! A bilinear tap that falls off a face is fetched from the neighbouring face: the missing
 //! texel's centre is extended on the face plane, turned into a direction and re-projected,

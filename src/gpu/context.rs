@@ -88,13 +88,15 @@ impl GpuContext {
         Self::from_adapter(&adapter)
     }
 
-    /// A device on `adapter` with the adapter's own limits, its errors and loss recorded
-    /// (instead of wgpu's default handler, which panics).
+    /// A device on `adapter` with the adapter's own limits and, where the adapter has it,
+    /// filtering of 32-bit float textures (what the viewer's forward pass samples with;
+    /// `view::gpu`), its errors and loss recorded (instead of wgpu's default handler,
+    /// which panics).
     pub fn from_adapter(adapter: &wgpu::Adapter) -> Result<Self> {
         let adapter_info = adapter.get_info();
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("splitsum"),
-            required_features: wgpu::Features::empty(),
+            required_features: adapter.features() & wgpu::Features::FLOAT32_FILTERABLE,
             required_limits: adapter.limits(),
             ..Default::default()
         }))

@@ -35,7 +35,8 @@ pub const EQUIRECT_TO_CUBE: &str = kernel_source!("equirect_to_cube.wgsl", ["cub
 /// `shaders/cube_downsample.wgsl` with cubemap.
 pub const CUBE_DOWNSAMPLE: &str = kernel_source!("cube_downsample.wgsl", ["cubemap.wgsl"]);
 
-/// `shaders/prefilter_sampled.wgsl` with brdf, sampling, cubemap, cube_fetch, cube_sample.
+/// `shaders/prefilter_sampled.wgsl` with brdf, sampling, cubemap, cube_fetch, cube_bilinear,
+/// cube_sample.
 pub const PREFILTER_SAMPLED: &str = kernel_source!(
     "prefilter_sampled.wgsl",
     [
@@ -43,6 +44,7 @@ pub const PREFILTER_SAMPLED: &str = kernel_source!(
         "sampling.wgsl",
         "cubemap.wgsl",
         "cube_fetch.wgsl",
+        "cube_bilinear.wgsl",
         "cube_sample.wgsl"
     ]
 );
@@ -51,14 +53,15 @@ pub const PREFILTER_SAMPLED: &str = kernel_source!(
 pub const CONVOLVE_EXACT: &str =
     kernel_source!("convolve_exact.wgsl", ["brdf.wgsl", "cubemap.wgsl"]);
 
-/// `shaders/preview_split_sum.wgsl` with brdf, cubemap, cube_fetch, cube_sample, material,
-/// split_sum, preview_scene.
+/// `shaders/preview_split_sum.wgsl` with brdf, cubemap, cube_fetch, cube_bilinear,
+/// cube_sample, material, split_sum, preview_scene.
 pub const PREVIEW_SPLIT_SUM: &str = kernel_source!(
     "preview_split_sum.wgsl",
     [
         "brdf.wgsl",
         "cubemap.wgsl",
         "cube_fetch.wgsl",
+        "cube_bilinear.wgsl",
         "cube_sample.wgsl",
         "material.wgsl",
         "lut.wgsl",
@@ -67,8 +70,8 @@ pub const PREVIEW_SPLIT_SUM: &str = kernel_source!(
     ]
 );
 
-/// `shaders/preview_truth.wgsl` with brdf, sampling, cubemap, cube_fetch, cube_sample,
-/// material, truth, preview_scene.
+/// `shaders/preview_truth.wgsl` with brdf, sampling, cubemap, cube_fetch, cube_bilinear,
+/// cube_sample, material, truth, preview_scene.
 pub const PREVIEW_TRUTH: &str = kernel_source!(
     "preview_truth.wgsl",
     [
@@ -76,6 +79,7 @@ pub const PREVIEW_TRUTH: &str = kernel_source!(
         "sampling.wgsl",
         "cubemap.wgsl",
         "cube_fetch.wgsl",
+        "cube_bilinear.wgsl",
         "cube_sample.wgsl",
         "material.wgsl",
         "lut.wgsl",
@@ -84,8 +88,9 @@ pub const PREVIEW_TRUTH: &str = kernel_source!(
     ]
 );
 
-/// `shaders/view_split_sum.wgsl` with brdf, cubemap, cube_fetch_bordered, cube_sample,
-/// material, split_sum, view_frame, view_surface, view_sun, view_gbuffer_read, view_shade.
+/// `shaders/view_split_sum.wgsl` with brdf, cubemap, cube_fetch_bordered, cube_bilinear,
+/// cube_sample, material, split_sum, view_frame, view_surface, view_sun, view_gbuffer_read,
+/// view_shade.
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub const VIEW_SPLIT_SUM: &str = kernel_source!(
     "view_split_sum.wgsl",
@@ -93,6 +98,7 @@ pub const VIEW_SPLIT_SUM: &str = kernel_source!(
         "brdf.wgsl",
         "cubemap.wgsl",
         "cube_fetch_bordered.wgsl",
+        "cube_bilinear.wgsl",
         "cube_sample.wgsl",
         "material.wgsl",
         "lut.wgsl",
@@ -106,7 +112,7 @@ pub const VIEW_SPLIT_SUM: &str = kernel_source!(
 );
 
 /// `shaders/view_truth.wgsl` with brdf, sampling, cubemap, cube_fetch_bordered,
-/// cube_sample, material, truth, view_frame, view_surface, view_sun, view_gbuffer_read.
+/// cube_bilinear, cube_sample, material, truth, view_frame, view_surface, view_sun, view_gbuffer_read.
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub const VIEW_TRUTH: &str = kernel_source!(
     "view_truth.wgsl",
@@ -115,6 +121,7 @@ pub const VIEW_TRUTH: &str = kernel_source!(
         "sampling.wgsl",
         "cubemap.wgsl",
         "cube_fetch_bordered.wgsl",
+        "cube_bilinear.wgsl",
         "cube_sample.wgsl",
         "material.wgsl",
         "truth.wgsl",
@@ -137,7 +144,7 @@ pub const VIEW_GBUFFER: &str = render_source!(
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub const VIEW_PRESENT_BODY: &str = render_source!("view_present.wgsl", ["view_display.wgsl"]);
 
-/// `shaders/view_forward.wgsl` with brdf, cubemap, cube_fetch_bordered, cube_sample,
+/// `shaders/view_forward.wgsl` with brdf, cubemap, cube_filter_bordered, cube_sample,
 /// material, split_sum, view_frame, view_surface, view_sun, view_shade, view_raster, view_display,
 /// without the constants the viewer writes before it (`view::gpu::forward_source`).
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
@@ -146,7 +153,7 @@ pub const VIEW_FORWARD_BODY: &str = render_source!(
     [
         "brdf.wgsl",
         "cubemap.wgsl",
-        "cube_fetch_bordered.wgsl",
+        "cube_filter_bordered.wgsl",
         "cube_sample.wgsl",
         "material.wgsl",
         "lut.wgsl",

@@ -196,3 +196,21 @@ pub fn run_ok(cmd: &mut std::process::Command) -> std::process::Output {
     );
     out
 }
+
+/// How far two pictures of one size are apart: (the largest difference of a channel in
+/// 8-bit steps, how many pixels differ at all).
+pub fn step_differences(a: &image::RgbaImage, b: &image::RgbaImage) -> (u8, usize) {
+    assert_eq!(a.dimensions(), b.dimensions());
+    a.pixels()
+        .zip(b.pixels())
+        .map(|(p, q)| {
+            p.0.iter()
+                .zip(q.0.iter())
+                .map(|(x, y)| x.abs_diff(*y))
+                .max()
+                .unwrap_or(0)
+        })
+        .fold((0, 0), |(worst, n), step| {
+            (worst.max(step), n + (step > 0) as usize)
+        })
+}

@@ -8,11 +8,15 @@
 //!   and truth kernels (`view_split_sum.wgsl`, `view_truth.wgsl`) into per-pixel buffers,
 //!   and the present pass (`view_present.wgsl`), which alone redraws a still view.
 //!
-//! Both call the same WGSL functions on the same surface; the forward path only skips
-//! writing and reading the per-pixel buffers, which on a software rasteriser cost more
-//! than the shading (docs/accuracy.md, "The viewer's cost"). CPU twin: [`crate::view::cpu`]
-//! with [`crate::view::raster`] (the deferred path). Pipelines and buffers: `pipelines`;
-//! reading frames back: `readback`.
+//! Both call the same WGSL functions on the same surface; the forward path skips writing
+//! and reading the per-pixel buffers, which on a software rasteriser cost more than the
+//! shading, and it is compiled for the frame's light counts ([`ForwardKey`]) and reads the
+//! chains through the sampler's bilinear filter (one `textureSampleLevel` where the
+//! deferred kernels fetch four texels: the same texels and weights, up to the hardware's
+//! sub-texel precision), which take a third off its frame on lavapipe (docs/accuracy.md,
+//! "The viewer's cost"). The deferred path is the exact one: CPU twin
+//! [`crate::view::cpu`] with [`crate::view::raster`]. Pipelines and buffers:
+//! `pipelines`; reading frames back: `readback`.
 
 use image::RgbaImage;
 
@@ -44,7 +48,7 @@ const WORKGROUP: [u32; 3] = [8, 8, 1];
 pub const MAX_TRUTH_POINTS: u32 = 256;
 /// How many of the forward pass's first bindings its background reads
 /// (`shaders/view_forward.wgsl`).
-const BACKGROUND_BINDINGS: usize = 5;
+const BACKGROUND_BINDINGS: usize = 6;
 /// The G-buffer's formats: (position, id) and (normal, 0) in full floats, depth.
 const GBUFFER_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -119,6 +123,11 @@ struct ForwardPipelines {
 pub struct GpuRenderer {
     device: wgpu::Device,
     queue: wgpu::Queue,
+    /// The forward pass's sampler (bilinear, clamped to the edge) of the light's chains.
+    cube_linear: wgpu::Sampler,
+    /// Whether the device filters rgba32float textures (`FLOAT32_FILTERABLE`), which the
+    /// forward pass needs; without it every frame is drawn by the deferred passes.
+    filterable: bool,
     mesh_pipeline: wgpu::RenderPipeline,
     sphere_pipeline: wgpu::RenderPipeline,
     present_module: wgpu::ShaderModule,
@@ -263,8 +272,19 @@ impl GpuRenderer {
             wgpu::BufferUsages::VERTEX,
         );
         let shadow = shadow_texture(&device, &queue, 1, &[EMPTY_DEPTH])?;
+        let cube_linear = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("view chains, bilinear"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        let filterable = device
+            .features()
+            .contains(wgpu::Features::FLOAT32_FILTERABLE);
         Ok(GpuRenderer {
             shadow,
+            cube_linear,
+            filterable,
             device,
             queue,
             mesh_pipeline,
@@ -375,10 +395,16 @@ impl GpuRenderer {
     }
 
     /// Whether the split-sum view is drawn by the forward pass while it changes (the
-    /// default) or always by the deferred passes, which give the same picture (a test
-    /// compares them).
+    /// default, on a device that filters rgba32float textures) or always by the deferred
+    /// passes, which give the same picture (a test compares them).
     pub fn set_forward(&mut self, forward: bool) {
         self.forward = forward;
+    }
+
+    /// Whether the split-sum view is drawn by the forward pass while it changes: asked
+    /// for ([`GpuRenderer::set_forward`]) and possible on this device.
+    pub fn draws_forward(&self) -> bool {
+        self.forward && self.filterable
     }
 
     /// Uploads the baked light.
@@ -511,7 +537,7 @@ impl GpuRenderer {
         // stands still, the deferred passes draw it once more, and the frames after that
         // are the present pass alone (the same picture for less work).
         let split_sum_view = points.is_none() && present.mode == Mode::SplitSum as u32;
-        let forward = self.forward && split_sum_view && geometry_changed;
+        let forward = self.draws_forward() && split_sum_view && geometry_changed;
         let deferred = !forward && (geometry_changed || !self.deferred_current);
         let forward_key = ForwardKey::of(frame, format);
         if forward {

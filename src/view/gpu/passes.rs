@@ -69,6 +69,7 @@ impl GpuRenderer {
             wgpu::BindingResource::TextureView(&light.specular),
             self.present.as_entire_binding(),
             wgpu::BindingResource::TextureView(&hud),
+            wgpu::BindingResource::Sampler(&self.cube_linear),
             wgpu::BindingResource::TextureView(&light.irradiance),
             wgpu::BindingResource::TextureView(&light.lut),
             self.lights.as_entire_binding(),
