@@ -27,7 +27,7 @@
 // The frame's light counts (frame.light_count, frame.sun.x), constants of the pipeline
 // (src/view/gpu/mod.rs, `ForwardKey`): with them constant, the compiler unrolls the
 // lights' loops or removes them, which a software rasteriser's fragment stage otherwise
-// pays for even when they run zero times (docs/accuracy.md, "The viewer's cost").
+// pays for even when they run zero times (docs/accuracy.md, "The viewer").
 override POINT_LIGHTS: u32 = 0u;
 override SUN_LIGHTS: u32 = 0u;
 

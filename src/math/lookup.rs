@@ -38,9 +38,10 @@ pub enum SpecularLookup {
     /// de Rousiers 2014, Listing 22, fitted to the GGX lobe's peak); also bevy_pbr 0.19
     /// (`radiance_sample_direction` in `environment_map.wgsl`, with its α).
     Frostbite,
-    /// Frostbite's direction d, its bend faded in below r = 0.5 ([`BEND_FADE_ROUGHNESS`]),
-    /// read as two taps stretched along the plane of incidence toward grazing views, from a
-    /// sharper level (`math::lookup::stretched_taps`): splitsum's own, the README's recipe.
+    /// Frostbite's direction d, its bend faded in below r = 0.5
+    /// (`math::lookup::BEND_FADE_ROUGHNESS`), read as two taps stretched along the plane of
+    /// incidence toward grazing views, from a sharper level (`math::lookup::stretched_taps`):
+    /// splitsum's own, the README's recipe.
     Stretched,
 }
 

@@ -8,13 +8,13 @@
 //!   and truth kernels (`view_split_sum.wgsl`, `view_truth.wgsl`) into per-pixel buffers,
 //!   and the present pass (`view_present.wgsl`), which alone redraws a still view.
 //!
-//! Both call the same WGSL functions on the same surface; the forward path skips writing
+//! Both call the same WGSL functions on the same surface. The forward path skips writing
 //! and reading the per-pixel buffers, which on a software rasteriser cost more than the
-//! shading, and it is compiled for the frame's light counts ([`ForwardKey`]) and reads the
-//! chains through the sampler's bilinear filter (one `textureSampleLevel` where the
-//! deferred kernels fetch four texels: the same texels and weights, up to the hardware's
-//! sub-texel precision), which take a third off its frame on lavapipe (docs/accuracy.md,
-//! "The viewer's cost"). The deferred path is the exact one: CPU twin
+//! shading. It is compiled for the frame's light counts (`ForwardKey` in `pipelines`),
+//! and it reads the chains through the sampler's bilinear filter: one `textureSampleLevel`
+//! where the deferred kernels fetch four texels, the same texels and weights up to the
+//! hardware's sub-texel precision. Together these take a third off its frame on lavapipe
+//! (docs/accuracy.md, "The viewer"). The deferred path is the exact one: CPU twin
 //! [`crate::view::cpu`] with [`crate::view::raster`]. Pipelines and buffers:
 //! `pipelines`; reading frames back: `readback`.
 
@@ -39,7 +39,9 @@ mod passes;
 mod pipelines;
 mod readback;
 
-use pipelines::{buffer, render_pipeline, vertex_layout, Depth};
+use pipelines::{
+    buffer, render_pipeline, vertex_layout, Depth, DisplayPipelines, ForwardKey, ForwardPipelines,
+};
 pub use pipelines::{forward_source, present_source};
 
 /// Workgroup of the shading kernels.
@@ -78,45 +80,6 @@ struct Targets {
     shaded: wgpu::Buffer,
     accum: wgpu::Buffer,
     hud: wgpu::Texture,
-}
-
-/// The display passes for one target format: the present pass and the forward pass's
-/// background.
-struct DisplayPipelines {
-    format: wgpu::TextureFormat,
-    present: wgpu::RenderPipeline,
-    background: wgpu::RenderPipeline,
-}
-
-/// What the forward pass's surface pipelines are compiled for: the target's format and the
-/// frame's light counts, which are constants of the shader (`POINT_LIGHTS`, `SUN_LIGHTS`
-/// in `shaders/view_forward.wgsl`), so that its light loops are unrolled or gone. On
-/// lavapipe that takes a fifth to a quarter off a 1280×720 frame (docs/accuracy.md, "The
-/// viewer's cost"): a software rasteriser pays for a loop even when it runs zero times.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct ForwardKey {
-    format: wgpu::TextureFormat,
-    /// `FrameUniform::light_count`.
-    point_lights: u32,
-    /// `FrameUniform::sun[0]`.
-    sun_lights: u32,
-}
-
-impl ForwardKey {
-    fn of(frame: &FrameUniform, format: wgpu::TextureFormat) -> ForwardKey {
-        ForwardKey {
-            format,
-            point_lights: frame.light_count,
-            sun_lights: frame.sun[0],
-        }
-    }
-}
-
-/// The forward pass's model and sphere pipelines for one [`ForwardKey`].
-struct ForwardPipelines {
-    key: ForwardKey,
-    mesh: wgpu::RenderPipeline,
-    sphere: wgpu::RenderPipeline,
 }
 
 /// The viewer's renderer on one device.
@@ -317,28 +280,7 @@ impl GpuRenderer {
             let (device, present, forward) =
                 (&self.device, &self.present_module, &self.forward_module);
             let pipelines = with_error_scope(device, "the viewer's display passes", || {
-                let targets = [Some(format.into())];
-                DisplayPipelines {
-                    format,
-                    present: render_pipeline(
-                        device,
-                        present,
-                        ("vs_main", "fs_main"),
-                        &targets,
-                        &[],
-                        Depth::None,
-                        &[],
-                    ),
-                    background: render_pipeline(
-                        device,
-                        forward,
-                        ("vs_background", "fs_background"),
-                        &targets,
-                        &[],
-                        Depth::Behind,
-                        &[],
-                    ),
-                }
+                DisplayPipelines::new(device, (present, forward), format)
             })?;
             self.display_pipelines.push(pipelines);
         }
@@ -358,28 +300,7 @@ impl GpuRenderer {
         if !self.forward_pipelines.iter().any(|p| p.key == key) {
             let (device, forward) = (&self.device, &self.forward_module);
             let pipelines = with_error_scope(device, "the viewer's forward pass", || {
-                let targets = [Some(key.format.into())];
-                let layout = vertex_layout();
-                let constants = [
-                    ("POINT_LIGHTS", key.point_lights as f64),
-                    ("SUN_LIGHTS", key.sun_lights as f64),
-                ];
-                let surface = |fragment| {
-                    render_pipeline(
-                        device,
-                        forward,
-                        ("vs_main", fragment),
-                        &targets,
-                        &[Some(layout.clone())],
-                        Depth::Nearest,
-                        &constants,
-                    )
-                };
-                ForwardPipelines {
-                    key,
-                    mesh: surface("fs_mesh"),
-                    sphere: surface("fs_sphere"),
-                }
+                ForwardPipelines::new(device, forward, key)
             })?;
             self.forward_pipelines.push(pipelines);
         }

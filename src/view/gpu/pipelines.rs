@@ -1,6 +1,7 @@
 //! The viewer's render pipelines and buffers: the display passes' sources (present and
-//! forward) with the Rust constants they read, and the helpers that create pipelines and
-//! buffers.
+//! forward) with the Rust constants they read, the display passes compiled per target
+//! format and the forward pass's surfaces per format and light counts, and the helpers
+//! that create pipelines and buffers.
 
 use crate::gpu::shaders;
 use crate::math::color::{
@@ -10,6 +11,7 @@ use crate::stages::preview::picture::{
     HEAT_BACKGROUND, LUMINANCE, PBR_NEUTRAL_DESATURATION, PBR_NEUTRAL_START_COMPRESSION,
 };
 
+use crate::view::frame::FrameUniform;
 use crate::view::raster::Vertex;
 
 use super::DEPTH_FORMAT;
@@ -55,6 +57,110 @@ fn display_constants() -> String {
         bg[1],
         bg[2],
     )
+}
+
+/// The display passes for one target format: the present pass and the forward pass's
+/// background.
+pub(super) struct DisplayPipelines {
+    pub(super) format: wgpu::TextureFormat,
+    pub(super) present: wgpu::RenderPipeline,
+    pub(super) background: wgpu::RenderPipeline,
+}
+
+/// What the forward pass's surface pipelines are compiled for: the target's format and the
+/// frame's light counts, which are constants of the shader (`POINT_LIGHTS`, `SUN_LIGHTS`
+/// in `shaders/view_forward.wgsl`), so that its light loops are unrolled or gone: a
+/// software rasteriser pays for a loop even when it runs zero times (docs/accuracy.md,
+/// "The viewer").
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct ForwardKey {
+    pub(super) format: wgpu::TextureFormat,
+    /// `FrameUniform::light_count`.
+    pub(super) point_lights: u32,
+    /// `FrameUniform::sun[0]`.
+    pub(super) sun_lights: u32,
+}
+
+impl ForwardKey {
+    pub(super) fn of(frame: &FrameUniform, format: wgpu::TextureFormat) -> ForwardKey {
+        ForwardKey {
+            format,
+            point_lights: frame.light_count,
+            sun_lights: frame.sun[0],
+        }
+    }
+}
+
+/// The forward pass's model and sphere pipelines for one [`ForwardKey`].
+pub(super) struct ForwardPipelines {
+    pub(super) key: ForwardKey,
+    pub(super) mesh: wgpu::RenderPipeline,
+    pub(super) sphere: wgpu::RenderPipeline,
+}
+
+impl DisplayPipelines {
+    /// The present pass (`present`'s module) and the forward pass's background (`forward`'s)
+    /// writing `format`.
+    pub(super) fn new(
+        device: &wgpu::Device,
+        (present, forward): (&wgpu::ShaderModule, &wgpu::ShaderModule),
+        format: wgpu::TextureFormat,
+    ) -> DisplayPipelines {
+        let targets = [Some(format.into())];
+        DisplayPipelines {
+            format,
+            present: render_pipeline(
+                device,
+                present,
+                ("vs_main", "fs_main"),
+                &targets,
+                &[],
+                Depth::None,
+                &[],
+            ),
+            background: render_pipeline(
+                device,
+                forward,
+                ("vs_background", "fs_background"),
+                &targets,
+                &[],
+                Depth::Behind,
+                &[],
+            ),
+        }
+    }
+}
+
+impl ForwardPipelines {
+    /// The forward pass's model and sphere pipelines (`forward`'s module) for `key`.
+    pub(super) fn new(
+        device: &wgpu::Device,
+        forward: &wgpu::ShaderModule,
+        key: ForwardKey,
+    ) -> ForwardPipelines {
+        let targets = [Some(key.format.into())];
+        let layout = vertex_layout();
+        let constants = [
+            ("POINT_LIGHTS", key.point_lights as f64),
+            ("SUN_LIGHTS", key.sun_lights as f64),
+        ];
+        let surface = |fragment| {
+            render_pipeline(
+                device,
+                forward,
+                ("vs_main", fragment),
+                &targets,
+                &[Some(layout.clone())],
+                Depth::Nearest,
+                &constants,
+            )
+        };
+        ForwardPipelines {
+            key,
+            mesh: surface("fs_mesh"),
+            sphere: surface("fs_sphere"),
+        }
+    }
 }
 
 /// The present pass's source: the Rust constants it needs, then `view_present.wgsl`.
