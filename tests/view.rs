@@ -398,21 +398,17 @@ fn a_dropped_file_that_is_not_an_image_is_one_clear_line() {
 /// present pass) that draw it once it stands still, give the same picture (HUD, point
 /// lights, Spot and the ray-cast sphere): the same WGSL functions of the same surface,
 /// the chains read through the sampler's bilinear filter in the one and by four texel
-/// fetches in the other. On a software adapter (lavapipe, CI's), whose filter weighs the
-/// texels in floats, at most one 8-bit step apart (the compiler may order a sum
-/// differently in the two shaders) in 0.1 % of the pixels (measured: none differ). A
-/// hardware filter weighs them to its sub-texel precision (8 bits on most GPUs), which
-/// moves a read by up to 1/512 of two neighbouring texels' difference, up to about 1 % of
-/// the value at the background's sharpest edges: there at most two steps in 5 % of the
-/// pixels (an estimate; no hardware GPU was at hand to measure it). Checked on a frame
+/// fetches in the other. On a software adapter (lavapipe, CI's) at most one 8-bit step
+/// apart (the compiler may order a sum differently in the two shaders) in 0.1 % of the
+/// pixels (measured: none differ); on a hardware filter the bar of
+/// `common::forward_pass_bar`, which says why. Checked on a frame
 /// drawn forward against the same frame drawn by a renderer kept on the deferred passes,
 /// and (without the HUD, whose frame time may change between frames) against the same
 /// view's next two frames (standing still: deferred passes, then the present pass alone).
 #[test]
 fn forward_and_deferred_pictures_are_the_same() {
     let Some(ctx) = gpu() else { return };
-    let software = ctx.adapter_info.device_type == wgpu::DeviceType::Cpu;
-    let (bar_steps, bar_per_mille) = if software { (1, 1) } else { (2, 50) };
+    let (bar_steps, bar_per_mille) = common::forward_pass_bar(&ctx);
     let probe = GpuRenderer::new(ctx.device.clone(), ctx.queue.clone()).unwrap();
     if !probe.draws_forward() {
         println!("skipped: {} does not filter rgba32float textures, so every frame is drawn by the deferred passes", ctx.adapter_description());

@@ -245,8 +245,7 @@ fn forward_pass_draws_the_sun_as_the_deferred_passes_do() {
     // under quarry_01 with the sun's shadow as the deferred passes do, to the bar of
     // tests/view.rs (`forward_and_deferred_pictures_are_the_same`, which says why).
     let Some(ctx) = gpu() else { return };
-    let software = ctx.adapter_info.device_type == wgpu::DeviceType::Cpu;
-    let (bar_steps, bar_per_mille) = if software { (1, 1) } else { (2, 50) };
+    let (bar_steps, bar_per_mille) = common::forward_pass_bar(&ctx);
     let light = quarry();
     let size = (320, 180);
     let render = |forward: bool, keys: &str| {
