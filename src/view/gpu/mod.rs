@@ -88,9 +88,6 @@ pub struct GpuRenderer {
     queue: wgpu::Queue,
     /// The forward pass's sampler (bilinear, clamped to the edge) of the light's chains.
     cube_linear: wgpu::Sampler,
-    /// Whether the device filters rgba32float textures (`FLOAT32_FILTERABLE`), which the
-    /// forward pass needs; without it every frame is drawn by the deferred passes.
-    filterable: bool,
     mesh_pipeline: wgpu::RenderPipeline,
     sphere_pipeline: wgpu::RenderPipeline,
     present_module: wgpu::ShaderModule,
@@ -241,13 +238,9 @@ impl GpuRenderer {
             min_filter: wgpu::FilterMode::Linear,
             ..Default::default()
         });
-        let filterable = device
-            .features()
-            .contains(wgpu::Features::FLOAT32_FILTERABLE);
         Ok(GpuRenderer {
             shadow,
             cube_linear,
-            filterable,
             device,
             queue,
             mesh_pipeline,
@@ -323,9 +316,15 @@ impl GpuRenderer {
     }
 
     /// Whether the split-sum view is drawn by the forward pass while it changes: asked
-    /// for ([`GpuRenderer::set_forward`]) and possible on this device.
+    /// for ([`GpuRenderer::set_forward`]) and possible on this device, which must filter
+    /// rgba32float textures (`FLOAT32_FILTERABLE`; without it every frame is drawn by the
+    /// deferred passes).
     pub fn draws_forward(&self) -> bool {
-        self.forward && self.filterable
+        self.forward
+            && self
+                .device
+                .features()
+                .contains(wgpu::Features::FLOAT32_FILTERABLE)
     }
 
     /// Uploads the baked light.
