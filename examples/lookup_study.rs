@@ -18,7 +18,8 @@
 //! README's recipe reads (`SpecularLookup::Stretched`): Frostbite's direction at a lod
 //! narrowed toward grazing views and as two taps along the plane of incidence, on a grid
 //! and then on every bundled HDRI. With `high`, both lookups at r = 0.8 … 0.99, where the
-//! taps fade out. 32-pixel cells and 1024
+//! taps fade out. With `fresnel`, the Fresnel scale of the recipe's bend against the lobe
+//! it is fitted to (no HDRI). 32-pixel cells and 1024
 //! truth points: a quarter of the preview's pixels and half its points, enough for figures
 //! to the tenth of a per cent. docs/accuracy.md holds the output.
 
@@ -33,7 +34,7 @@ use splitsum::plan::material::ShadeMaterial;
 use splitsum::plan::scene::{material_table, Scene, SplitSumInputs, SplitSumLight, ROUGHNESS};
 use splitsum::plan::shading::{LightBrdf, RadianceBlend, Shading, ShadingTerms};
 use splitsum::stages::preview::{
-    add_sun_light, column_table, column_table_at, compare, render_truth, BakedLight, PreviewOptions,
+    add_sun_light, compare, render_truth, sphere_table, sphere_table_at, BakedLight, PreviewOptions,
 };
 use splitsum::{BakedEnvironment, SunMode};
 
@@ -92,7 +93,7 @@ fn views(name: &str, sun: SunMode, lut: &BrdfLut) -> Result<Vec<View>, splitsum:
                 &cpu,
                 &Scene { cell: OPTS.cell }.uniform(),
                 &BakedLight::of(name, &baked, lut),
-                &column_table(baked.chain, &OPTS.shading),
+                &sphere_table(baked.chain, &OPTS.shading),
                 &material_table(),
                 OPTS.truth_samples,
                 LightBrdf::GENERIC,
@@ -108,7 +109,7 @@ fn views(name: &str, sun: SunMode, lut: &BrdfLut) -> Result<Vec<View>, splitsum:
 fn figures(
     view: &View,
     lut: &BrdfLut,
-    lookup: impl Fn(glam::Vec3, glam::Vec3, f32) -> glam::Vec3 + Sync,
+    lookup: impl Fn(glam::Vec3, glam::Vec3, f32, glam::Vec3) -> glam::Vec3 + Sync,
     stretch: f32,
 ) -> Vec<f32> {
     figures_at(view, lut, lookup, stretch, 1.0, RadianceBlend::None)
@@ -119,39 +120,39 @@ fn figures(
 fn figures_at(
     view: &View,
     lut: &BrdfLut,
-    lookup: impl Fn(glam::Vec3, glam::Vec3, f32) -> glam::Vec3 + Sync,
+    lookup: impl Fn(glam::Vec3, glam::Vec3, f32, glam::Vec3) -> glam::Vec3 + Sync,
     stretch: f32,
     lod_scale: f32,
     blend: RadianceBlend,
 ) -> Vec<f32> {
-    let mut columns = column_table(
+    let mut spheres = sphere_table(
         view.baked.chain,
         &Shading::GENERIC.with_lookup(SpecularLookup::Reflect),
     );
-    columns.iter_mut().for_each(|c| {
+    spheres.iter_mut().for_each(|c| {
         c[1] *= lod_scale;
         c[3] = stretch;
     });
     figures_with(
         &view.baked,
         lut,
-        &columns,
+        &spheres,
         &view.truth,
         blend,
         |light, n, v, n_dot_v, m| {
-            split_sum_shade_along(light, n, lookup(n, v, m.roughness), n_dot_v, m)
+            split_sum_shade_along(light, n, lookup(n, v, m.roughness, m.f0), n_dot_v, m)
         },
     )
 }
 
 /// Each sphere's figure of `baked` against `truth` (materials in row order, columns in
 /// order), its spheres shaded by `shade(light, n, v, n·v, material)` with the kernels'
-/// per-column table `columns` and the read blended toward E/π as `blend` says, and the
+/// per-sphere table `spheres` and the read blended toward E/π as `blend` says, and the
 /// lights taken out of it shaded as the preview shades them.
 fn figures_with(
     baked: &BakedEnvironment,
     lut: &BrdfLut,
-    columns: &[[f32; 4]],
+    spheres: &[[f32; 4]],
     truth: &[[f32; 3]],
     blend: RadianceBlend,
     shade: impl Fn(&SplitSumLight, glam::Vec3, glam::Vec3, f32, &ShadeMaterial) -> glam::Vec3 + Sync,
@@ -170,7 +171,7 @@ fn figures_with(
                 ..ShadingTerms::GENERIC
             },
         },
-        columns,
+        spheres,
         materials: &materials,
     };
     let mut panel = render_split_sum_shaded(&scene, &inputs, |n, v, n_dot_v, m| {
@@ -179,7 +180,7 @@ fn figures_with(
     for sun in light.lights {
         add_sun_light(
             &scene,
-            columns,
+            spheres,
             &materials,
             sun,
             LightBrdf::GENERIC,
@@ -199,7 +200,7 @@ fn fit_objective(views: &[View], lut: &BrdfLut, fit: BlendFit) -> f32 {
     let mut sum = 0.0;
     let mut count = 0;
     for view in views {
-        for (i, e) in figures(view, lut, |n, v, r| fit.direction(n, v, r), 0.0)
+        for (i, e) in figures(view, lut, |n, v, r, _| fit.direction(n, v, r), 0.0)
             .iter()
             .enumerate()
         {
@@ -252,7 +253,7 @@ fn lod(lut: &BrdfLut) -> Result<(), splitsum::Error> {
     for scale in SCALES {
         let mut sums = vec![(0.0f32, 0u32); ROUGHNESS.len()];
         for view in &all {
-            let lookup = |n, v, r| SpecularLookup::Frostbite.direction(n, v, r);
+            let lookup = |n, v, r, f0| SpecularLookup::Frostbite.direction(n, v, r, f0);
             for (i, e) in figures_at(view, lut, lookup, 0.0, scale, RadianceBlend::None)
                 .iter()
                 .enumerate()
@@ -300,7 +301,7 @@ impl Grazing {
         let grazing = 1.0 - n_dot_v;
         let narrowing = 1.0 - self.c * grazing * grazing * (1.0 - m.roughness);
         m.lod = (m.lod * narrowing).clamp(0.0, max_lod);
-        let dir = SpecularLookup::Frostbite.direction(n, v, m.roughness);
+        let dir = SpecularLookup::Frostbite.direction(n, v, m.roughness, m.f0);
         if self.a == 0.0 {
             return split_sum_shade_along(light, n, dir, n_dot_v, &m);
         }
@@ -314,7 +315,7 @@ impl Grazing {
 
 /// Each sphere's figure of `view` shaded with `g`.
 fn grazing_figures(view: &View, lut: &BrdfLut, g: Grazing) -> Vec<f32> {
-    let columns = column_table(
+    let spheres = sphere_table(
         view.baked.chain,
         &Shading::GENERIC.with_lookup(SpecularLookup::Frostbite),
     );
@@ -322,7 +323,7 @@ fn grazing_figures(view: &View, lut: &BrdfLut, g: Grazing) -> Vec<f32> {
     figures_with(
         &view.baked,
         lut,
-        &columns,
+        &spheres,
         &view.truth,
         RadianceBlend::None,
         |light, n, v, n_dot_v, m| g.shade(light, max_lod, n, v, n_dot_v, m),
@@ -406,7 +407,7 @@ fn high(lut: &BrdfLut) -> Result<(), splitsum::Error> {
                 &CpuBackend,
                 &Scene { cell: OPTS.cell }.uniform(),
                 &BakedLight::of(name, &view.baked, lut),
-                &column_table_at(
+                &sphere_table_at(
                     &HIGH_ROUGHNESS,
                     chain,
                     &Shading::GENERIC.with_lookup(SpecularLookup::Frostbite),
@@ -416,7 +417,7 @@ fn high(lut: &BrdfLut) -> Result<(), splitsum::Error> {
                 LightBrdf::GENERIC,
             )?;
             for (row, lookup) in rows.iter_mut().zip(lookups) {
-                let columns = column_table_at(
+                let spheres = sphere_table_at(
                     &HIGH_ROUGHNESS,
                     chain,
                     &Shading::GENERIC.with_lookup(lookup),
@@ -424,7 +425,7 @@ fn high(lut: &BrdfLut) -> Result<(), splitsum::Error> {
                 let figures = figures_with(
                     &view.baked,
                     lut,
-                    &columns,
+                    &spheres,
                     &truth,
                     RadianceBlend::None,
                     split_sum_shade,
@@ -450,8 +451,70 @@ fn high(lut: &BrdfLut) -> Result<(), splitsum::Error> {
     Ok(())
 }
 
+/// The roughness and F0 the Fresnel scale of the recipe's bend is fitted over
+/// (`math::lookup::fresnel_bend_scale`): r where the bend is Frostbite's in full (from the
+/// fade's 0.5) to 0.9; F0 from water's to a bright metal's.
+const FRESNEL_ROUGHNESS: [f32; 5] = [0.5, 0.6, 0.7, 0.8, 0.9];
+const FRESNEL_F0: [f32; 6] = [0.02, 0.04, 0.1, 0.2, 0.5, 0.8];
+
+/// The Fresnel scale of the recipe's bend against the lobe it is fitted to: for each r and
+/// F0, the bend of the Fresnel-weighted GGX lobe's mean direction relative to F0 = 1's,
+/// averaged over a sphere's views (`math::lookup::lobe_bend_ratio`: 12 views, a 256 × 512
+/// grid), beside the model with the least-squares weight b over the grid (searched in steps
+/// of 0.0001) and with `FRESNEL_BEND_WEIGHT`. No HDRI: the lobe alone.
+fn fresnel() {
+    use splitsum::math::lookup::{fresnel_bend_scale, lobe_bend_ratio, FRESNEL_BEND_WEIGHT};
+    let model = |r: f32, f0: f32, b: f32| {
+        let fr = f0 * r * r * r.sqrt();
+        fr / (fr + b * (1.0 - f0))
+    };
+    let ratios: Vec<Vec<f32>> = FRESNEL_ROUGHNESS
+        .iter()
+        .map(|&r| {
+            FRESNEL_F0
+                .iter()
+                .map(|&f0| lobe_bend_ratio(r, f0, 12, 256))
+                .collect()
+        })
+        .collect();
+    let residual = |b: f32| -> f32 {
+        let mut sum = 0.0;
+        for (i, &r) in FRESNEL_ROUGHNESS.iter().enumerate() {
+            for (j, &f0) in FRESNEL_F0.iter().enumerate() {
+                sum += (model(r, f0, b) - ratios[i][j]).powi(2);
+            }
+        }
+        sum
+    };
+    let best = (40..=90)
+        .map(|k| k as f32 * 1e-4)
+        .min_by(|a, b| residual(*a).total_cmp(&residual(*b)))
+        .unwrap();
+    println!("least-squares b = {best:.4} (FRESNEL_BEND_WEIGHT = {FRESNEL_BEND_WEIGHT})\n");
+    print!("| r |");
+    FRESNEL_F0
+        .iter()
+        .for_each(|f| print!(" F0 = {f}: lobe / model |"));
+    println!("\n|---|{}", "---|".repeat(FRESNEL_F0.len()));
+    let mut worst = 0.0f32;
+    for (i, &r) in FRESNEL_ROUGHNESS.iter().enumerate() {
+        print!("| {r} |");
+        for (j, &f0) in FRESNEL_F0.iter().enumerate() {
+            let m = fresnel_bend_scale(r, glam::Vec3::splat(f0));
+            worst = worst.max((m - ratios[i][j]).abs());
+            print!(" {:.3} / {m:.3} |", ratios[i][j]);
+        }
+        println!();
+    }
+    println!("\nlargest |lobe - model|: {worst:.3}");
+}
+
 fn main() -> Result<(), splitsum::Error> {
     let lut = splitsum::backend::Backend::brdf_lut(&CpuBackend, 512, 512)?;
+    if std::env::args().any(|a| a == "fresnel") {
+        fresnel();
+        return Ok(());
+    }
     if std::env::args().any(|a| a == "fit") {
         return fit(&lut);
     }
@@ -476,16 +539,16 @@ fn main() -> Result<(), splitsum::Error> {
                         Some(lookup) => figures(
                             view,
                             &lut,
-                            |n, v, r| lookup.direction(n, v, r),
+                            |n, v, r, f0| lookup.direction(n, v, r, f0),
                             lookup.stretch(),
                         ),
                         None if k == SpecularLookup::ALL.len() => {
-                            figures(view, &lut, |n, v, r| FITTED.direction(n, v, r), 0.0)
+                            figures(view, &lut, |n, v, r, _| FITTED.direction(n, v, r), 0.0)
                         }
                         None => figures_at(
                             view,
                             &lut,
-                            |n, v, r| stretched.direction(n, v, r),
+                            |n, v, r, f0| stretched.direction(n, v, r, f0),
                             stretched.stretch(),
                             1.0,
                             RadianceBlend::AlphaSquared,

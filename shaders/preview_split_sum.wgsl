@@ -7,8 +7,8 @@
 @group(0) @binding(2) var specular: texture_2d_array<f32>;
 @group(0) @binding(3) var irradiance: texture_2d_array<f32>;
 @group(0) @binding(4) var lut: texture_2d<f32>;
-// Per column: (roughness, lod, bend, stretch).
-@group(0) @binding(5) var<storage, read> columns: array<vec4<f32>>;
+// Per sphere, row by row: (roughness, lod, bend, stretch).
+@group(0) @binding(5) var<storage, read> spheres: array<vec4<f32>>;
 // Per material: (F0, metallic), (albedo, 0).
 @group(0) @binding(6) var<storage, read> materials: array<vec4<f32>>;
 @group(0) @binding(7) var output: texture_storage_2d<rgba32float, write>;

@@ -9,8 +9,8 @@
 @group(0) @binding(2) var env: texture_2d_array<f32>;
 @group(0) @binding(3) var cold: texture_2d_array<f32>;
 @group(0) @binding(4) var<storage, read> hot: array<vec4<f32>>;
-// Per column: (roughness, lod, bend, stretch).
-@group(0) @binding(5) var<storage, read> columns: array<vec4<f32>>;
+// Per sphere, row by row: (roughness, lod, bend, stretch).
+@group(0) @binding(5) var<storage, read> spheres: array<vec4<f32>>;
 // Per material: (F0, metallic), (albedo, 0).
 @group(0) @binding(6) var<storage, read> materials: array<vec4<f32>>;
 @group(0) @binding(7) var<storage, read> points: array<vec4<f32>>;

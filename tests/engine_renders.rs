@@ -232,7 +232,7 @@ fn check(engine: &Engine) {
                             albedo: Vec3::ONE,
                             roughness: rough,
                             lod: engine.target.roughness.lod(rough, levels),
-                            bend: shading.lookup.bend(rough),
+                            bend: shading.lookup.bend(rough, f0),
                             stretch: shading.lookup.stretch(),
                         };
                         let (nc, vc) = (to_cube(nrm), to_cube(-d));

@@ -225,7 +225,7 @@ fn readme_wgsl_shades_as_the_preview() {
                 albedo,
                 roughness,
                 lod: baked.chain.roughness.lod(roughness, levels),
-                bend: SpecularLookup::GENERIC.bend(roughness),
+                bend: SpecularLookup::GENERIC.bend(roughness, f0),
                 stretch: SpecularLookup::GENERIC.stretch(),
             };
             reference.push(split_sum_shade(&light, n, v, n.dot(v).max(0.0), &m));

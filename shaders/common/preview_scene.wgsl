@@ -1,7 +1,7 @@
 // The preview's scene: which sphere (material row, roughness column) or background ray a
 // pixel of a panel sees. Mirror of src/plan/scene.rs (same function names); every
 // number comes from the uniform block, filled by Scene::uniform on the Rust side.
-// `preview_material` reads the including kernel's `columns` and `materials` tables.
+// `preview_material` reads the including kernel's `spheres` and `materials` tables.
 
 struct SceneParams {
     width: u32,
@@ -55,10 +55,11 @@ fn pixel_geometry(s: SceneParams, x: u32, y: u32) -> PixelGeometry {
 }
 
 // The material of the sphere in row `material`, column `column`: the row's (F0, metallic),
-// (albedo, 0) from `materials`, the column's (roughness, lod, bend, stretch) from `columns`.
+// (albedo, 0) from `materials`, the sphere's (roughness, lod, bend, stretch) from `spheres`
+// (a row of scene.columns spheres per material).
 fn preview_material(material: u32, column: u32) -> ShadeMaterial {
     let fm = materials[2u * material];
-    let col = columns[column];
+    let col = spheres[material * scene.columns + column];
     var m: ShadeMaterial;
     m.f0 = fm.rgb;
     m.metallic = fm.w;

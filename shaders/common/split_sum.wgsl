@@ -4,8 +4,8 @@
 // w(r) = r^4 the blend toward the irradiance (params' radiance_blend: RADIANCE_BLEND_*),
 // kD = (1 - F0)(1 - W(n.v))(1 - metallic), the BRDF's diffuse weight averaged over the light
 // directions (diffuse_fresnel_weight in common/brdf.wgsl), and
-// d = normalize(mix(R, n, bend(r))) the lookup direction, R = reflect(-v, n) bent toward
-// the normal, read as two taps stretched toward grazing views by the material's stretch
+// d = normalize(mix(R, n, bend)) the lookup direction, R = reflect(-v, n) bent toward
+// the normal by the material's bend (of r and F0), read as two taps stretched toward grazing views by the material's stretch
 // (math::lookup: Frostbite's dominant direction, stretched, for the generic target).
 // CPU mirror: src/cpu/preview_split_sum.rs (same function names).
 //

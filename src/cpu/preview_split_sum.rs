@@ -12,9 +12,10 @@
 //! (an engine's mode combines the same reads as that engine's shader does: [`ibl_terms`],
 //! `plan::shading`),
 //!
-//! with d = normalize(mix(R, n, t(r))) the lookup direction, R = reflect(−v, n) bent toward
-//! n by the material's bend t (`math::lookup`: Frostbite's dominant direction for the
-//! generic target, the engines' own in their modes), read as the mean of two taps
+//! with d = normalize(mix(R, n, t)) the lookup direction, R = reflect(−v, n) bent toward
+//! n by the material's bend t (`math::lookup`: for the generic target Frostbite's dominant
+//! direction, faded in below r = 0.5 and scaled down for a low F0; the engines' own in
+//! their modes), read as the mean of two taps
 //! stretched along the plane of incidence toward grazing views, from a sharper level, by
 //! the material's stretch (`math::lookup::stretched_taps`; one tap with stretch 0),
 //! (A, B) the LUT at uv = (n·v, r) sampled bilinearly with clamp-to-edge,
@@ -171,7 +172,7 @@ fn render_with(
                     material,
                     column,
                 } => {
-                    let m = preview_material(inputs.columns, inputs.materials, material, column);
+                    let m = preview_material(inputs.spheres, inputs.materials, scene.columns as usize, material, column);
                     shade(n, v, n.dot(v).max(MIN_N_DOT_V), &m).into()
                 }
             })

@@ -199,7 +199,7 @@ pub fn render_truth(scene: &SceneUniform, inputs: &TruthInputs) -> Vec<[f32; 3]>
                     material,
                     column,
                 } => {
-                    let m = preview_material(inputs.columns, inputs.materials, material, column);
+                    let m = preview_material(inputs.spheres, inputs.materials, scene.columns as usize, material, column);
                     let shift = pixel_shift(y * scene.width + x);
                     let n_dot_v = n.dot(v).max(MIN_N_DOT_V);
                     let (mut spec, diff) = truth_shade_parts(&inputs.light, n, v, n_dot_v, &m, shift);

@@ -140,7 +140,7 @@ pub fn preview_split_sum(
                 [
                     uniform_buffer(device, "preview scene", scene),
                     uniform_buffer(device, "preview split-sum params", &params),
-                    storage_buffer(device, "preview columns", inputs.columns),
+                    storage_buffer(device, "preview spheres", inputs.spheres),
                     storage_buffer(device, "preview materials", inputs.materials),
                 ],
             )
@@ -183,7 +183,7 @@ pub fn preview_truth(
                 uniform_buffer(device, "preview scene", scene),
                 uniform_buffer(device, "preview truth params", &params),
                 storage_buffer(device, "preview hot texels", inputs.light.hot),
-                storage_buffer(device, "preview columns", inputs.columns),
+                storage_buffer(device, "preview spheres", inputs.spheres),
                 storage_buffer(device, "preview materials", inputs.materials),
                 storage_buffer(device, "preview points", inputs.light.points),
             ],

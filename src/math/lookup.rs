@@ -4,8 +4,10 @@
 //! on R = reflect(−v, n) only at normal incidence; at high roughness the true lobe leans
 //! toward n (the "off-specular peak", Lagarde & de Rousiers 2014, §4.9.3). Every lookup
 //! here is R bent toward n, normalize(mix(R, n, t)), by a bend t ∈ [0, 1] that depends on
-//! r alone ([`SpecularLookup::bend`]), so the shading functions take t as part of the
-//! material, beside the chain's lod for r (`plan::material::ShadeMaterial::bend`; WGSL
+//! r and, for the recipe's lookup, on the material's F0, whose Fresnel pulls the lobe back
+//! toward R ([`SpecularLookup::bend`], [`fresnel_bend_scale`]); neither varies over a
+//! surface of one material, so the shading functions take t as part of the material,
+//! beside the chain's lod for r (`plan::material::ShadeMaterial::bend`; WGSL
 //! `bent_reflection` in `shaders/common/split_sum.wgsl`).
 //!
 //! [`SpecularLookup::Stretched`] also reads the chain as the true lobe is shaped toward
@@ -39,7 +41,8 @@ pub enum SpecularLookup {
     /// (`radiance_sample_direction` in `environment_map.wgsl`, with its α).
     Frostbite,
     /// Frostbite's direction d, its bend faded in below r = 0.5
-    /// (`math::lookup::BEND_FADE_ROUGHNESS`), read as two taps stretched along the plane of
+    /// (`math::lookup::BEND_FADE_ROUGHNESS`) and scaled down for a low F0
+    /// (`math::lookup::fresnel_bend_scale`), read as two taps stretched along the plane of
     /// incidence toward grazing views, from a sharper level (`math::lookup::stretched_taps`):
     /// splitsum's own, the README's recipe.
     Stretched,
@@ -58,9 +61,9 @@ impl SpecularLookup {
     /// The lookup of the README's WGSL recipe, the preview and the viewer. Read with the
     /// recipe's blend toward E/π, it is the lowest lookup, or within 0.1 point of it, in
     /// all but three of the lookup study's 48 cells at r ≥ 0.25 (six HDRIs, the sun kept
-    /// and split). In the default preview it is below plain R on every metal at every
-    /// r ≥ 0.25 of the five bundled HDRIs (docs/accuracy.md, "Where to look the chain
-    /// up").
+    /// and split). In the default preview it is below plain R on every sphere, metal or
+    /// dielectric, at every r ≥ 0.25 of the five bundled HDRIs (docs/accuracy.md, "Where
+    /// to look the chain up").
     pub const GENERIC: SpecularLookup = SpecularLookup::Stretched;
 
     /// The name `preview --lookup` takes and its JSON writes.
@@ -89,7 +92,7 @@ impl SpecularLookup {
                 "Frostbite's dominant direction, R bent toward n as the GGX lobe leans (Bevy)"
             }
             SpecularLookup::Stretched => {
-                "Frostbite's direction (its bend faded in below r = 0.5) as two taps stretched along the plane of incidence toward grazing views (the README's recipe)"
+                "Frostbite's direction (its bend faded in below r = 0.5, less for a low F0) as two taps stretched along the plane of incidence toward grazing views (the README's recipe)"
             }
         }
     }
@@ -105,9 +108,11 @@ impl SpecularLookup {
         }
     }
 
-    /// The bend t of normalize(mix(R, n, t)) at perceptual roughness `roughness`: 0 reads
-    /// along R, 1 along n.
-    pub fn bend(self, roughness: f32) -> f32 {
+    /// The bend t of normalize(mix(R, n, t)) at perceptual roughness `roughness` for a
+    /// material of reflectance `f0` at normal incidence: 0 reads along R, 1 along n. Only
+    /// the recipe's lookup ([`SpecularLookup::Stretched`]) reads `f0`
+    /// (`math::lookup::fresnel_bend_scale`); the engines' bend by roughness alone.
+    pub fn bend(self, roughness: f32, f0: Vec3) -> f32 {
         let alpha = crate::math::brdf::alpha_from_roughness(roughness);
         match self {
             SpecularLookup::Reflect => 0.0,
@@ -115,7 +120,9 @@ impl SpecularLookup {
             SpecularLookup::AlphaSquared => alpha * alpha,
             SpecularLookup::Frostbite => frostbite_bend(alpha),
             SpecularLookup::Stretched => {
-                frostbite_bend(alpha) * (roughness / BEND_FADE_ROUGHNESS).powi(2).min(1.0)
+                frostbite_bend(alpha)
+                    * (roughness / BEND_FADE_ROUGHNESS).powi(2).min(1.0)
+                    * fresnel_bend_scale(roughness, f0)
             }
         }
     }
@@ -130,9 +137,10 @@ impl SpecularLookup {
     }
 
     /// The unit direction to look the chain up along (for [`SpecularLookup::Stretched`],
-    /// the centre of its two taps), for unit `n` and `v` with n·v > 0.
-    pub fn direction(self, n: Vec3, v: Vec3, roughness: f32) -> Vec3 {
-        bent_reflection(n, v, self.bend(roughness))
+    /// the centre of its two taps), for unit `n` and `v` with n·v > 0, at `roughness`, for
+    /// reflectance `f0`.
+    pub fn direction(self, n: Vec3, v: Vec3, roughness: f32, f0: Vec3) -> Vec3 {
+        bent_reflection(n, v, self.bend(roughness, f0))
     }
 }
 
@@ -154,6 +162,39 @@ fn frostbite_bend(alpha: f32) -> f32 {
 /// r ≥ 0.5 the bend is Frostbite's, unchanged (docs/accuracy.md, "Where to look the chain
 /// up").
 pub const BEND_FADE_ROUGHNESS: f32 = 0.5;
+
+/// How much of Frostbite's bend a material of reflectance `f0` at normal incidence takes
+/// at perceptual roughness r, with f the mean of F0's channels:
+///
+/// s(f, r) = f r^2.5 / max(f r^2.5 + b (1 − f), ε),  b = [`FRESNEL_BEND_WEIGHT`],
+///
+/// 1 for F0 = 1, for which Frostbite's bend was fitted (the lobe D G (n·l) alone, Lagarde
+/// & de Rousiers 2014, §4.9.3), and less the lower F0 is: Fresnel-Schlick's
+/// (1 − F0)(1 − v·h)⁵ weights the reflected directions whose half vector leans away from
+/// v, those on R's far side from n, and pulls the lobe's mean back toward R. Fitted to
+/// the lobe itself, not to an HDRI: the bend of the mean reflected direction of
+/// D G F (n·l) for F0 against F0 = 1, averaged over a sphere's views (n·v with density
+/// 2 n·v, weighted by the directional albedo), for F0 from 0.02 to 0.8 and r from 0.5 to
+/// 0.9, lies within 0.021 of s (`lookup_study fresnel`, docs/accuracy.md). A dielectric
+/// (F0 = 0.04) takes 0.51 of the bend at r = 0.5, 0.74 at 0.75; gold (mean F0 0.67) 0.98
+/// at r = 0.5.
+/// ε ([`FRESNEL_BEND_FLOOR`]) reads F0 = 1 at r = 0, where the bend is 0, as 0 instead of
+/// 0/0.
+pub fn fresnel_bend_scale(roughness: f32, f0: Vec3) -> f32 {
+    let f = (f0.x + f0.y + f0.z) / 3.0;
+    let fr = f * roughness * roughness * roughness.sqrt();
+    fr / (fr + FRESNEL_BEND_WEIGHT * (1.0 - f)).max(FRESNEL_BEND_FLOOR)
+}
+
+/// The weight b of the Fresnel term against F0 in [`fresnel_bend_scale`]: the lobe's bend
+/// relative to F0 = 1's is f / (f + b (1 − f) r^−2.5), b the least-squares fit to the
+/// lobe's mean direction ([`lobe_bend_ratio`]) over r = 0.5, 0.6, …, 0.9 and F0 = 0.02,
+/// 0.04, 0.1, 0.2, 0.5, 0.8 (`lookup_study fresnel`).
+pub const FRESNEL_BEND_WEIGHT: f32 = 0.0071;
+
+/// The smallest denominator of [`fresnel_bend_scale`]: only F0 = 1 at r = 0 (or r below
+/// 0.004 for F0 near 1, where the bend faded in below r = 0.5 is under 1e-4) reaches it.
+pub const FRESNEL_BEND_FLOOR: f32 = 1e-6;
 
 /// The two taps of a stretched lookup and the lod both read at: for unit n, the unit
 /// lookup direction d, n·v, roughness r (α = r²), the chain's lod for r and the stretch
@@ -248,6 +289,66 @@ pub const FITTED: BlendFit = BlendFit {
     b: 0.5,
 };
 
+/// The bend t (as in normalize(mix(R, n, t))) of the mean reflected direction of the
+/// GGX lobe D F V (n·l) seen from n·v = `n_dot_v`, and the lobe's integral (the
+/// directional albedo, F0 A + B), with α, Fresnel-Schlick of scalar
+/// reflectance `f0` and the height-correlated Smith visibility (the preview's truth's
+/// BRDF, `LightBrdf::GENERIC`): the lobe integrated over the hemisphere on a
+/// `steps` × 2 `steps` grid in (θ, φ) (midpoints, weight sin θ), its mean direction's angle
+/// from n in the plane of incidence turned into the bend that reaches it. The quantity
+/// [`fresnel_bend_scale`] is fitted to, relative to F0 = 1 ([`lobe_bend_ratio`]).
+#[cfg(any(test, feature = "internals"))]
+pub fn lobe_mean_bend(alpha: f32, n_dot_v: f32, f0: f32, steps: u32) -> (f32, f32) {
+    use crate::math::brdf::{d_ggx, fresnel_schlick, smith_correlated_4v_n_dot_l, smith_correlated_lambda};
+    let (nv, a2) = (n_dot_v as f64, alpha * alpha);
+    let sin_v = (1.0 - nv * nv).max(0.0).sqrt();
+    let v = glam::DVec3::new(sin_v, 0.0, nv);
+    let lambda_v = smith_correlated_lambda(n_dot_v, a2);
+    let (dt, dp) = (std::f64::consts::FRAC_PI_2 / steps as f64, std::f64::consts::PI / steps as f64);
+    let (mut mean, mut weight) = (glam::DVec3::ZERO, 0.0f64);
+    for i in 0..steps {
+        let theta = (i as f64 + 0.5) * dt;
+        let (st, ct) = theta.sin_cos();
+        for j in 0..2 * steps {
+            let (sp, cp) = ((j as f64 + 0.5) * dp).sin_cos();
+            let l = glam::DVec3::new(st * cp, st * sp, ct);
+            let h = (l + v).normalize();
+            // D F V (n·l), the helper giving 4 V (n·l).
+            let f = 0.25
+                * d_ggx(h.z as f32, alpha)
+                * fresnel_schlick(f0, v.dot(h) as f32)
+                * smith_correlated_4v_n_dot_l(n_dot_v, ct as f32, a2, lambda_v);
+            mean += l * (f as f64 * st);
+            weight += f as f64 * st;
+        }
+    }
+    // The mean's angle β from n toward R (R = (−sin, 0, cos)), and the t with
+    // normalize(mix(R, n, t)) at β: tan β = (1 − t) sin / ((1 − t) n·v + t).
+    let tan_b = -mean.x / mean.z;
+    let bend = (sin_v - tan_b * nv) / (tan_b * (1.0 - nv) + sin_v);
+    // Σ f sin θ dθ dφ, f = D F V (n·l) holding the cosine: the directional albedo.
+    let albedo = weight * dt * dp;
+    (bend as f32, albedo as f32)
+}
+
+/// The bend of the lobe's mean direction for scalar reflectance `f0` relative to F0 = 1's
+/// ([`lobe_mean_bend`]), averaged over the views of a sphere: `views` values of n·v at the
+/// midpoints of (0, 1), each weighted by its share of a sphere's pixels (2 n·v) times the
+/// lobe's directional albedo for `f0` (what that view sends to the camera).
+#[cfg(any(test, feature = "internals"))]
+pub fn lobe_bend_ratio(roughness: f32, f0: f32, views: u32, steps: u32) -> f32 {
+    let alpha = crate::math::brdf::alpha_from_roughness(roughness);
+    let (mut num, mut den) = (0.0f64, 0.0f64);
+    for k in 0..views {
+        let nv = (k as f32 + 0.5) / views as f32;
+        let (bend, albedo) = lobe_mean_bend(alpha, nv, f0, steps);
+        let w = (2.0 * nv * albedo) as f64;
+        num += w * bend as f64;
+        den += w * lobe_mean_bend(alpha, nv, 1.0, steps).0 as f64;
+    }
+    (num / den) as f32
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -262,15 +363,54 @@ mod tests {
         let r = Vec3::new(-0.6, 0.8, 0.0);
         for lookup in SpecularLookup::ALL {
             // 1e-6: single-precision rounding.
-            assert!(lookup.direction(n, v, 0.0).distance(r) < 1e-6, "{lookup:?}");
-            let half = lookup.direction(n, v, 0.5);
+            assert!(lookup.direction(n, v, 0.0, Vec3::ONE).distance(r) < 1e-6, "{lookup:?}");
+            let half = lookup.direction(n, v, 0.5, Vec3::ONE);
             assert!(half.z.abs() < 1e-6 && half.x <= 0.0 && half.y >= r.y, "{lookup:?}");
         }
         for lookup in &SpecularLookup::ALL[1..] {
-            assert!(lookup.direction(n, v, 1.0).distance(n) < 1e-6, "{lookup:?}");
+            assert!(lookup.direction(n, v, 1.0, Vec3::ONE).distance(n) < 1e-6, "{lookup:?}");
         }
-        assert!(SpecularLookup::Reflect.direction(n, v, 1.0).distance(r) < 1e-6);
+        assert!(SpecularLookup::Reflect.direction(n, v, 1.0, Vec3::ONE).distance(r) < 1e-6);
         assert!(FITTED.direction(n, v, 0.0).distance(r) < 1e-6);
+    }
+
+    /// The lobe integral's sanity: a mirror-like lobe's mean direction is R (bend 0) and
+    /// keeps all its energy; the roughest lobe's mean lies along n, where Frostbite's
+    /// bend puts it.
+    #[test]
+    fn lobe_mean_bend_integrates_the_lobe() {
+        let (bend, albedo) = lobe_mean_bend(0.02, 0.7, 1.0, 512);
+        // 0.01: the grid's error on a lobe a few cells wide, far below a bend worth reading.
+        assert!(bend.abs() < 0.01, "{bend}");
+        // 0.02: single scattering at α = 0.02 keeps all but the grid's error.
+        assert!((albedo - 1.0).abs() < 0.02, "{albedo}");
+        // Frostbite's fit reaches n at α = 1; the lobe's mean is there within 0.05.
+        for nv in [0.2, 0.5, 0.9] {
+            let (bend, _) = lobe_mean_bend(1.0, nv, 1.0, 128);
+            assert!((bend - 1.0).abs() < 0.05, "n·v {nv}: {bend}");
+        }
+    }
+
+    /// [`fresnel_bend_scale`] against what it is fitted to, the Fresnel-weighted lobe's mean
+    /// direction over a sphere's views ([`lobe_bend_ratio`]): within 0.03 for F0 from 0.02
+    /// to 0.8 at r from 0.5 to 0.9 (the fit's residual is at most 0.021 on a finer grid;
+    /// the rest is this grid's error), 1 at F0 = 1, and 0 where F0 = 1 meets r = 0.
+    #[test]
+    fn fresnel_bend_scale_follows_the_lobe() {
+        for r in [0.5f32, 0.7, 0.9] {
+            for f0 in [0.02f32, 0.04, 0.2, 0.8] {
+                let lobe = lobe_bend_ratio(r, f0, 8, 96);
+                let model = fresnel_bend_scale(r, Vec3::splat(f0));
+                assert!((lobe - model).abs() < 0.03, "r {r} F0 {f0}: lobe {lobe} model {model}");
+            }
+            assert_eq!(fresnel_bend_scale(r, Vec3::ONE), 1.0);
+        }
+        assert_eq!(fresnel_bend_scale(0.0, Vec3::ONE), 0.0);
+        assert_eq!(fresnel_bend_scale(0.0, Vec3::ZERO), 0.0);
+        // Only the recipe's lookup reads F0.
+        let (dielectric, metal) = (Vec3::splat(0.04), Vec3::ONE);
+        assert!(SpecularLookup::Stretched.bend(0.5, dielectric) < 0.6 * SpecularLookup::Stretched.bend(0.5, metal));
+        assert_eq!(SpecularLookup::Frostbite.bend(0.5, dielectric), SpecularLookup::Frostbite.bend(0.5, metal));
     }
 
     /// Frostbite's bend written as a blend of R toward n is Listing 22's mix(n, R, w):
@@ -285,7 +425,7 @@ mod tests {
             let refl = 2.0 * n.dot(v) * n - v;
             let listing = n.lerp(refl, s * (s.sqrt() + alpha)).normalize();
             // 1e-6: single-precision rounding.
-            let got = SpecularLookup::Frostbite.direction(n, v, r);
+            let got = SpecularLookup::Frostbite.direction(n, v, r, Vec3::splat(0.04));
             assert!(got.distance(listing) < 1e-6, "r {r}: {got} vs {listing}");
         }
     }
@@ -297,7 +437,7 @@ mod tests {
     fn stretched_taps_lie_in_the_plane_of_incidence() {
         let n = Vec3::Y;
         let v = Vec3::new(0.8, 0.6, 0.0);
-        let d = SpecularLookup::Stretched.direction(n, v, 0.5);
+        let d = SpecularLookup::Stretched.direction(n, v, 0.5, Vec3::ONE);
         let n_dot_v = n.dot(v);
         // (n·v, r, stretch, the chain's lod for r: 0 for a mirror).
         for (n_dot_v, r, k, lod) in [
@@ -314,7 +454,7 @@ mod tests {
         let (a, b, _) = stretched_taps(n, n, n_dot_v, 1.0, 3.0, 1.0);
         assert!(a.distance(n) < 1e-6 && b.distance(n) < 1e-6, "{a} {b}");
         // Continuous where d reaches n: just below r = 1 the taps are within the fade of d.
-        let rough = SpecularLookup::Stretched.direction(n, v, 0.999);
+        let rough = SpecularLookup::Stretched.direction(n, v, 0.999, Vec3::ONE);
         let (a, b, _) = stretched_taps(n, rough, n_dot_v, 0.999, 3.0, 1.0);
         assert!(a.distance(rough) < 0.01 && b.distance(rough) < 0.01, "{a} {b} {rough}");
         let (a, b, lod) = stretched_taps(n, d, n_dot_v, 0.5, 3.0, 1.0);

@@ -27,8 +27,8 @@ pub struct ShadeMaterial {
     pub roughness: f32,
     /// The specular chain's lod for `roughness` (`RoughnessMapping::lod`).
     pub lod: f32,
-    /// How far the chain's lookup direction leans from R toward n for `roughness`
-    /// (`math::lookup::SpecularLookup::bend`: 0 along R, 1 along n).
+    /// How far the chain's lookup direction leans from R toward n for `roughness` and
+    /// `f0` (`math::lookup::SpecularLookup::bend`: 0 along R, 1 along n).
     pub bend: f32,
     /// How strongly the lookup reads two taps stretched toward grazing views
     /// (`math::lookup::stretched_taps`; `SpecularLookup::stretch`: 0 reads one tap).

@@ -221,16 +221,18 @@ pub fn material_table() -> Vec<[f32; 4]> {
 }
 
 /// The material of the sphere in row `material`, column `column` of the kernels' tables:
-/// the row's (F0, metallic), (albedo, 0), the column's (roughness, lod, bend, stretch). Mirror of
+/// the row's (F0, metallic), (albedo, 0), the sphere's (roughness, lod, bend, stretch),
+/// `spheres` holding a row of `columns` spheres per material. Mirror of
 /// `preview_material` in `shaders/common/preview_scene.wgsl`.
 pub fn preview_material(
-    columns: &[[f32; 4]],
+    spheres: &[[f32; 4]],
     materials: &[[f32; 4]],
+    columns: usize,
     material: usize,
     column: usize,
 ) -> ShadeMaterial {
     let fm = materials[2 * material];
-    let col = columns[column];
+    let col = spheres[material * columns + column];
     ShadeMaterial {
         f0: Vec3::new(fm[0], fm[1], fm[2]),
         metallic: fm[3],
@@ -279,8 +281,9 @@ pub struct SplitSumLight<'a> {
 pub struct TruthInputs<'a> {
     /// The environment the truth integrates.
     pub light: TruthLight<'a>,
-    /// Per roughness column: (roughness, lod, 0, 0); the lod is unused here.
-    pub columns: &'a [[f32; 4]],
+    /// Per sphere, row by row: (roughness, lod, bend, stretch); only the roughness is
+    /// read here.
+    pub spheres: &'a [[f32; 4]],
     /// Per material: (F0, metallic), (albedo, 0).
     pub materials: &'a [[f32; 4]],
     /// The LUT (A, B) the light BRDF's compensation reads, when it is compensated.
@@ -305,8 +308,9 @@ pub fn disk_points(samples: u32) -> Vec<[f32; 4]> {
 pub struct SplitSumInputs<'a> {
     /// The baked light.
     pub light: SplitSumLight<'a>,
-    /// Per roughness column: (roughness, the chain's lod for it, 0, 0).
-    pub columns: &'a [[f32; 4]],
+    /// Per sphere, row by row (`stages::preview::sphere_table`): (roughness, the chain's
+    /// lod for it, the lookup's bend for it and the row's F0, the lookup's stretch).
+    pub spheres: &'a [[f32; 4]],
     /// Per material: (F0, metallic), (albedo, 0) (`scene::material_table`).
     pub materials: &'a [[f32; 4]],
 }

@@ -213,10 +213,11 @@ impl ViewLight {
     }
 
     /// `base` at roughness `r` as the split-sum reads it: the chain's lod for r and the
-    /// generic lookup's bend and stretch (`math::lookup::SpecularLookup::GENERIC`).
+    /// generic lookup's bend (for r and its F0) and stretch
+    /// (`math::lookup::SpecularLookup::GENERIC`).
     pub fn material(&self, base: &BaseMaterial, r: f32) -> ShadeMaterial {
         let lookup = SpecularLookup::GENERIC;
-        base.shade(r, self.lod(r), lookup.bend(r), lookup.stretch())
+        base.shade(r, self.lod(r), lookup.bend(r, base.f0()), lookup.stretch())
     }
 
     /// What the split-sum shading reads.

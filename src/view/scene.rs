@@ -84,13 +84,22 @@ pub fn materials() -> [BaseMaterial; 6] {
 }
 
 impl BaseMaterial {
+    /// Linear-RGB reflectance at normal incidence: the base colour for a metal, the
+    /// dielectric F0 otherwise.
+    pub fn f0(&self) -> Vec3 {
+        match self.metallic {
+            true => Vec3::from(self.base),
+            false => Vec3::splat(DIELECTRIC_F0),
+        }
+    }
+
     /// The shading functions' material at `roughness` with the chain's `lod` and the
     /// lookup's `bend` for it and its `stretch`.
     pub fn shade(&self, roughness: f32, lod: f32, bend: f32, stretch: f32) -> ShadeMaterial {
         let base = Vec3::from(self.base);
         let metallic = if self.metallic { 1.0 } else { 0.0 };
         ShadeMaterial {
-            f0: Vec3::splat(DIELECTRIC_F0).lerp(base, metallic),
+            f0: self.f0(),
             metallic,
             albedo: base * (1.0 - metallic),
             roughness,

@@ -19,6 +19,7 @@ pub mod picture;
 use std::time::Instant;
 
 use serde::Serialize;
+use glam::Vec3;
 
 use crate::backend::Backend;
 use std::borrow::Cow;
@@ -170,26 +171,29 @@ pub fn validate_options(opts: &PreviewOptions) -> Result<()> {
     Ok(())
 }
 
-/// The per-column table of the kernels: (the roughness `shading` uses, the chain's lod
-/// for it, its lookup's bend for it, its stretch).
-pub fn column_table(chain: SpecularChain, shading: &Shading) -> Vec<[f32; 4]> {
-    column_table_at(&ROUGHNESS, chain, shading)
+/// The per-sphere table of the kernels, row by row (each material's spheres left to
+/// right): (the roughness `shading` uses, the chain's lod for it, its lookup's bend for
+/// it and the row's F0, its stretch).
+pub fn sphere_table(chain: SpecularChain, shading: &Shading) -> Vec<[f32; 4]> {
+    sphere_table_at(&ROUGHNESS, chain, shading)
 }
 
-/// [`column_table`] for the columns' roughness `roughness` (one per column of the
+/// [`sphere_table`] for the columns' roughness `roughness` (one per column of the
 /// scene; a study of other roughness than the preview's).
-pub fn column_table_at(
+pub fn sphere_table_at(
     roughness: &[f32],
     chain: SpecularChain,
     shading: &Shading,
 ) -> Vec<[f32; 4]> {
     let lookup = shading.lookup;
-    roughness
+    MATERIALS
         .iter()
-        .map(|&r| {
-            let r = shading.roughness(r);
-            let lod = chain.roughness.lod(r, chain.levels);
-            [r, lod, lookup.bend(r), lookup.stretch()]
+        .flat_map(|m| {
+            roughness.iter().map(move |&r| {
+                let r = shading.roughness(r);
+                let lod = chain.roughness.lod(r, chain.levels);
+                [r, lod, lookup.bend(r, Vec3::from(m.f0)), lookup.stretch()]
+            })
         })
         .collect()
 }
@@ -270,7 +274,7 @@ pub fn sun_texels(sun: &Sun) -> Vec<SourceTexel> {
 #[allow(clippy::too_many_arguments)]
 pub fn add_sun_light(
     scene: &SceneUniform,
-    columns: &[[f32; 4]],
+    spheres: &[[f32; 4]],
     materials: &[[f32; 4]],
     sun: &Sun,
     brdf: LightBrdf,
@@ -291,7 +295,7 @@ pub fn add_sun_light(
                 column,
             } = pixel_geometry(scene, x, y)
             {
-                let m = preview_material(columns, materials, material, column);
+                let m = preview_material(spheres, materials, scene.columns as usize, material, column);
                 let n_dot_v = n.dot(v).max(MIN_N_DOT_V);
                 let alpha = crate::math::brdf::alpha_from_roughness(m.roughness);
                 let (mut spec, diff) =
@@ -307,7 +311,7 @@ pub fn add_sun_light(
     }
 }
 
-/// The ground-truth panel of `light` on `backend` for the kernels' tables (of the columns
+/// The ground-truth panel of `light` on `backend` for the kernels' tables (of the spheres
 /// only each one's roughness is read) with `samples` quasi-Monte Carlo points per lobe and
 /// pixel and the BRDF `brdf` (compensated with `light`'s LUT where it is): the chain's
 /// level 0 split into its hot texels and the cold rest ([`truth_environment`]), the lights
@@ -316,7 +320,7 @@ pub fn render_truth(
     backend: &dyn Backend,
     scene: &SceneUniform,
     light: &BakedLight,
-    columns: &[[f32; 4]],
+    spheres: &[[f32; 4]],
     materials: &[[f32; 4]],
     samples: u32,
     brdf: LightBrdf,
@@ -336,7 +340,7 @@ pub fn render_truth(
                 points: &points,
                 brdf,
             },
-            columns,
+            spheres,
             materials,
             lut: light.lut,
         },
@@ -353,7 +357,7 @@ pub fn render_preview(
     let scene = Scene { cell: opts.cell };
     let uniform = scene.uniform();
     let shading = &opts.shading;
-    let columns = column_table(light.chain, shading);
+    let spheres = sphere_table(light.chain, shading);
     let materials = material_table();
 
     let t = Instant::now();
@@ -366,14 +370,14 @@ pub fn render_preview(
                 lut: light.lut,
                 terms: shading.terms,
             },
-            columns: &columns,
+            spheres: &spheres,
             materials: &materials,
         },
     )?;
     for sun in light.lights {
         add_sun_light(
             &uniform,
-            &columns,
+            &spheres,
             &materials,
             sun,
             shading.light,
@@ -391,7 +395,7 @@ pub fn render_preview(
             backend,
             &uniform,
             light,
-            &columns,
+            &spheres,
             &materials,
             opts.truth_samples,
             shading.light,
