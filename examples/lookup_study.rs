@@ -463,10 +463,8 @@ const FRESNEL_F0: [f32; 6] = [0.02, 0.04, 0.1, 0.2, 0.5, 0.8];
 /// grid), beside the model with the least-squares weight b over the grid (searched in steps
 /// of 0.0001) and with `FRESNEL_BEND_WEIGHT`. No HDRI: the lobe alone.
 fn fresnel() {
-    use splitsum::math::lookup::{fresnel_bend_scale, lobe_bend_ratio, FRESNEL_BEND_WEIGHT};
-    let model = |r: f32, f0: f32, b: f32| {
-        let fr = f0 * r * r * r.sqrt();
-        fr / (fr + b * (1.0 - f0))
+    use splitsum::math::lookup::{
+        fresnel_bend_scale, fresnel_bend_share, lobe_bend_ratio, FRESNEL_BEND_WEIGHT,
     };
     let ratios: Vec<Vec<f32>> = FRESNEL_ROUGHNESS
         .iter()
@@ -481,7 +479,7 @@ fn fresnel() {
         let mut sum = 0.0;
         for (i, &r) in FRESNEL_ROUGHNESS.iter().enumerate() {
             for (j, &f0) in FRESNEL_F0.iter().enumerate() {
-                sum += (model(r, f0, b) - ratios[i][j]).powi(2);
+                sum += (fresnel_bend_share(r, f0, b) - ratios[i][j]).powi(2);
             }
         }
         sum

@@ -158,7 +158,7 @@ fn frostbite_bend(alpha: f32) -> f32 {
 /// fade against without: studio_small_03 15.1 against 20.8 % (plain R 20.1 %),
 /// royal_esplanade split 2.5 against 3.5 %, quarry_01 split 2.7 against 2.8 %,
 /// pedestrian_overpass 0.9 against 1.0 %, venice_sunset 1.35 against 1.34 %, and on
-/// blender_studiolight_interior (not bundled, lamps split) 5.2 against 6.4 %; at
+/// blender_studiolight_interior (lamps split; not one it was chosen on) 5.2 against 6.4 %; at
 /// r ≥ 0.5 the bend is Frostbite's, unchanged (docs/accuracy.md, "Where to look the chain
 /// up").
 pub const BEND_FADE_ROUGHNESS: f32 = 0.5;
@@ -173,7 +173,7 @@ pub const BEND_FADE_ROUGHNESS: f32 = 0.5;
 /// (1 − F0)(1 − v·h)⁵ weights the reflected directions whose half vector leans away from
 /// v, those on R's far side from n, and pulls the lobe's mean back toward R. Fitted to
 /// the lobe itself, not to an HDRI: the bend of the mean reflected direction of
-/// D G F (n·l) for F0 against F0 = 1, averaged over a sphere's views (n·v with density
+/// D F V (n·l) for F0 against F0 = 1, averaged over a sphere's views (n·v with density
 /// 2 n·v, weighted by the directional albedo), for F0 from 0.02 to 0.8 and r from 0.5 to
 /// 0.9, lies within 0.021 of s (`lookup_study fresnel`, docs/accuracy.md). A dielectric
 /// (F0 = 0.04) takes 0.51 of the bend at r = 0.5, 0.74 at 0.75; gold (mean F0 0.67) 0.98
@@ -181,9 +181,14 @@ pub const BEND_FADE_ROUGHNESS: f32 = 0.5;
 /// ε ([`FRESNEL_BEND_FLOOR`]) reads F0 = 1 at r = 0, where the bend is 0, as 0 instead of
 /// 0/0.
 pub fn fresnel_bend_scale(roughness: f32, f0: Vec3) -> f32 {
-    let f = (f0.x + f0.y + f0.z) / 3.0;
+    fresnel_bend_share(roughness, f0.element_sum() / 3.0, FRESNEL_BEND_WEIGHT)
+}
+
+/// s(f, r) of [`fresnel_bend_scale`] for mean reflectance `f` and any weight b, the model
+/// `lookup_study fresnel` fits b of ([`FRESNEL_BEND_WEIGHT`]) against the lobe.
+pub fn fresnel_bend_share(roughness: f32, f: f32, weight: f32) -> f32 {
     let fr = f * roughness * roughness * roughness.sqrt();
-    fr / (fr + FRESNEL_BEND_WEIGHT * (1.0 - f)).max(FRESNEL_BEND_FLOOR)
+    fr / (fr + weight * (1.0 - f)).max(FRESNEL_BEND_FLOOR)
 }
 
 /// The weight b of the Fresnel term against F0 in [`fresnel_bend_scale`]: the lobe's bend
