@@ -56,9 +56,10 @@ pub fn inspect(args: InspectArgs) -> anyhow::Result<()> {
         _ => println!("  size          {}×{} {}", i.width, i.height, i.layout),
     }
     println!(
-        "  mean          {:.4} (R {:.4}, G {:.4}, B {:.4}); peak {:.4}; dynamic range {:.3e}",
-        i.mean_luminance, i.mean[0], i.mean[1], i.mean[2], i.peak_luminance, i.dynamic_range
+        "  mean          {:.4} (R {:.4}, G {:.4}, B {:.4}); peak {:.4}",
+        i.mean_luminance, i.mean[0], i.mean[1], i.mean[2], i.peak_luminance
     );
+    println!("  dynamic range {}", dynamic_range(i));
     if i.non_finite + i.negative > 0 {
         println!(
             "  bad texels    {} non-finite, {} negative",
@@ -106,6 +107,57 @@ pub fn inspect(args: InspectArgs) -> anyhow::Result<()> {
         );
     }
     Ok(())
+}
+
+/// The dynamic range in words: the ratio and what it is over, or, where the darkest
+/// percentile is black and a ratio has no finite value, the peak on black; then how much of
+/// the sphere is black.
+fn dynamic_range(i: &splitsum::Inventory) -> String {
+    let over = format!("{} percentile by solid angle", ordinal(i.low_percentile));
+    let range = if i.peak_luminance == 0.0 {
+        "none (every texel is black)".to_string()
+    } else if i.dynamic_range > 0.0 {
+        format!(
+            "{:.1e} (peak over the {over}, {:.4})",
+            i.dynamic_range, i.low_luminance
+        )
+    } else {
+        format!("peak {:.4} on black (the {over} is 0)", i.peak_luminance)
+    };
+    match i.black_fraction {
+        f if f > 0.0 => format!("{range}; {} of the sphere black", percent(f)),
+        _ => range,
+    }
+}
+
+/// "1st", "2nd", "3rd", "4th" … for a whole number, the number itself otherwise.
+fn ordinal(x: f32) -> String {
+    const TEENS: std::ops::RangeInclusive<u32> = 11..=13;
+    const DECIMAL: u32 = 10;
+    const HUNDRED: u32 = 100;
+    if x.fract() != 0.0 || x < 0.0 {
+        return format!("{x}");
+    }
+    let n = x as u32;
+    let suffix = match (n % DECIMAL, TEENS.contains(&(n % HUNDRED))) {
+        (1, false) => "st",
+        (2, false) => "nd",
+        (3, false) => "rd",
+        _ => "th",
+    };
+    format!("{n}{suffix}")
+}
+
+/// A share (0 to 1) as a percentage to a tenth, never rounded to 0 or 100 where it is not.
+fn percent(share: f32) -> String {
+    const TENTH: f32 = 0.1;
+    const WHOLE: f32 = 100.0;
+    let p = WHOLE * share;
+    match p {
+        p if p > 0.0 && p < TENTH => format!("under {TENTH} %"),
+        p if p < WHOLE && p > WHOLE - TENTH => format!("over {} %", WHOLE - TENTH),
+        p => format!("{p:.1} %"),
+    }
 }
 
 /// A light as `inspect --json` writes it: its figures with its illuminance, azimuth and
