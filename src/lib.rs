@@ -124,7 +124,9 @@ pub use plan::shading::{
 };
 pub use stages::convert::check_cube_size;
 pub use stages::light::{BakedEnvironment, Stage};
-pub use stages::preview::{Preview, PreviewOptions, SphereStats, PREVIEW_ROUGHNESS};
+pub use stages::preview::{
+    Preview, PreviewOptions, SphereStats, PREVIEW_ROUGHNESS, RELATIVE_DIFFERENCE_DEFINITION,
+};
 pub use stages::sh::ShCoefficients;
 pub use targets::generic::sun_json;
 pub use targets::{

@@ -580,8 +580,10 @@ fn preview_command_line() {
         .args(["bake", hdr, "-o"])
         .arg(&dir)
         .args([
+            // The input's own resolution (1024 / 4): the truth of the bake in memory reads
+            // the chain's level 0 then, as the folder's does.
             "--specular-size",
-            "64",
+            "256",
             "--preview",
             "--preview-cell",
             "16",
@@ -605,7 +607,8 @@ fn preview_command_line() {
     let baked_png = std::fs::read(bake_dir.join("preview.png")).unwrap();
 
     // The folder read back renders the picture the bake did in memory, up to the rgba16f
-    // storage of the chain and irradiance and the 16-bit LUT.
+    // storage of the chain and irradiance and the 16-bit LUT (its truth reads the chain's
+    // level 0, the input's own resolution here).
     let again = dir.join("again.png");
     let out = common::splitsum()
         .arg("preview")

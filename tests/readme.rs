@@ -277,6 +277,86 @@ fn engine_recipes_call_what_the_checks_call() {
     assert!(missing.is_empty(), "{}", missing.join("\n"));
 }
 
+/// The text under the README heading `## {heading}`, up to the next `## ` heading.
+fn section<'a>(readme: &'a str, heading: &str) -> &'a str {
+    let start = readme
+        .find(&format!("\n## {heading}\n"))
+        .unwrap_or_else(|| panic!("no README heading '## {heading}'"));
+    let rest = &readme[start + 1..];
+    let end = rest[1..].find("\n## ").map_or(rest.len(), |e| e + 1);
+    &rest[..end]
+}
+
+/// The commands of the `sh` blocks of `text`, their comments left out.
+fn sh_commands(text: &str) -> Vec<String> {
+    let mut commands = Vec::new();
+    let mut inside = false;
+    for line in text.lines() {
+        if let Some(lang) = line.strip_prefix("```") {
+            inside = !inside && lang == "sh";
+            continue;
+        }
+        let command = line.split(" #").next().unwrap_or("").trim();
+        if inside && !command.is_empty() {
+            commands.push(command.to_string());
+        }
+    }
+    commands
+}
+
+/// How the quick start runs the tool from a clone, before `cargo install`.
+const RUN: &str = "cargo run --release -- ";
+
+/// The quick start runs in a fresh clone as written: its first command builds the tool and
+/// bakes a bundled HDRI, its second runs the tests, and every command is a `cargo` one
+/// (`splitsum` is on the PATH only after the Install section's `cargo install`), each run
+/// naming a command the README lists and files the clone has or the bake writes.
+#[test]
+fn the_quick_start_runs_in_a_fresh_clone() {
+    let readme = read(Path::new("README.md"));
+    assert!(
+        sh_commands(section(&readme, "Install"))
+            .contains(&"cargo install --path . --locked".into()),
+        "the Install section installs with cargo install --path . --locked"
+    );
+    let commands = sh_commands(section(&readme, "Quick start"));
+    let input = "tests/data/venice_sunset_1k.hdr";
+    assert_eq!(
+        commands[..2],
+        [
+            format!("{RUN}bake {input}"),
+            "cargo test --release".to_string()
+        ],
+        "the quick start's first two commands"
+    );
+    let listed = section(&readme, "Commands");
+    let bake_dir = format!(
+        "out/{}",
+        Path::new(input).file_stem().unwrap().to_str().unwrap()
+    );
+    for command in &commands {
+        assert!(
+            command.starts_with("cargo "),
+            "'{command}' needs the install"
+        );
+        let Some(args) = command.strip_prefix(RUN) else {
+            continue;
+        };
+        let mut args = args.split_whitespace();
+        let name = args.next().unwrap_or_default();
+        assert!(
+            listed.contains(&format!("splitsum {name} ")),
+            "'{command}': the README lists no command '{name}'"
+        );
+        for arg in args.filter(|a| !a.starts_with('-')) {
+            assert!(
+                Path::new(arg).exists() || arg == bake_dir,
+                "'{command}': {arg} is neither in the clone nor the bake's folder"
+            );
+        }
+    }
+}
+
 #[test]
 fn the_key_table_lists_every_key() {
     let readme = read(Path::new("README.md"));

@@ -754,3 +754,103 @@ fn gltf_target_is_the_sample_viewers_file_set() {
         assert_eq!([b[0], b[1], b[2]], [0.0, 0.0, c[0]]);
     }
 }
+
+/// The roughness of level `m` of a chain of `levels` as docs/conventions.md and
+/// docs/targets.md write each mapping, apart from the code that bakes it.
+fn written_roughness(mapping: splitsum::MipRoughness, m: u32, levels: u32) -> f32 {
+    let t = m as f64 / (levels - 1) as f64;
+    let r = match mapping {
+        splitsum::MipRoughness::Linear => t,
+        splitsum::MipRoughness::Quadratic => 1.0 - (1.0 - t).sqrt(),
+        splitsum::MipRoughness::Babylon if m == 0 => 0.0,
+        splitsum::MipRoughness::Babylon => (m as f64 / 0.8 - (levels - 1) as f64)
+            .exp2()
+            .min(1.0)
+            .sqrt(),
+    };
+    r as f32
+}
+
+/// Every target's manifest states each level of its chain in numbers, and reads back
+/// through `Manifest::read`: the edges halve from the specular size down to the target's
+/// minimum mip, each roughness is the target's mapping (bit for bit what the bake used, and
+/// the written formula within f32 rounding), α = r²; the Charlie chain of a target that
+/// writes one has the same levels but level 0, which holds level 1's lobe.
+#[test]
+fn manifests_state_each_chain_level() {
+    const SIZE: u32 = 64;
+    let dir = common::output_dir("targets-chain-levels");
+    for target in splitsum::TARGETS {
+        let name = target.name;
+        let bake = quarry_bake(&dir.join(name), SIZE, &["--target", name]);
+        let m = splitsum::Manifest::read(&bake).unwrap();
+        let p = &m.parameters;
+        let levels = p.specular_levels;
+        let min = target.min_mip_size.min(SIZE);
+        assert_eq!(levels, (SIZE / min).trailing_zeros() + 1, "{name}");
+        assert_eq!(p.specular_chain_levels.len(), levels as usize, "{name}");
+        assert!(
+            m.outputs
+                .iter()
+                .any(|o| o.size == SIZE && o.levels == levels),
+            "{name}: no output holds the chain the manifest states"
+        );
+        for (k, level) in p.specular_chain_levels.iter().enumerate() {
+            let at = k as u32;
+            assert_eq!(level.level, at, "{name}");
+            assert_eq!(level.size, SIZE >> at, "{name} level {at}");
+            assert_eq!(
+                level.roughness,
+                target.roughness.roughness(at, levels),
+                "{name} level {at}"
+            );
+            let written = written_roughness(target.roughness, at, levels);
+            assert!(
+                (level.roughness - written).abs() < 1e-6,
+                "{name} level {at}: {} against {written}",
+                level.roughness
+            );
+            assert_eq!(level.alpha, level.roughness * level.roughness, "{name}");
+        }
+        let last = p.specular_chain_levels.last().unwrap();
+        assert_eq!(last.size, min, "{name}: the chain ends at the minimum mip");
+        assert_eq!(p.specular_chain_levels[0].roughness, 0.0, "{name}");
+        if target.files.sheen {
+            assert_eq!(p.sheen_chain_levels.len(), levels as usize, "{name}");
+            for (k, (sheen, ggx)) in p
+                .sheen_chain_levels
+                .iter()
+                .zip(&p.specular_chain_levels)
+                .enumerate()
+            {
+                let lobe = &p.specular_chain_levels[k.max(1)];
+                assert_eq!(
+                    (sheen.level, sheen.size, sheen.roughness, sheen.alpha),
+                    (ggx.level, ggx.size, lobe.roughness, lobe.alpha),
+                    "{name} sheen level {k}"
+                );
+            }
+        } else {
+            assert!(p.sheen_chain_levels.is_empty(), "{name}");
+        }
+        // The JSON a script reads holds the same numbers.
+        let json = manifest(&bake);
+        assert_eq!(
+            json["parameters"]["specular_chain_levels"][0],
+            serde_json::json!({"level": 0, "size": SIZE, "roughness": 0.0, "alpha": 0.0}),
+            "{name}"
+        );
+        // A manifest without the numbers (the formula alone) still reads.
+        let mut formula_only = json;
+        formula_only["parameters"]
+            .as_object_mut()
+            .unwrap()
+            .retain(|k, _| !k.ends_with("_chain_levels"));
+        let old = dir.join(format!("{name}-formula-only"));
+        std::fs::create_dir_all(&old).unwrap();
+        std::fs::write(old.join("manifest.json"), formula_only.to_string()).unwrap();
+        let read = splitsum::Manifest::read(&old).unwrap();
+        assert!(read.parameters.specular_chain_levels.is_empty(), "{name}");
+        assert_eq!(read.parameters.roughness_per_mip, p.roughness_per_mip);
+    }
+}

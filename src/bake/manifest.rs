@@ -12,18 +12,19 @@ use crate::environment::sun::{Sun, SunMode};
 use crate::environment::Cubemap;
 use crate::io::staging::OutputRecord;
 use crate::io::to_json;
+use crate::math::brdf::alpha_from_roughness;
 use crate::plan::bc6h::{ENCODER, ENCODER_VERSION};
 use crate::plan::chain::SpecularChain;
 use crate::plan::lut::BrdfLut;
-use crate::stages::light::BakedEnvironment;
 use crate::plan::shading::Shading;
-use crate::stages::preview::{Preview, SphereStats};
+use crate::plan::sheen::sheen_level_roughness;
+use crate::stages::light::BakedEnvironment;
+use crate::stages::preview::{
+    Preview, SphereStats, RELATIVE_DIFFERENCE_DEFINITION, TRUTH_DEFINITION,
+};
 use crate::targets::generic::read_sun_json;
 use crate::targets::GENERIC;
 use crate::{Error, Result};
-
-/// What the preview's ground truth is, as manifests say it.
-const TRUTH_DEFINITION: &str = "the integral of the same BRDF over the environment with the real view direction: the specular chain's level 0 (with --sun split, the residual plus the sun as a uniform disc of its measured radius and irradiance), hot texels summed exactly, the rest by GGX visible-normal and cosine quasi-Monte Carlo";
 
 /// `manifest.json`'s root.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -72,6 +73,16 @@ pub struct Parameters {
     pub min_mip_size: u32,
     /// Roughness of mip m, as a formula.
     pub roughness_per_mip: String,
+    /// Each level of the specular chain in numbers: its edge, the roughness it is
+    /// prefiltered at and that roughness's α, as the bake computed them
+    /// (`roughness_per_mip` evaluated). Empty when read from a manifest without the field.
+    #[serde(default)]
+    pub specular_chain_levels: Vec<ChainLevel>,
+    /// Each level of the Charlie sheen chain, for a target that writes one (empty
+    /// otherwise): the specular chain's edges and roughness, except level 0, which holds
+    /// level 1's lobe (`plan::sheen::sheen_level_roughness`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub sheen_chain_levels: Vec<ChainLevel>,
     /// How the roughest level is made.
     pub roughest_level: String,
     /// Irradiance cube edge.
@@ -95,6 +106,37 @@ pub struct Parameters {
     pub exposure_ev: f32,
     /// Edge of the LUTs written, if any.
     pub lut_size: Option<u32>,
+}
+
+/// One level of a prefiltered chain, in numbers.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ChainLevel {
+    /// The level m, 0 the largest.
+    pub level: u32,
+    /// Its edge in texels.
+    pub size: u32,
+    /// The perceptual roughness r its lobe is prefiltered at.
+    pub roughness: f32,
+    /// The lobe's α = r² (docs/conventions.md, "Roughness, BRDF").
+    pub alpha: f32,
+}
+
+impl ChainLevel {
+    /// The levels of a chain of `chain.levels` whose level 0 is `size`², level m at
+    /// roughness `roughness(m)`.
+    fn table(size: u32, chain: SpecularChain, roughness: impl Fn(u32) -> f32) -> Vec<Self> {
+        (0..chain.levels)
+            .map(|m| {
+                let r = roughness(m);
+                ChainLevel {
+                    level: m,
+                    size: Cubemap::mip_size(size, m),
+                    roughness: r,
+                    alpha: alpha_from_roughness(r),
+                }
+            })
+            .collect()
+    }
 }
 
 /// The sun of the bake's environment.
@@ -150,8 +192,14 @@ pub struct SphereRecord {
     pub roughness: f32,
     /// Σ |ΔY| / ΣY over the sphere.
     pub mean_relative: f32,
-    /// The largest |ΔY| / Y of one pixel.
+    /// The largest |ΔY| / Y of one pixel, Y floored (`RELATIVE_DIFFERENCE_DEFINITION`).
     pub worst_relative: f32,
+    /// The sphere's mean Y_truth (absent from older manifests).
+    #[serde(default)]
+    pub truth_luminance: f32,
+    /// The sphere's mean Y_split-sum (absent from older manifests).
+    #[serde(default)]
+    pub split_sum_luminance: f32,
 }
 
 /// One output file.
@@ -180,6 +228,8 @@ impl From<&SphereStats> for SphereRecord {
             roughness: s.roughness,
             mean_relative: s.mean_relative,
             worst_relative: s.worst_relative,
+            truth_luminance: s.truth_luminance,
+            split_sum_luminance: s.split_sum_luminance,
         }
     }
 }
@@ -198,6 +248,7 @@ impl Manifest {
         outputs: &[OutputRecord],
     ) -> Self {
         let target = opts.target;
+        let chain = opts.specular_chain();
         Manifest {
             tool: "splitsum".into(),
             version: env!("CARGO_PKG_VERSION").into(),
@@ -210,9 +261,18 @@ impl Manifest {
             },
             parameters: Parameters {
                 specular_size: opts.specular_size,
-                specular_levels: opts.specular_chain().levels,
+                specular_levels: chain.levels,
                 min_mip_size: opts.min_mip_size,
                 roughness_per_mip: target.roughness.formula().into(),
+                specular_chain_levels: ChainLevel::table(opts.specular_size, chain, |m| {
+                    chain.mip_roughness(m)
+                }),
+                sheen_chain_levels: match opts.light_options().sheen {
+                    true => ChainLevel::table(opts.specular_size, chain, |m| {
+                        sheen_level_roughness(&chain, m)
+                    }),
+                    false => Vec::new(),
+                },
                 roughest_level: "least-squares fit of the irradiance (E / pi) for bilinear lookups, when the irradiance cube is at least twice as fine".into(),
                 irradiance_size: opts.irradiance_size,
                 irradiance: "E / pi".into(),
@@ -247,7 +307,7 @@ impl Manifest {
                     true => TRUTH_DEFINITION.into(),
                     false => format!("{TRUTH_DEFINITION}; the BRDF is {}'s light BRDF", o.shading.name),
                 },
-                relative_difference: "on each pixel's luminance Y: mean_relative = sum |Y_split_sum - Y_truth| / sum Y_truth over the sphere, worst_relative = the largest |Y_split_sum - Y_truth| / Y_truth of one pixel".into(),
+                relative_difference: RELATIVE_DIFFERENCE_DEFINITION.into(),
                 spheres: p.stats.iter().map(SphereRecord::from).collect(),
             }),
             outputs: outputs
@@ -330,6 +390,12 @@ pub fn read_bake_dir(dir: &Path) -> Result<(BakedEnvironment, Option<BrdfLut>)> 
         levels,
         roughness: GENERIC.roughness,
     };
+    // The environment as seen, for a ground truth: a split bake's background.
+    let background_path = dir.join("background.ktx2");
+    let background = match background_path.is_file() {
+        true => Some(crate::io::ktx2::read_cube(&background_path)?),
+        false => None,
+    };
     let sun_path = dir.join("sun.json");
     let lights = match manifest.sun.mode {
         SunMode::Split if sun_path.is_file() => read_sun_json(&sun_path)?,
@@ -345,8 +411,8 @@ pub fn read_bake_dir(dir: &Path) -> Result<(BakedEnvironment, Option<BrdfLut>)> 
             sheen: None,
             lights,
             sun_mode: manifest.sun.mode,
-            // What the lights are shaded against is read back; a background is not.
-            background: None,
+            background,
+            truth: None,
         },
         lut,
     ))

@@ -63,6 +63,10 @@ pub struct BakeOptions {
     /// ([`SunMode::Split`]) or baked into the IBL ([`SunMode::Keep`]); it is found and
     /// recorded in the manifest either way.
     pub sun: SunMode,
+    /// Keep the environment as read at its own resolution for a ground truth
+    /// ([`BakedEnvironment::truth`](crate::BakedEnvironment::truth)), as the viewer's
+    /// truth view reads it; a bake with a preview keeps it anyway.
+    pub ground_truth: bool,
 }
 
 impl BakeOptions {
@@ -86,6 +90,7 @@ impl BakeOptions {
             luts: target.lut,
             preview: None,
             sun: SunMode::Keep,
+            ground_truth: false,
         }
     }
 
@@ -123,6 +128,7 @@ impl BakeOptions {
             sheen: self.target.files.sheen,
             sh: self.sh,
             sun: self.sun,
+            truth: self.ground_truth || self.preview.is_some(),
         }
     }
 

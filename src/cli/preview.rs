@@ -163,6 +163,8 @@ fn preview_json(input: &Path, baked: &splitsum::BakedEnvironment, p: &Preview) -
         roughness: f32,
         mean: f32,
         worst: f32,
+        truth_luminance: f32,
+        split_sum_luminance: f32,
     }
     #[derive(serde::Serialize)]
     struct Out<'a> {
@@ -184,7 +186,7 @@ fn preview_json(input: &Path, baked: &splitsum::BakedEnvironment, p: &Preview) -
         sun: baked.sun().copied(),
         additional_lights: baked.lights.get(1..).unwrap_or_default(),
         exposure: p.exposure,
-        definition: "per sphere, on each pixel's luminance Y: mean = sum |Y_split_sum - Y_truth| / sum Y_truth, worst = the largest |Y_split_sum - Y_truth| / Y_truth of one pixel",
+        definition: splitsum::RELATIVE_DIFFERENCE_DEFINITION,
         spheres: p
             .stats
             .iter()
@@ -193,6 +195,8 @@ fn preview_json(input: &Path, baked: &splitsum::BakedEnvironment, p: &Preview) -
                 roughness: s.roughness,
                 mean: s.mean_relative,
                 worst: s.worst_relative,
+                truth_luminance: s.truth_luminance,
+                split_sum_luminance: s.split_sum_luminance,
             })
             .collect(),
     };

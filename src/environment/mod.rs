@@ -3,8 +3,8 @@
 //! [`EquirectIntegral`]) and cubemaps (with mip chains), both linear RGB radiance.
 
 pub mod hot;
-pub mod inventory;
 mod integral;
+pub mod inventory;
 pub mod mips;
 mod pyramid;
 pub mod sample;
@@ -67,7 +67,12 @@ pub struct Cubemap {
 impl Cubemap {
     /// Edge of mip `m`.
     pub fn level_size(&self, m: usize) -> u32 {
-        (self.size >> m).max(1)
+        Cubemap::mip_size(self.size, m as u32)
+    }
+
+    /// Edge of mip `m` of a cube whose level 0 is `size`²: halved per level, at least 1.
+    pub fn mip_size(size: u32, m: u32) -> u32 {
+        (size >> m).max(1)
     }
 
     /// Texel (i, j) of `face` at mip `m`.

@@ -27,7 +27,14 @@ pub fn fill_cube_level(n: u32, texel: impl Fn(u32, u32, u32) -> [f32; 4] + Sync)
 pub fn texel_centres(n: u32) -> impl Iterator<Item = (u32, u32, u32, [f32; 3])> {
     (0..FACES as u32).flat_map(move |face| {
         (0..n).flat_map(move |j| {
-            (0..n).map(move |i| (face, i, j, cube_texel_direction(face, i as i32, j as i32, n)))
+            (0..n).map(move |i| {
+                (
+                    face,
+                    i,
+                    j,
+                    cube_texel_direction(face, i as i32, j as i32, n),
+                )
+            })
         })
     })
 }

@@ -26,6 +26,10 @@ pub enum Stage {
     /// Converting the environment as seen, lights included, for a background (only when
     /// `--sun split` took lights out).
     Background,
+    /// Converting the environment as read, lights included, at its own resolution for a
+    /// ground truth (only for a preview or the viewer, and only when that resolution is
+    /// not the specular chain's).
+    Truth,
     /// Prefiltering the specular chain.
     Specular,
     /// Convolving the irradiance cube.
@@ -48,6 +52,7 @@ impl Stage {
             Stage::Sun => "sun",
             Stage::Cubemap => "cubemap",
             Stage::Background => "background",
+            Stage::Truth => "truth",
             Stage::Specular => "specular",
             Stage::Irradiance => "irradiance",
             Stage::Sheen => "sheen",
@@ -58,11 +63,12 @@ impl Stage {
     }
 
     /// All stages in order.
-    pub const ALL: [Stage; 10] = [
+    pub const ALL: [Stage; 11] = [
         Stage::Load,
         Stage::Sun,
         Stage::Cubemap,
         Stage::Background,
+        Stage::Truth,
         Stage::Specular,
         Stage::Irradiance,
         Stage::Sheen,
@@ -108,6 +114,25 @@ pub struct LightOptions {
     pub sh: bool,
     /// Whether the sun is taken out and baked as a light.
     pub sun: SunMode,
+    /// Keep the environment as read at its own resolution ([`BakedEnvironment::truth`])
+    /// for a ground truth: a preview's or the viewer's.
+    pub truth: bool,
+}
+
+/// The finest cube the ground truth reads an environment at: a 4k equirect's own
+/// resolution (texels 0.088° across at the equator); a finer input is read at this.
+pub const MAX_TRUTH_SIZE: u32 = 1024;
+
+/// The cube edge at which `env` is read at its own resolution, at most
+/// [`MAX_TRUTH_SIZE`]: a cube's own edge; an equirect's width / 4, where a face's central
+/// texel, π/(2n) across, is the equirect's 2π/W at the equator (and finer elsewhere, where
+/// the equirect's texels narrow in azimuth only).
+pub fn native_cube_size(env: &Environment) -> u32 {
+    let n = match env {
+        Environment::Equirect(e) => e.width.div_ceil(4),
+        Environment::Cube(c) => c.size,
+    };
+    n.clamp(1, MAX_TRUTH_SIZE)
 }
 
 /// The light of one environment baked in memory, in the generic orientation (before a
@@ -135,8 +160,13 @@ pub struct BakedEnvironment {
     /// included, at the specular chain's level-0 size (one level): what a target's skybox
     /// or background shows, since a background is seen, not lit by. `None` otherwise
     /// (level 0 of `specular` is the environment as seen then), and for a bake read back
-    /// from its folder.
+    /// from its folder, which reads its `background.ktx2` where it has one.
     pub background: Option<Cubemap>,
+    /// With `LightOptions::truth`: the environment as read, lights included, at its own
+    /// resolution (`native_cube_size`, one level), where that is not the chain's level-0
+    /// size; `None` otherwise (then [`BakedEnvironment::seen`] is `background` or level 0
+    /// of `specular`, at the same resolution).
+    pub truth: Option<Cubemap>,
 }
 
 impl BakedEnvironment {
@@ -150,6 +180,18 @@ impl BakedEnvironment {
     pub fn split_lights(&self) -> &[Sun] {
         self.sun_mode.split_out(&self.lights)
     }
+
+    /// The environment as read, lights included, in its level 0 (the finest kept):
+    /// [`BakedEnvironment::truth`], else the background, else the chain (whose level 0 is
+    /// the environment as read when nothing was taken out of it). What a ground truth
+    /// integrates and an exposure is chosen from, whatever the sun mode: the lights
+    /// taken out change what the split-sum shades, never what it is measured against.
+    pub fn seen(&self) -> &Cubemap {
+        self.truth
+            .as_ref()
+            .or(self.background.as_ref())
+            .unwrap_or(&self.specular)
+    }
 }
 
 /// Bakes `source` in memory as `opts` say on `backend`. `progress` is called as each stage
@@ -161,6 +203,9 @@ pub fn bake_light(
     progress: &mut dyn FnMut(Stage),
     timings: &mut Timings,
 ) -> Result<BakedEnvironment> {
+    // The ground truth's resolution, where it is not the chain's (a copy is converted).
+    let truth_size = Some(native_cube_size(&source))
+        .filter(|&n| opts.truth && n != opts.specular_size);
     // With lights taken out, the environment as seen is kept for the background (a
     // background is seen, not lit by) and the residual is baked; a copy is made only then.
     let (lights, source, seen) = timed_stage(Stage::Sun, progress, timings, || {
@@ -177,6 +222,13 @@ pub fn bake_light(
             .collect::<Vec<_>>();
         Ok((lights, source, seen))
     })?;
+    let truth = match truth_size {
+        Some(n) => Some(timed_stage(Stage::Truth, progress, timings, || {
+            let read = seen.as_ref().unwrap_or(&source).clone();
+            environment_into_cube(backend, read, n, false, opts.rotate_degrees)
+        })?),
+        None => None,
+    };
     let background = match seen {
         Some(seen) => Some(timed_stage(Stage::Background, progress, timings, || {
             environment_into_cube(backend, seen, opts.specular_size, false, opts.rotate_degrees)
@@ -221,5 +273,6 @@ pub fn bake_light(
         lights,
         sun_mode: opts.sun,
         background,
+        truth,
     })
 }

@@ -156,6 +156,9 @@ struct LightJson {
     illuminance: f32,
     angular_radius_deg: f32,
     solid_angle_sr: f32,
+    /// The cap taken out of the environment for it (absent from older files).
+    #[serde(default)]
+    region_radius_deg: f32,
     share: f32,
     clipped: bool,
     azimuth_deg: f32,
@@ -176,7 +179,7 @@ struct SunJson {
 }
 
 /// What `sun.json`'s figures mean.
-const SUN_JSON_ABOUT: &str = "the sun, taken out of the IBL, as a directional light (cast its shadows); additional_lights: further compact lights taken out, in the same terms. direction: unit vector toward the light in the frame below; irradiance: E on a surface facing it per channel (the sum of L dw over it, in the HDRI's radiance units); illuminance: its luminance (0.2126 R + 0.7152 G + 0.0722 B); share: of the HDRI's luminous flux; azimuth and elevation in the generic frame (azimuth 0 along +X, 90 along +Z); clipped: its core is a plateau (a saturated camera), so its irradiance is a lower bound";
+const SUN_JSON_ABOUT: &str = "the sun, taken out of the IBL, as a directional light (cast its shadows); additional_lights: further compact lights taken out, in the same terms. direction: unit vector toward the light in the frame below; irradiance: E on a surface facing it per channel (the sum of L dw over it, in the HDRI's radiance units); illuminance: its luminance (0.2126 R + 0.7152 G + 0.0722 B); angular_radius_deg and solid_angle_sr: the uniform disc of the same second moment, never narrower than one of the HDRI's texels; region_radius_deg: the cap taken out of the HDRI for it; share: of the HDRI's luminous flux; azimuth and elevation in the generic frame (azimuth 0 along +X, 90 along +Z); clipped: its core is a plateau (a saturated camera), so its irradiance is a lower bound";
 
 /// Stages `sun.json` when lights were taken out of `baked` (their directions in the
 /// target's world frame). Every target's writer calls it: the IBL of a split bake lacks
@@ -195,6 +198,7 @@ pub fn sun_json(lights: &[Sun], target: &Target) -> Option<String> {
         illuminance: sun.illuminance(),
         angular_radius_deg: sun.angular_radius_deg,
         solid_angle_sr: sun.solid_angle_sr,
+        region_radius_deg: sun.region_radius_deg,
         share: sun.share,
         clipped: sun.clipped,
         azimuth_deg: sun.azimuth_deg(),
@@ -225,6 +229,7 @@ pub fn read_sun_json(path: &std::path::Path) -> Result<Vec<Sun>> {
         share: l.share,
         clipped: l.clipped,
         texels: 0,
+        region_radius_deg: l.region_radius_deg,
     };
     Ok(std::iter::once(&j.sun)
         .chain(&j.additional_lights)

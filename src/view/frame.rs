@@ -21,7 +21,7 @@ use crate::plan::scene::{SplitSumLight, TruthLight, MIN_N_DOT_V};
 use crate::plan::shading::{LightBrdf, ShadingTerms};
 use crate::stages::light::BakedEnvironment;
 use crate::stages::preview::picture::{auto_exposure, luminance, HEAT_LOG10_RANGE};
-use crate::stages::preview::{sun_texels, truth_environment};
+use crate::stages::preview::truth_environment;
 use crate::view::camera::CameraFrame;
 use crate::view::scene::{
     BaseMaterial, PointLight, FIT_HALF_EXTENT, FLOOR_HALF_EXTENT, FLOOR_Y, OBJECT_CENTRE,
@@ -111,7 +111,8 @@ pub struct ViewLight {
     /// The lights found in the environment, the sun first (kept in it or split out).
     pub found: Vec<Sun>,
     /// The lights taken out, as the shading passes read them ([`sun_texel_table`]): one
-    /// entry per light for the split-sum, then each light's disc for the truth.
+    /// entry per light for the split-sum, then the environment's hot texels within each
+    /// light's region for the truth.
     pub sun_texels: Vec<[f32; 4]>,
     /// The same environment baked in the other sun mode, when that differs (an HDRI
     /// with a sun): what the viewer's U key swaps in.
@@ -121,39 +122,51 @@ pub struct ViewLight {
 /// The entries of [`ViewLight::sun_texels`]: (unit direction, solid angle), (radiance,
 /// light index), the sun being light 0 (the one with a shadow). First one per light, its
 /// irradiance E⊥ from its direction (what the split-sum view shades, as the preview
-/// does); then each light's disc of `stages::preview::SUN_DISC_RINGS` rings (what the truth
-/// integrates, as the preview's truth does).
-pub fn sun_texel_table(lights: &[Sun]) -> Vec<[f32; 4]> {
+/// does); then the truth's hot texels of the environment as read (`hot`) that lie within
+/// a light's region ([`Sun::region_radius_deg`]), moved out of `hot`: the truth
+/// integrates the light as the environment holds it, the sun's part through the same
+/// shadow as the split-sum's.
+pub fn sun_texel_table(lights: &[Sun], hot: &mut Vec<SourceTexel>) -> Vec<[f32; 4]> {
     let mut table = Vec::new();
     for (i, sun) in lights.iter().enumerate() {
         let (d, e) = (sun.direction, sun.irradiance);
         table.push([d[0], d[1], d[2], 1.0]);
         table.push([e[0], e[1], e[2], i as f32]);
     }
-    for (i, sun) in lights.iter().enumerate() {
-        for t in sun_texels(sun) {
+    let owner = |t: &SourceTexel| {
+        let l = Vec3::from_slice(&t.dir_omega[..3]);
+        lights.iter().position(|sun| {
+            let cos = l.dot(Vec3::from(sun.direction)).clamp(-1.0, 1.0);
+            cos.acos().to_degrees() <= sun.region_radius_deg
+        })
+    };
+    hot.retain(|t| match owner(t) {
+        Some(i) => {
             table.push(t.dir_omega);
             table.push([t.radiance[0], t.radiance[1], t.radiance[2], i as f32]);
+            false
         }
-    }
+        None => true,
+    });
     table
 }
 
 impl ViewLight {
     /// The viewer's light from a bake and its LUT.
     pub fn new(name: impl Into<String>, baked: &BakedEnvironment, lut: BrdfLut) -> ViewLight {
-        let (env, split) = truth_environment(&baked.specular);
-        let sun_texels = sun_texel_table(baked.split_lights());
+        let (env, split) = truth_environment(baked.seen());
+        let mut hot = split.hot;
+        let sun_texels = sun_texel_table(baked.split_lights(), &mut hot);
         ViewLight {
             name: name.into(),
-            exposure: auto_exposure(&baked.specular),
+            exposure: auto_exposure(baked.seen()),
             specular: baked.specular.clone(),
             chain: baked.chain,
             irradiance: baked.irradiance.clone(),
             lut,
             env,
             cold: split.rest,
-            hot: split.hot,
+            hot,
             sun_mode: baked.sun_mode,
             found: baked.lights.clone(),
             sun_texels,
@@ -171,7 +184,8 @@ impl ViewLight {
         self.split_lights().len() as u32
     }
 
-    /// How many disc cells the truth view integrates (the rest of `sun_texels`).
+    /// How many of the environment's texels the truth view integrates as the lights'
+    /// (the rest of `sun_texels`).
     pub fn sun_cell_count(&self) -> u32 {
         (self.sun_texels.len() / 2) as u32 - self.sun_count()
     }

@@ -162,6 +162,7 @@ pub fn load_light(
     let mut baker = Baker::new(BakeOptions {
         backend,
         sun,
+        ground_truth: true,
         ..BakeOptions::default()
     })?;
     let (name, env) = match source {

@@ -52,7 +52,8 @@ pub(crate) fn clusters(grid: &Grid, mean: f64, flux: f64) -> Vec<usize> {
             })
         })
         .collect();
-    let by_brightness = |a: &(usize, f64), b: &(usize, f64)| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0));
+    let by_brightness =
+        |a: &(usize, f64), b: &(usize, f64)| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0));
     if hot.len() > MAX_CANDIDATE_TEXELS {
         hot.select_nth_unstable_by(MAX_CANDIDATE_TEXELS, by_brightness);
         hot.truncate(MAX_CANDIDATE_TEXELS);
@@ -180,7 +181,12 @@ pub(crate) fn fit_sun(grid: &Grid, seed: usize, flux: f64) -> Option<SunFit> {
     let (hx, hy) = grid.texel_extent(seed);
     let texel_moment = (hx * hx + hy * hy) / 12.0;
     let m2 = m2 / weight.max(f64::MIN_POSITIVE);
-    let radius = (2.0 * (m2 - texel_moment).max(0.25 * m2)).sqrt();
+    // A light no wider than its texels (one lit texel: m2 = 0) is a disc of its brightest
+    // texel's solid angle, never one of 0 sr (its radiance E⊥/Ω would be infinite).
+    let texel_cap = cap_radius(grid.solid_angle(seed));
+    let radius = (2.0 * (m2 - texel_moment).max(0.25 * m2))
+        .sqrt()
+        .max(texel_cap);
     let solid_angle = 2.0 * std::f64::consts::PI * (1.0 - radius.cos());
     let plateau_omega: f64 = plateau.iter().map(|&k| grid.solid_angle(k)).sum();
     let clipped = plateau.len() >= CLIP_TEXELS && plateau_omega >= CLIP_AREA * solid_angle;
@@ -193,10 +199,18 @@ pub(crate) fn fit_sun(grid: &Grid, seed: usize, flux: f64) -> Option<SunFit> {
             share: share as f32,
             clipped,
             texels: region.len(),
+            region_radius_deg: region_radius.to_degrees() as f32,
         },
         region,
         fill,
     })
+}
+
+/// The angular radius of a spherical cap of solid angle `omega` (Ω = 2π (1 − cos ρ)).
+fn cap_radius(omega: f64) -> f64 {
+    (1.0 - omega / (2.0 * std::f64::consts::PI))
+        .clamp(-1.0, 1.0)
+        .acos()
 }
 
 /// A per-channel plane a + b x + c y over gnomonic coordinates, clamped to a range.
@@ -276,4 +290,3 @@ fn solve3(m: [[f64; 3]; 3], rhs: [[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
         })
     }))
 }
-

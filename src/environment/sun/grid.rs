@@ -71,7 +71,11 @@ impl<'a> Grid<'a> {
             Grid::Equirect(e) => e.row_solid_angle((k / e.width as usize) as u32),
             Grid::Cube(c) => {
                 let n = c.size as usize;
-                f64::from(cube_texel_solid_angle((k % n) as u32, (k % (n * n) / n) as u32, c.size))
+                f64::from(cube_texel_solid_angle(
+                    (k % n) as u32,
+                    (k % (n * n) / n) as u32,
+                    c.size,
+                ))
             }
         }
     }
@@ -99,7 +103,8 @@ impl<'a> Grid<'a> {
                 let pi = std::f64::consts::PI;
                 let theta_c = c[1].clamp(-1.0, 1.0).acos();
                 let phi_c = c[2].atan2(c[0]);
-                let row = |theta: f64| ((theta / pi * h as f64).floor().max(0.0) as usize).min(h - 1);
+                let row =
+                    |theta: f64| ((theta / pi * h as f64).floor().max(0.0) as usize).min(h - 1);
                 let (y0, y1) = (row(theta_c - radius), row(theta_c + radius));
                 let mut out = Vec::new();
                 // The widest azimuth offset of a cap that holds no pole, padded by columns.
@@ -136,7 +141,11 @@ fn equirect_texel_direction(x: f64, y: f64, w: usize, h: usize) -> [f64; 3] {
     let pi = std::f64::consts::PI;
     let phi = ((x + 0.5) / w as f64 - 0.5) * 2.0 * pi;
     let theta = (y + 0.5) / h as f64 * pi;
-    [theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin()]
+    [
+        theta.sin() * phi.cos(),
+        theta.cos(),
+        theta.sin() * phi.sin(),
+    ]
 }
 
 pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
@@ -154,7 +163,11 @@ pub(crate) fn normalize(a: [f64; 3]) -> [f64; 3] {
 
 /// Two unit vectors completing unit `c` to an orthonormal frame.
 pub(crate) fn tangent_frame(c: [f64; 3]) -> ([f64; 3], [f64; 3]) {
-    let up = if c[1].abs() < 0.9 { [0.0, 1.0, 0.0] } else { [1.0, 0.0, 0.0] };
+    let up = if c[1].abs() < 0.9 {
+        [0.0, 1.0, 0.0]
+    } else {
+        [1.0, 0.0, 0.0]
+    };
     let t1 = normalize([
         up[1] * c[2] - up[2] * c[1],
         up[2] * c[0] - up[0] * c[2],
@@ -177,4 +190,3 @@ pub(crate) fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
     ];
     dot(cross, cross).sqrt().atan2(dot(a, b))
 }
-

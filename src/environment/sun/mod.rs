@@ -28,7 +28,8 @@
 //!    direction is the centre of Σ Y_net Ω l, its angular radius ρ_s = √(2 ⟨γ²⟩) from the
 //!    flux-weighted second moment of the angle γ to that centre (a uniform disc of radius ρ
 //!    has ⟨γ²⟩ = ρ²/2) less a texel's own, (h_x² + h_y²)/12, its solid angle that of a
-//!    cap of radius ρ_s.
+//!    cap of radius ρ_s. A light no wider than its texels (one lit texel) is a cap of its
+//!    brightest texel's solid angle: never a light of 0 sr.
 //! 6. **Dominance.** A region whose share of the environment's luminous flux is below
 //!    [`MIN_SHARE`] is no sun (an overcast sky's brightest patch, a distant lamp).
 //! 7. **Clipping.** [`CLIP_TEXELS`] or more core texels within [`CLIP_TOLERANCE`] of the
@@ -50,9 +51,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::environment::Environment;
 use crate::math::cubemap::rotate_y;
-use fit::{fit_sun, flux_stats, clusters};
+use fit::{clusters, fit_sun, flux_stats};
 use grid::{luminance, tangent_frame, Grid};
-
 
 /// A texel is a candidate when its luminance exceeds this multiple of the environment's
 /// mean (the hot-texel threshold of [`crate::environment::hot`]).
@@ -167,6 +167,12 @@ pub struct Sun {
     pub clipped: bool,
     /// How many texels the region holds (taken out and filled).
     pub texels: usize,
+    /// Angular radius of the region taken out and filled (the core, its halo), in
+    /// degrees, about the core's centre (within a texel of [`Sun::direction`]): the
+    /// environment's texels this light was measured from. 0 when read from a file that
+    /// does not give it.
+    #[serde(default)]
+    pub region_radius_deg: f32,
 }
 
 impl Sun {
@@ -208,12 +214,20 @@ impl Sun {
         let mut cells = Vec::with_capacity(total as usize);
         for ring in 0..rings {
             let count = if ring == 0 { 1 } else { 6 * ring };
-            let before = if ring == 0 { 0 } else { 1 + 3 * ring * (ring - 1) };
+            let before = if ring == 0 {
+                0
+            } else {
+                1 + 3 * ring * (ring - 1)
+            };
             // Equal area: the cumulative count grows as the radius squared; each cell sits
             // at the radius halving its ring's area.
             let r0 = rho * (f64::from(before) / f64::from(total)).sqrt();
             let r1 = rho * (f64::from(before + count) / f64::from(total)).sqrt();
-            let r = if ring == 0 { 0.0 } else { ((r0 * r0 + r1 * r1) / 2.0).sqrt() };
+            let r = if ring == 0 {
+                0.0
+            } else {
+                ((r0 * r0 + r1 * r1) / 2.0).sqrt()
+            };
             for k in 0..count {
                 let phi = 2.0 * std::f64::consts::PI * (f64::from(k) + 0.5) / f64::from(count);
                 let d: [f64; 3] = std::array::from_fn(|i| {
@@ -237,7 +251,11 @@ impl std::fmt::Display for Sun {
             self.angular_radius_deg,
             100.0 * self.share,
             self.illuminance(),
-            if self.clipped { " (clipped: a lower bound)" } else { "" }
+            if self.clipped {
+                " (clipped: a lower bound)"
+            } else {
+                ""
+            }
         )
     }
 }
@@ -347,8 +365,8 @@ fn apply_fill(env: &mut Environment, fit: &SunFit) {
 #[cfg(test)]
 mod tests {
     use super::grid::{angle, dot, normalize};
-    use crate::environment::Equirect;
     use super::*;
+    use crate::environment::Equirect;
 
     #[test]
     fn disc_cells_hold_the_irradiance_and_stay_inside_the_disc() {
@@ -360,6 +378,7 @@ mod tests {
             share: 0.5,
             clipped: false,
             texels: 0,
+            region_radius_deg: 2.5,
         };
         let cells = sun.disc_cells(4);
         assert_eq!(cells.len(), 37);
@@ -379,7 +398,12 @@ mod tests {
             data: vec![[1.0; 3]; 64 * 32],
         };
         let grid = Grid::Equirect(&e);
-        for c in [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], normalize([-1.0, 0.3, -0.01]), normalize([0.1, -0.99, 0.0])] {
+        for c in [
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            normalize([-1.0, 0.3, -0.01]),
+            normalize([0.1, -0.99, 0.0]),
+        ] {
             for r in [0.05f64, 0.2, 0.7] {
                 let mut got = grid.cap(c, r);
                 got.sort();
@@ -391,4 +415,3 @@ mod tests {
         }
     }
 }
-

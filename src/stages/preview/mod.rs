@@ -6,13 +6,16 @@
 //!   documented lod blended toward the irradiance by r⁴, the LUT, irradiance × albedo ×
 //!   kD);
 //! - **ground truth** ([`crate::cpu::preview_truth`]): the full reflectance integral of the
-//!   same BRDF over the same environment (the chain's level 0) per pixel, with the real
-//!   view direction.
+//!   same BRDF per pixel, with the real view direction, over the environment as read
+//!   ([`BakedEnvironment::seen`]: lights included, at the input's own resolution): the
+//!   same truth whatever the sun mode, so a light taken out wrongly (moved, too strong,
+//!   too wide) shows as an error instead of being measured against itself.
 //!
 //! Both run as GPU kernels with CPU references beside them (`Backend::preview_split_sum`,
 //! `Backend::preview_truth`). The picture ([`picture`]) shows them tone-mapped beside a
 //! heat map of their relative difference; [`SphereStats`] gives per material and
-//! roughness the mean and worst relative difference of the luminance.
+//! roughness the mean and worst relative difference of the luminance
+//! ([`RELATIVE_DIFFERENCE_DEFINITION`]).
 
 pub mod picture;
 
@@ -61,10 +64,25 @@ pub struct BakedLight<'a> {
     /// The split-sum LUT (scale, bias).
     pub lut: &'a BrdfLut,
     /// The lights taken out of the chain and the irradiance (`--sun split`, the sun
-    /// first): the split-sum shades each as a directional light with the preview's BRDF,
-    /// the truth integrates each as a uniform disc of its radius beside the residual.
+    /// first): the split-sum shades each as a directional light with the preview's BRDF.
     pub lights: &'a [Sun],
+    /// The environment as read, lights included, in its level 0
+    /// ([`BakedEnvironment::seen`]): what the truth integrates and the exposure is chosen
+    /// from, whatever was taken out of the chain.
+    pub seen: &'a Cubemap,
 }
+
+/// What the per-sphere figures are, as `preview --json` and the manifest state them.
+pub const RELATIVE_DIFFERENCE_DEFINITION: &str = "per sphere, on each pixel's luminance Y: mean = sum |Y_split_sum - Y_truth| / sum Y_truth; worst = the largest |Y_split_sum - Y_truth| / max(Y_truth, 0.01 Y_ref) of one pixel, Y_ref the sphere's mean Y_truth (where that is 0, the mean Y_truth of every sphere; where that is 0 too, the sphere's mean Y_split_sum), which also floors the mean's denominator at 0.01 Y_ref per pixel; 0 where both renders are black; truth_luminance and split_sum_luminance = the sphere's mean Y";
+
+/// What the ground truth integrates, as the manifest states it.
+pub const TRUTH_DEFINITION: &str = "the integral of the same BRDF with the real view direction over the environment as read (lights included, whatever the sun mode, at the input's own resolution: a cube of edge width / 4 for an equirect, at most 1024; a bake folder's background.ktx2, or its chain's level 0 where nothing was taken out), hot texels summed exactly, the rest by GGX visible-normal and cosine quasi-Monte Carlo";
+
+/// The floor of a pixel's luminance in the worst relative difference, as a fraction of
+/// its sphere's mean ([`RELATIVE_DIFFERENCE_DEFINITION`]): a pixel darker than 1 % of the
+/// light its sphere sends (a silhouette, a side turned from a lamp on black) is measured
+/// against that 1 %, not against its own near-zero luminance.
+pub const WORST_FLOOR: f64 = 0.01;
 
 /// How the preview is made.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -104,10 +122,16 @@ pub struct SphereStats {
     /// Σ |Y_split-sum − Y_truth| / Σ Y_truth over the sphere's pixels: the relative
     /// difference of the light the sphere sends to the camera (near the silhouette, where
     /// the truth goes dark, a pixel's relative difference can be large while its light is
-    /// small).
+    /// small). Always finite ([`RELATIVE_DIFFERENCE_DEFINITION`]).
     pub mean_relative: f32,
-    /// The largest |Y_split-sum − Y_truth| / Y_truth of one pixel.
+    /// The largest |Y_split-sum − Y_truth| / max(Y_truth, 0.01 (`WORST_FLOOR`) × the sphere's
+    /// mean Y_truth) of one pixel.
     pub worst_relative: f32,
+    /// The sphere's mean Y_truth: the same in every sun mode, so two modes' figures can
+    /// be compared.
+    pub truth_luminance: f32,
+    /// The sphere's mean Y_split-sum.
+    pub split_sum_luminance: f32,
 }
 
 /// A rendered preview.
@@ -198,16 +222,17 @@ pub fn sphere_table_at(
         .collect()
 }
 
-/// Each sphere pixel's relative difference (None elsewhere) and the per-sphere stats.
+/// Each sphere pixel's relative difference (None elsewhere) and the per-sphere stats
+/// ([`RELATIVE_DIFFERENCE_DEFINITION`]: finite for any finite renders).
 pub fn compare(
     scene: &SceneUniform,
     split_sum: &[[f32; 3]],
     truth: &[[f32; 3]],
 ) -> (Vec<Option<f32>>, Vec<SphereStats>) {
     let spheres = MATERIALS.len() * ROUGHNESS.len();
-    // Per sphere: Σ |ΔY|, Σ Y_truth, worst relative.
-    let mut sums = vec![(0.0f64, 0.0f64, 0.0f32); spheres];
-    let mut relative = vec![None; split_sum.len()];
+    // Per sphere: pixel count, Σ |ΔY|, Σ Y_truth, Σ Y_split-sum; then each pixel's sphere.
+    let mut sums = vec![(0usize, 0.0f64, 0.0f64, 0.0f64); spheres];
+    let mut owner = vec![None; split_sum.len()];
     for y in 0..scene.height {
         for x in 0..scene.width {
             if let PixelGeometry::Sphere {
@@ -215,54 +240,76 @@ pub fn compare(
             } = pixel_geometry(scene, x, y)
             {
                 let k = (y * scene.width + x) as usize;
-                let t = luminance(truth[k]);
-                let diff = (luminance(split_sum[k]) - t).abs();
-                let d = diff / t.max(1e-30);
-                relative[k] = Some(d);
-                let s = &mut sums[material * ROUGHNESS.len() + column];
-                *s = (s.0 + diff as f64, s.1 + t as f64, s.2.max(d));
+                let sphere = material * ROUGHNESS.len() + column;
+                let (t, ss) = (luminance(truth[k]) as f64, luminance(split_sum[k]) as f64);
+                let s = &mut sums[sphere];
+                *s = (s.0 + 1, s.1 + (ss - t).abs(), s.2 + t, s.3 + ss);
+                owner[k] = Some(sphere);
             }
         }
     }
+    let mean = |sum: f64, count: usize| sum / count.max(1) as f64;
+    let all_truth = mean(
+        sums.iter().map(|s| s.2).sum(),
+        sums.iter().map(|s| s.0).sum(),
+    );
+    // Each sphere's floor: WORST_FLOOR of its reference luminance.
+    let floors: Vec<f64> = sums
+        .iter()
+        .map(|&(count, _, truth, split)| {
+            let reference = [mean(truth, count), all_truth, mean(split, count)]
+                .into_iter()
+                .find(|&y| y > 0.0)
+                .unwrap_or(0.0);
+            WORST_FLOOR * reference
+        })
+        .collect();
+    let ratio = |diff: f64, floored: f64| match diff > 0.0 {
+        true => (diff / floored).min(f64::from(f32::MAX)) as f32,
+        false => 0.0,
+    };
+    let mut worst = vec![0.0f32; spheres];
+    let relative = owner
+        .iter()
+        .enumerate()
+        .map(|(k, sphere)| {
+            let sphere = (*sphere)?;
+            let t = luminance(truth[k]) as f64;
+            let d = ratio(
+                (luminance(split_sum[k]) as f64 - t).abs(),
+                t.max(floors[sphere]),
+            );
+            worst[sphere] = worst[sphere].max(d);
+            Some(d)
+        })
+        .collect();
     let stats = sums
         .iter()
         .enumerate()
-        .map(|(i, &(diff, truth, worst))| SphereStats {
+        .map(|(i, &(count, diff, truth, split))| SphereStats {
             material: MATERIALS[i / ROUGHNESS.len()].name,
             roughness: ROUGHNESS[i % ROUGHNESS.len()],
-            mean_relative: (diff / truth.max(1e-30)) as f32,
-            worst_relative: worst,
+            mean_relative: ratio(diff, truth.max(count as f64 * floors[i])),
+            worst_relative: worst[i],
+            truth_luminance: mean(truth, count) as f32,
+            split_sum_luminance: mean(split, count) as f32,
         })
         .collect();
     (relative, stats)
 }
 
-/// What the truth integrates, from a specular chain: its level 0 with every mip (as the
-/// hot/cold split needs it) and the split into hot texels and the cold rest.
-pub fn truth_environment(specular: &Cubemap) -> (Cubemap, SampledSource) {
+/// What the truth integrates, from the environment as read (`seen`, its level 0 alone is
+/// read): that level with every mip (as the hot/cold split needs it) and the split into
+/// hot texels and the cold rest.
+pub fn truth_environment(seen: &Cubemap) -> (Cubemap, SampledSource) {
     let mut env = Cubemap {
-        size: specular.size,
-        levels: vec![specular.levels[0].clone()],
+        size: seen.size,
+        levels: vec![seen.levels[0].clone()],
     };
     let mips = Cubemap::full_mip_count(env.size);
     crate::environment::mips::build_mips(&mut env, mips);
     let split = split_hot_texels(&env);
     (env, split)
-}
-
-/// Rings of the disc the truth integrates the sun as (127 cells: each under 0.1 of the
-/// radius across, far below the narrowest lobe the preview's r ≥ 0.25 spheres have).
-pub const SUN_DISC_RINGS: u32 = 7;
-
-/// The sun as the truth's exact texels: a uniform disc of its radius and irradiance.
-pub fn sun_texels(sun: &Sun) -> Vec<SourceTexel> {
-    sun.disc_cells(SUN_DISC_RINGS)
-        .into_iter()
-        .map(|(d, omega, l)| SourceTexel {
-            dir_omega: [d[0], d[1], d[2], omega],
-            radiance: [l[0], l[1], l[2], 0.0],
-        })
-        .collect()
 }
 
 /// Adds the sun, a directional light of irradiance E⊥ from its direction, to every sphere
@@ -313,9 +360,9 @@ pub fn add_sun_light(
 
 /// The ground-truth panel of `light` on `backend` for the kernels' tables (of the spheres
 /// only each one's roughness is read) with `samples` quasi-Monte Carlo points per lobe and
-/// pixel and the BRDF `brdf` (compensated with `light`'s LUT where it is): the chain's
-/// level 0 split into its hot texels and the cold rest ([`truth_environment`]), the lights
-/// taken out of it added to the hot texels as discs ([`sun_texels`]).
+/// pixel and the BRDF `brdf` (compensated with `light`'s LUT where it is): the
+/// environment as read (`light.seen`, lights included) split into its hot texels and the
+/// cold rest ([`truth_environment`]).
 pub fn render_truth(
     backend: &dyn Backend,
     scene: &SceneUniform,
@@ -325,10 +372,7 @@ pub fn render_truth(
     samples: u32,
     brdf: LightBrdf,
 ) -> Result<Vec<[f32; 3]>> {
-    let (env, mut split) = truth_environment(light.specular);
-    for sun in light.lights {
-        split.hot.extend(sun_texels(sun));
-    }
+    let (env, split) = truth_environment(light.seen);
     let points = disk_points(samples);
     backend.preview_truth(
         scene,
@@ -405,7 +449,7 @@ pub fn render_preview(
 
     let exposure = match opts.exposure_ev {
         Some(ev) => 2f32.powf(ev),
-        None => auto_exposure(light.specular),
+        None => auto_exposure(light.seen),
     };
     let (relative, stats) = if truth.is_empty() {
         (Vec::new(), Vec::new())
@@ -455,6 +499,7 @@ impl<'a> BakedLight<'a> {
             irradiance: &baked.irradiance,
             lut,
             lights: baked.split_lights(),
+            seen: baked.seen(),
         }
     }
 }

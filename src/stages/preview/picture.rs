@@ -5,7 +5,10 @@
 //! - Exposure: a linear scale 2^EV; by default the one that maps the environment's
 //!   log-average luminance (over the sphere of directions, each texel weighted by its
 //!   solid angle; Reinhard et al. 2002, "Photographic Tone Reproduction") to 0.18, so a
-//!   sun does not darken the picture the way an arithmetic mean would.
+//!   sun does not darken the picture the way an arithmetic mean would; the log-average
+//!   is taken no lower than the arithmetic mean over [`MAX_MEAN_RATIO`], so a lamp on a
+//!   black field (whose log-average is the black's) is exposed for what it lights. The
+//!   environment is the one as read, lights included, whatever was taken out of the IBL.
 //! - Tone mapping: Khronos PBR Neutral (Khronos 3D Commerce, 2024), which keeps colours
 //!   below 0.76 unchanged and compresses highlights towards white; then the sRGB
 //!   transfer function (IEC 61966-2-1).
@@ -39,9 +42,19 @@ pub fn luminance(c: [f32; 3]) -> f32 {
     LUMINANCE[0] * c[0] + LUMINANCE[1] * c[1] + LUMINANCE[2] * c[2]
 }
 
-/// The default exposure scale of `env` (level 0): [`KEY_VALUE`] / exp(mean ln(ε + Y)),
-/// the mean over directions, with ε = 1e-4 of the arithmetic mean so black texels stay
-/// finite.
+/// The largest ratio of the arithmetic mean luminance to the log-average the default
+/// exposure follows. A white Lambertian sphere sends on average the arithmetic mean of
+/// the environment's radiance, so past this ratio (a lamp of a few texels on black, a
+/// studio's lamps on its dark backdrop) the log-average, which is the black's, would
+/// expose that sphere ever brighter: at 8 it is exposed at most 1.44, grey to white after
+/// tone mapping. The sunny and overcast bundled HDRIs' ratios are 1.0–5.3, and their
+/// exposure is the log-average's; studio_small_03's is 83 (docs/accuracy.md, "The
+/// figures").
+pub const MAX_MEAN_RATIO: f64 = 8.0;
+
+/// The default exposure scale of `env` (level 0): [`KEY_VALUE`] / max(exp(mean ln(ε +
+/// Y)), mean Y / [`MAX_MEAN_RATIO`]), the means over directions, with ε = 1e-4 of the
+/// arithmetic mean so black texels stay finite; 1 for an all-black environment.
 pub fn auto_exposure(env: &Cubemap) -> f32 {
     let n = env.size;
     let (mut sum_y, mut sum_w) = (0.0f64, 0.0f64);
@@ -53,14 +66,18 @@ pub fn auto_exposure(env: &Cubemap) -> f32 {
         sum_y += w * luminance([t[0], t[1], t[2]]) as f64;
         sum_w += w;
     }
-    let eps = 1e-4 * (sum_y / sum_w).max(1e-30);
+    let mean = sum_y / sum_w;
+    if !(mean > 0.0 && mean.is_finite()) {
+        return 1.0;
+    }
+    let eps = 1e-4 * mean;
     let log_mean = env.levels[0]
         .iter()
         .enumerate()
         .map(|(k, t)| omegas[k % omegas.len()] * (eps + luminance([t[0], t[1], t[2]]) as f64).ln())
         .sum::<f64>()
         / sum_w;
-    (KEY_VALUE as f64 / log_mean.exp()) as f32
+    (KEY_VALUE as f64 / log_mean.exp().max(mean / MAX_MEAN_RATIO)) as f32
 }
 
 /// PBR Neutral's startCompression (0.8 − 0.04): below it colours pass unchanged.
