@@ -479,14 +479,15 @@ fn main() {
 
 /// What finding the sun and filling its hole cost against a default CPU bake of the same
 /// HDRI (the bar: at most 10 % of its CPU seconds), for the bundled HDRIs with and
-/// without a sun: the search alone (`find_lights`, as `--sun keep` runs it), the search
-/// and fill (`split_lights`), and whole CPU bakes in both modes, medians of 3.
+/// without a sun and a studio: the search alone (`find_lights`, as `--sun keep` runs it),
+/// the search and fill (`split_lights`), every area source's search, fill and shape
+/// (`take_sources_out`), and whole CPU bakes in both modes, medians of 3.
 fn sun_benchmarks() {
     use splitsum::bake::{bake, BakeOptions};
     use splitsum::{Stage, SunMode};
     println!("\n## The sun: search and fill against a default CPU bake\n");
-    println!("| HDRI | lights | find CPU s | split CPU s | bake keep CPU s | bake split CPU s | sun stage / bake | background stage / bake |");
-    println!("|---|---|---|---|---|---|---|---|");
+    println!("| HDRI | lights | find CPU s | split CPU s | sources | sources CPU s | bake keep CPU s | bake split CPU s | sun stage / bake | background stage / bake | sources / bake |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
     let out = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench-sun");
     let cpu = splitsum::backend::CpuBackend;
     let lut = splitsum::backend::Backend::brdf_lut(&cpu, 512, 512).unwrap();
@@ -494,6 +495,7 @@ fn sun_benchmarks() {
         "quarry_01_1k.hdr",
         "royal_esplanade_1k.hdr",
         "venice_sunset_1k.hdr",
+        "studio_small_03_1k.hdr",
     ] {
         let input = std::path::Path::new("tests/data").join(name);
         let env = splitsum::io::input::load_input(&input, &Default::default())
@@ -504,6 +506,8 @@ fn sun_benchmarks() {
         let (_, split_cpu) = measure(3, || {
             splitsum::split_lights(&mut env.clone());
         });
+        let mut sources = 0;
+        let (_, sources_cpu) = measure(3, || sources = splitsum::take_sources_out(&env).0.len());
         // CPU seconds of the sun and background stages of the last bake measured.
         let stage_cpu = |sun: SunMode, stages: &mut Vec<(Stage, f64)>| {
             let opts = BakeOptions {
@@ -541,9 +545,10 @@ fn sun_benchmarks() {
                 .fold(0.0, |sum, (_, t)| sum + t)
         };
         println!(
-            "| {name} | {lights} | {find_cpu:.3} | {split_cpu:.3} | {keep:.2} | {split:.2} | {:.1} % | {:.1} % |",
+            "| {name} | {lights} | {find_cpu:.3} | {split_cpu:.3} | {sources} | {sources_cpu:.3} | {keep:.2} | {split:.2} | {:.1} % | {:.1} % | {:.1} % |",
             100.0 * of(Stage::Sun) / split,
-            100.0 * of(Stage::Background) / split
+            100.0 * of(Stage::Background) / split,
+            100.0 * sources_cpu / keep
         );
     }
 }

@@ -101,8 +101,8 @@ pub use bake::{
 };
 pub use environment::inventory::{inventory, Inventory};
 pub use environment::sun::{
-    find_lights, find_sun, split_lights, split_sun, Sun, SunFit, SunMode, MAX_LIGHTS,
-    MIN_SHARE as MIN_SUN_SHARE,
+    find_lights, find_sources, find_sun, split_lights, split_sun, take_sources_out, Source,
+    SourceShape, Sun, SunFit, SunMode, MAX_LIGHTS, MIN_SHARE as MIN_SUN_SHARE,
 };
 pub use environment::{Cubemap, Environment, Equirect};
 pub use error::{Error, Result};

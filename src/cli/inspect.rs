@@ -22,6 +22,16 @@ pub fn inspect(args: InspectArgs) -> anyhow::Result<()> {
         .into_iter()
         .map(|s| s.rotated(args.input_opts.rotate))
         .collect();
+    let sources: Vec<splitsum::Source> = splitsum::find_sources(&loaded.env)
+        .into_iter()
+        .map(|s| s.rotated(args.input_opts.rotate))
+        .collect();
+    let source_out = |s: &splitsum::Source| SourceOut {
+        source: *s,
+        illuminance: s.illuminance(),
+        azimuth_deg: s.azimuth_deg(),
+        elevation_deg: s.elevation_deg(),
+    };
     let light_out = |sun: &splitsum::Sun| LightOut {
         sun: *sun,
         illuminance: sun.illuminance(),
@@ -36,6 +46,7 @@ pub fn inspect(args: InspectArgs) -> anyhow::Result<()> {
             inventory: &'a splitsum::Inventory,
             sun: Option<LightOut>,
             additional_lights: Vec<LightOut>,
+            sources: Vec<SourceOut>,
             warnings: &'a [String],
         }
         let out = Out {
@@ -43,6 +54,7 @@ pub fn inspect(args: InspectArgs) -> anyhow::Result<()> {
             inventory: &inventory,
             sun: lights.first().map(light_out),
             additional_lights: lights.iter().skip(1).map(light_out).collect(),
+            sources: sources.iter().map(source_out).collect(),
             warnings: &loaded.warnings,
         };
         println!("{}", serde_json::to_string_pretty(&out)?);
@@ -106,6 +118,29 @@ pub fn inspect(args: InspectArgs) -> anyhow::Result<()> {
             }
         );
     }
+    if sources.is_empty() {
+        println!(
+            "  area sources  none (no connected bright region holds {:.0} % of the light)",
+            100.0 * MIN_SUN_SHARE
+        );
+    }
+    for (k, s) in sources.iter().enumerate() {
+        println!(
+            "  {:<14}{}, azimuth {:.2}°, elevation {:.2}°, {:.1} % of the light, E {:.4}",
+            format!("source {}", k + 1),
+            s.shape,
+            s.azimuth_deg(),
+            s.elevation_deg(),
+            100.0 * s.share,
+            s.illuminance()
+        );
+        println!(
+            "                solid angle {:.3e} sr, {} texels; the uniform shape leaves {:.1} % of its light",
+            s.solid_angle_sr,
+            s.texels,
+            100.0 * s.shape_residual
+        );
+    }
     Ok(())
 }
 
@@ -158,6 +193,17 @@ fn percent(share: f32) -> String {
         p if p < WHOLE && p > WHOLE - TENTH => format!("over {} %", WHOLE - TENTH),
         p => format!("{p:.1} %"),
     }
+}
+
+/// An area source as `inspect --json` writes it: its figures with its illuminance,
+/// azimuth and elevation.
+#[derive(serde::Serialize)]
+struct SourceOut {
+    #[serde(flatten)]
+    source: splitsum::Source,
+    illuminance: f32,
+    azimuth_deg: f32,
+    elevation_deg: f32,
 }
 
 /// A light as `inspect --json` writes it: its figures with its illuminance, azimuth and

@@ -96,15 +96,7 @@ pub(crate) fn fit_sun(grid: &Grid, seed: usize, flux: f64) -> Option<SunFit> {
         .copied()
         .filter(|&k| luminance(grid.radiance(k)) >= CORE_FRACTION * peak)
         .collect();
-    let mut centre = [0.0; 3];
-    for &k in &core {
-        let w = luminance(grid.radiance(k)) * grid.solid_angle(k);
-        let d = grid.direction(k);
-        for i in 0..3 {
-            centre[i] += w * d[i];
-        }
-    }
-    let centre = normalize(centre);
+    let centre = flux_centre(grid, &core);
     // A texel's angular size where the sun is: √Ω of its brightest texel.
     let texel = grid.solid_angle(seed).sqrt();
     let core_radius = core
@@ -139,27 +131,12 @@ pub(crate) fn fit_sun(grid: &Grid, seed: usize, flux: f64) -> Option<SunFit> {
     }
     let plane = fit_plane(grid, &ring, &gnomonic);
 
-    let mut fill = Vec::with_capacity(region.len());
-    let mut irradiance = [0.0f64; 3];
-    let mut moment = [0.0f64; 3];
-    for &k in &region {
-        let d = grid.direction(k);
-        let l = grid.radiance(k);
-        // The fill never brightens a texel: the residual is nowhere above the input, and
-        // the light is non-negative in every channel.
-        let f = plane.at(gnomonic(d));
-        let f: [f64; 3] = std::array::from_fn(|c| f[c].min(l[c]));
-        let omega = grid.solid_angle(k);
-        let net: [f64; 3] = std::array::from_fn(|c| l[c] - f[c]);
-        for c in 0..3 {
-            irradiance[c] += net[c] * omega;
-        }
-        let y = luminance(net) * omega;
-        for i in 0..3 {
-            moment[i] += y * d[i];
-        }
-        fill.push(f.map(|v| v as f32));
-    }
+    let Filled {
+        fill,
+        irradiance,
+        moment,
+        ..
+    } = fill_region(grid, &region, &plane, &gnomonic);
     let share = luminance(irradiance) / flux;
     if share.is_nan() || share < MIN_SHARE {
         return None;
@@ -213,15 +190,70 @@ fn cap_radius(omega: f64) -> f64 {
         .acos()
 }
 
+/// A region filled: per texel the fill and the net luminance Y(L − fill) it leaves, and
+/// over the region E⊥ = Σ (L − fill) Ω per channel and the first moment Σ Y_net Ω l.
+pub(super) struct Filled {
+    pub(super) fill: Vec<[f32; 3]>,
+    pub(super) net: Vec<f64>,
+    pub(super) irradiance: [f64; 3],
+    pub(super) moment: [f64; 3],
+}
+
+/// `region` filled from `plane` (in the `gnomonic` coordinates it was fitted in).
+pub(super) fn fill_region(
+    grid: &Grid,
+    region: &[usize],
+    plane: &Plane,
+    gnomonic: &dyn Fn([f64; 3]) -> (f64, f64),
+) -> Filled {
+    let mut out = Filled {
+        fill: Vec::with_capacity(region.len()),
+        net: Vec::with_capacity(region.len()),
+        irradiance: [0.0; 3],
+        moment: [0.0; 3],
+    };
+    for &k in region {
+        let (d, l, omega) = (grid.direction(k), grid.radiance(k), grid.solid_angle(k));
+        // The fill never brightens a texel: the residual is nowhere above the input, and
+        // the light is non-negative in every channel.
+        let f = plane.at(gnomonic(d));
+        let f: [f64; 3] = std::array::from_fn(|c| f[c].min(l[c]));
+        let net: [f64; 3] = std::array::from_fn(|c| l[c] - f[c]);
+        let y = luminance(net);
+        for (e, n) in out.irradiance.iter_mut().zip(net) {
+            *e += n * omega;
+        }
+        for (m, di) in out.moment.iter_mut().zip(d) {
+            *m += y * omega * di;
+        }
+        out.fill.push(f.map(|v| v as f32));
+        out.net.push(y);
+    }
+    out
+}
+
+/// The flux-weighted centre of `texels` (their radiance as it is).
+pub(super) fn flux_centre(grid: &Grid, texels: &[usize]) -> [f64; 3] {
+    let mut c = [0.0; 3];
+    for &k in texels {
+        let w = luminance(grid.radiance(k)) * grid.solid_angle(k);
+        let d = grid.direction(k);
+        for i in 0..3 {
+            c[i] += w * d[i];
+        }
+    }
+    normalize(c)
+}
+
 /// A per-channel plane a + b x + c y over gnomonic coordinates, clamped to a range.
-struct Plane {
+pub(super) struct Plane {
     coef: [[f64; 3]; 3],
     low: [f64; 3],
     high: [f64; 3],
 }
 
 impl Plane {
-    fn at(&self, (x, y): (f64, f64)) -> [f64; 3] {
+    pub(super) fn at(&self, (x, y): (f64, f64)) -> [f64; 3] {
         std::array::from_fn(|c| {
             let [a, b, d] = self.coef[c];
             (a + b * x + d * y).clamp(self.low[c], self.high[c])
@@ -231,7 +263,7 @@ impl Plane {
 
 /// The weighted (Ω) least-squares plane through the ring's texels per channel; their mean
 /// when the ring is too small or degenerate for a plane.
-fn fit_plane(grid: &Grid, ring: &[usize], gnomonic: &dyn Fn([f64; 3]) -> (f64, f64)) -> Plane {
+pub(super) fn fit_plane(grid: &Grid, ring: &[usize], gnomonic: &dyn Fn([f64; 3]) -> (f64, f64)) -> Plane {
     let mut m = [[0.0f64; 3]; 3];
     let mut rhs = [[0.0f64; 3]; 3];
     let (mut low, mut high) = ([f64::INFINITY; 3], [0.0f64; 3]);

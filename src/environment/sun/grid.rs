@@ -2,7 +2,7 @@
 //! directions and solid angles in f64, and the small vector helpers of the search.
 
 use crate::environment::{Cubemap, Environment, Equirect};
-use crate::math::cubemap::{cube_texel_direction, cube_texel_solid_angle};
+use crate::math::cubemap::{cube_face_coords, cube_texel_direction, cube_texel_solid_angle};
 
 pub(crate) fn luminance(c: [f64; 3]) -> f64 {
     0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
@@ -91,6 +91,55 @@ impl<'a> Grid<'a> {
             }
             Grid::Cube(_) => (omega.sqrt(), omega.sqrt()),
         }
+    }
+
+    /// The up to 8 texels around texel k (those sharing an edge or a corner with it), across
+    /// an equirect's seam and a cube's face edges; an equirect's pole row has no texel above
+    /// it (its neighbours along the row are those across the pole's point).
+    pub(crate) fn neighbours(&self, k: usize) -> Vec<usize> {
+        let mut out = Vec::with_capacity(8);
+        match self {
+            Grid::Equirect(e) => {
+                let (w, h) = (e.width as isize, e.height as isize);
+                let (x, y) = ((k as isize) % w, (k as isize) / w);
+                for dy in -1..=1 {
+                    for dx in -1..=1 {
+                        let yy = y + dy;
+                        if (dx, dy) == (0, 0) || yy < 0 || yy >= h {
+                            continue;
+                        }
+                        out.push((yy * w + (x + dx).rem_euclid(w)) as usize);
+                    }
+                }
+            }
+            Grid::Cube(c) => {
+                let n = c.size as i32;
+                let per_face = (n * n) as usize;
+                let (face, j, i) = (k / per_face, (k % per_face) as i32 / n, (k % per_face) as i32 % n);
+                for dj in -1..=1 {
+                    for di in -1..=1 {
+                        let (ii, jj) = (i + di, j + dj);
+                        if (di, dj) == (0, 0) {
+                            continue;
+                        }
+                        let t = if (0..n).contains(&ii) && (0..n).contains(&jj) {
+                            face * per_face + (jj * n + ii) as usize
+                        } else {
+                            // Off the face: the texel holding the direction through the
+                            // extended centre (a corner's diagonal lands on either face).
+                            let d = cube_texel_direction(face as u32, ii, jj, c.size);
+                            let (f, s, t) = cube_face_coords(d);
+                            let texel = |u: f32| (((u + 1.0) * 0.5 * n as f32) as i32).clamp(0, n - 1);
+                            f as usize * per_face + (texel(t) * n + texel(s)) as usize
+                        };
+                        if t != k && !out.contains(&t) {
+                            out.push(t);
+                        }
+                    }
+                }
+            }
+        }
+        out
     }
 
     /// The texels whose centres lie within `radius` (radians) of unit `c`.

@@ -46,6 +46,7 @@
 
 mod fit;
 pub(crate) mod grid;
+mod source;
 
 use serde::{Deserialize, Serialize};
 
@@ -53,6 +54,9 @@ use crate::environment::Environment;
 use crate::math::cubemap::rotate_y;
 use fit::{clusters, fit_sun, flux_stats};
 use grid::{luminance, tangent_frame, Grid};
+pub use source::{
+    find_sources, take_sources_out, Source, SourceShape,
+};
 
 /// A texel is a candidate when its luminance exceeds this multiple of the environment's
 /// mean (the hot-texel threshold of [`crate::environment::hot`]).
@@ -178,13 +182,13 @@ pub struct Sun {
 impl Sun {
     /// Elevation above the horizon (the XZ plane) in degrees.
     pub fn elevation_deg(&self) -> f32 {
-        self.direction[1].clamp(-1.0, 1.0).asin().to_degrees()
+        elevation_deg(self.direction)
     }
 
     /// Azimuth in degrees, (−180, 180]: 0 along +X (an equirect's centre), 90 along +Z
     /// (u = 0.75), as the equirect's u = 0.5 + atan2(z, x)/(2π).
     pub fn azimuth_deg(&self) -> f32 {
-        self.direction[2].atan2(self.direction[0]).to_degrees()
+        azimuth_deg(self.direction)
     }
 
     /// E⊥'s luminance.
@@ -238,6 +242,17 @@ impl Sun {
         }
         cells
     }
+}
+
+/// Elevation of unit `d` above the horizon (the XZ plane) in degrees.
+pub(crate) fn elevation_deg(d: [f32; 3]) -> f32 {
+    d[1].clamp(-1.0, 1.0).asin().to_degrees()
+}
+
+/// Azimuth of `d` in degrees, (−180, 180]: 0 along +X (an equirect's centre), 90 along
+/// +Z (u = 0.75), as the equirect's u = 0.5 + atan2(z, x)/(2π).
+pub(crate) fn azimuth_deg(d: [f32; 3]) -> f32 {
+    d[2].atan2(d[0]).to_degrees()
 }
 
 impl std::fmt::Display for Sun {
