@@ -34,7 +34,8 @@ use splitsum::plan::material::ShadeMaterial;
 use splitsum::plan::scene::{material_table, Scene, SplitSumInputs, SplitSumLight, ROUGHNESS};
 use splitsum::plan::shading::{LightBrdf, RadianceBlend, Shading, ShadingTerms};
 use splitsum::stages::preview::{
-    add_sun_light, compare, render_truth, sphere_table, sphere_table_at, BakedLight, PreviewOptions,
+    add_sun_light, compare, render_truth, sphere_table, sphere_table_at, BakedLight, LightPass,
+    PreviewOptions,
 };
 use splitsum::{BakedEnvironment, SunMode};
 
@@ -177,16 +178,15 @@ fn figures_with(
     let mut panel = render_split_sum_shaded(&scene, &inputs, |n, v, n_dot_v, m| {
         shade(&inputs.light, n, v, n_dot_v, m)
     });
+    let pass = LightPass {
+        scene: &scene,
+        spheres,
+        materials: &materials,
+        brdf: LightBrdf::GENERIC,
+        lut,
+    };
     for sun in light.lights {
-        add_sun_light(
-            &scene,
-            spheres,
-            &materials,
-            sun,
-            LightBrdf::GENERIC,
-            lut,
-            &mut panel,
-        );
+        add_sun_light(&pass, sun, &mut panel);
     }
     compare(&scene, &panel, truth)
         .1

@@ -118,6 +118,7 @@ pub use io::PixelFormat;
 pub use math::lookup::SpecularLookup;
 pub use plan::bc6h::Bc6hQuality;
 pub use plan::chain::{MipRoughness, SpecularChain};
+pub use plan::ltc::{LtcCell, LtcTable};
 pub use plan::lut::{BrdfLut, LutModel, DEFAULT_LUT_SIZE, MAX_LUT_SIZE};
 pub use plan::shading::{
     DiffuseLobe, IblTerms, IrradianceSource, LightBrdf, Masking, Shading, ShadingTerms,

@@ -17,7 +17,10 @@
 //! roughness the mean and worst relative difference of the luminance
 //! ([`RELATIVE_DIFFERENCE_DEFINITION`]).
 
+pub mod lights;
 pub mod picture;
+
+pub use lights::{add_sun_light, LightPass};
 
 use std::time::Instant;
 
@@ -27,17 +30,15 @@ use glam::Vec3;
 use crate::backend::Backend;
 use std::borrow::Cow;
 
-use crate::cpu::preview_split_sum::{sample_lut, specular_compensation};
-use crate::cpu::preview_truth::hot_texels_shade;
-use crate::environment::sun::Sun;
-use crate::environment::texels::SourceTexel;
+use crate::environment::sun::{Source, Sun};
 use crate::environment::Cubemap;
 use crate::plan::chain::SpecularChain;
+use crate::plan::ltc::LtcTable;
 use crate::plan::lut::{BrdfLut, LutLayout, DEFAULT_LUT_SIZE};
 use crate::plan::scene::{
-    disk_points, material_table, pixel_geometry, preview_material, PixelGeometry, Scene,
+    disk_points, material_table, pixel_geometry, PixelGeometry, Scene,
     SceneUniform, SplitSumInputs, SplitSumLight, TruthInputs, TruthLight, DEFAULT_CELL,
-    DEFAULT_TRUTH_SAMPLES, MATERIALS, MIN_N_DOT_V, ROUGHNESS,
+    DEFAULT_TRUTH_SAMPLES, MATERIALS, ROUGHNESS,
 };
 use crate::plan::shading::{
     env_brdf_approx_table, IrradianceSource, LightBrdf, ShaderLut, Shading,
@@ -70,6 +71,11 @@ pub struct BakedLight<'a> {
     /// ([`BakedEnvironment::seen`]): what the truth integrates and the exposure is chosen
     /// from, whatever was taken out of the chain.
     pub seen: &'a Cubemap,
+    /// Area sources taken out of the chain and the irradiance, shaded from `ltc`
+    /// ([`lights::add_area_light`]); none where `ltc` is `None`.
+    pub area_lights: &'a [Source],
+    /// The LTC table the area sources are shaded from.
+    pub ltc: Option<&'a LtcTable>,
 }
 
 /// What the per-sphere figures are, as `preview --json` and the manifest state them.
@@ -312,52 +318,6 @@ pub fn truth_environment(seen: &Cubemap) -> (Cubemap, SampledSource) {
     (env, split)
 }
 
-/// Adds the sun, a directional light of irradiance E⊥ from its direction, to every sphere
-/// pixel of the split-sum panel: E⊥ f(l, v) (n·l) with `brdf` (its specular scaled by the
-/// compensation of `lut` where it is compensated), evaluated by the truth's exact sum over
-/// one texel (`cpu::preview_truth::hot_texels_shade`), so the light is shaded as the truth
-/// shades its hot texels. At r = 0 a mirror reflects no directional light (the truth's
-/// mirror reads the residual too).
-#[allow(clippy::too_many_arguments)]
-pub fn add_sun_light(
-    scene: &SceneUniform,
-    spheres: &[[f32; 4]],
-    materials: &[[f32; 4]],
-    sun: &Sun,
-    brdf: LightBrdf,
-    lut: &BrdfLut,
-    panel: &mut [[f32; 3]],
-) {
-    let d = sun.direction;
-    let light = [SourceTexel {
-        dir_omega: [d[0], d[1], d[2], 1.0],
-        radiance: [sun.irradiance[0], sun.irradiance[1], sun.irradiance[2], 0.0],
-    }];
-    for y in 0..scene.height {
-        for x in 0..scene.width {
-            if let PixelGeometry::Sphere {
-                n,
-                v,
-                material,
-                column,
-            } = pixel_geometry(scene, x, y)
-            {
-                let m = preview_material(spheres, materials, scene.columns as usize, material, column);
-                let n_dot_v = n.dot(v).max(MIN_N_DOT_V);
-                let alpha = crate::math::brdf::alpha_from_roughness(m.roughness);
-                let (mut spec, diff) =
-                    hot_texels_shade(&light, n, v, n_dot_v, alpha, m.f0, m.metallic, brdf);
-                if brdf.compensated {
-                    spec *= specular_compensation(sample_lut(lut, n_dot_v, m.roughness), m.f0);
-                }
-                let c = spec + diff * m.albedo;
-                let p = &mut panel[(y * scene.width + x) as usize];
-                *p = [p[0] + c.x, p[1] + c.y, p[2] + c.z];
-            }
-        }
-    }
-}
-
 /// The ground-truth panel of `light` on `backend` for the kernels' tables (of the spheres
 /// only each one's roughness is read) with `samples` quasi-Monte Carlo points per lobe and
 /// pixel and the BRDF `brdf` (compensated with `light`'s LUT where it is): the
@@ -418,16 +378,20 @@ pub fn render_preview(
             materials: &materials,
         },
     )?;
+    let pass = LightPass {
+        scene: &uniform,
+        spheres: &spheres,
+        materials: &materials,
+        brdf: shading.light,
+        lut: light.lut,
+    };
     for sun in light.lights {
-        add_sun_light(
-            &uniform,
-            &spheres,
-            &materials,
-            sun,
-            shading.light,
-            light.lut,
-            &mut split_sum,
-        );
+        add_sun_light(&pass, sun, &mut split_sum);
+    }
+    if let Some(table) = light.ltc {
+        for source in light.area_lights {
+            lights::add_area_light(&pass, source, table, &mut split_sum);
+        }
     }
     let split_sum_seconds = t.elapsed().as_secs_f64();
 
@@ -500,6 +464,8 @@ impl<'a> BakedLight<'a> {
             lut,
             lights: baked.split_lights(),
             seen: baked.seen(),
+            area_lights: &[],
+            ltc: None,
         }
     }
 }

@@ -1,0 +1,194 @@
+//! The LTC table (`plan::ltc`) against brute force: rectangular and disc lights at
+//! infinity shaded from the fitted table (`shade_polygon`: the exact BRDF at the light's
+//! centre plus the LTC's extent) against the BRDF summed over the light's area (64 × 64
+//! gnomonic cells a light, each a directional light through
+//! `plan::material::directional_light`, the preview's and the truth's light shading), on a
+//! gold metal and a dielectric at r = 0.25 … 1, n·v = 0.3 … 1, lights of 4.6° × 2.3° to
+//! 22.6° × 11.4° and a 5.7° disc on R, beside it and above the normal.
+
+use glam::Vec3;
+use splitsum::math::ltc::{disc_polygon, rect_polygon};
+use splitsum::plan::ltc::{shade_polygon, LtcTable};
+use splitsum::plan::material::{directional_light, ShadeMaterial};
+use splitsum::plan::shading::LightBrdf;
+
+/// Cells per side of the brute-force sum over a light.
+const CELLS: usize = 64;
+
+/// A light: its centre, width axis and angular half-sides (a disc when `disc`).
+#[derive(Clone, Copy, Debug)]
+struct Light {
+    centre: Vec3,
+    axis: Vec3,
+    half: (f32, f32),
+    disc: bool,
+}
+
+impl Light {
+    /// Its directions and solid angles, CELLS² gnomonic cells (those inside a disc).
+    fn cells(&self) -> Vec<(Vec3, f32)> {
+        let across = self.centre.cross(self.axis);
+        let (a, b) = (self.half.0.tan(), self.half.1.tan());
+        let mut out = Vec::new();
+        for j in 0..CELLS {
+            for i in 0..CELLS {
+                let x = a * (2.0 * (i as f32 + 0.5) / CELLS as f32 - 1.0);
+                let y = b * (2.0 * (j as f32 + 0.5) / CELLS as f32 - 1.0);
+                if self.disc && (x / a).powi(2) + (y / b).powi(2) > 1.0 {
+                    continue;
+                }
+                let p = self.centre + x * self.axis + y * across;
+                // The gnomonic area element over the unit sphere: dA / |p|³.
+                let omega =
+                    (2.0 * a / CELLS as f32) * (2.0 * b / CELLS as f32) / p.length().powi(3);
+                out.push((p.normalize(), omega));
+            }
+        }
+        out
+    }
+
+    fn polygon(&self) -> Vec<Vec3> {
+        match self.disc {
+            true => disc_polygon(self.centre, self.half.0),
+            false => rect_polygon(self.centre, self.axis, self.half.0, self.half.1).to_vec(),
+        }
+    }
+}
+
+fn material(roughness: f32, metal: bool) -> ShadeMaterial {
+    ShadeMaterial {
+        f0: if metal {
+            Vec3::new(1.0, 0.78, 0.34)
+        } else {
+            Vec3::splat(0.04)
+        },
+        metallic: if metal { 1.0 } else { 0.0 },
+        albedo: Vec3::splat(0.8),
+        roughness,
+        lod: 0.0,
+        bend: 0.0,
+        stretch: 0.0,
+    }
+}
+
+/// The relative difference of the LTC's light from brute force, in luminance-like sum
+/// of channels, for one light, view and material (None where the light sends nothing).
+fn difference(table: &LtcTable, light: &Light, n_dot_v: f32, m: &ShadeMaterial) -> Option<f32> {
+    let n = Vec3::Z;
+    let v = Vec3::new((1.0 - n_dot_v * n_dot_v).sqrt(), 0.0, n_dot_v);
+    let alpha = m.roughness * m.roughness;
+    let mut truth = Vec3::ZERO;
+    for (l, omega) in light.cells() {
+        let (s, d) = directional_light(
+            n,
+            v,
+            n_dot_v,
+            alpha,
+            m.f0,
+            m.metallic,
+            l,
+            Vec3::splat(omega),
+            LightBrdf::GENERIC,
+        );
+        truth += s + d * m.albedo;
+    }
+    let (s, d) = shade_polygon(table, n, v, n_dot_v, m, &light.polygon(), Vec3::ONE);
+    let ltc = s + d * m.albedo;
+    let t = truth.x + truth.y + truth.z;
+    (t > 1e-6).then(|| ((ltc.x + ltc.y + ltc.z) - t).abs() / t)
+}
+
+/// The mean relative difference over the cases per roughness is within twice what was
+/// measured (1.5 / 1.2 / 0.41 / 0.21 % at r = 0.25 / 0.5 / 0.75 / 1 with a 32² table;
+/// the worst case, a wide light at n·v = 0.3 on R at r = 0.25 … 0.5, 40 / 28 %: the LTC's
+/// fit error at grazing views where the light is wide against the lobe).
+#[test]
+fn area_lights_from_the_fitted_table_against_brute_force() {
+    let table = LtcTable::fit(LightBrdf::GENERIC, 32);
+    let bars = [
+        (0.25f32, 0.03f32),
+        (0.5, 0.024),
+        (0.75, 0.008),
+        (1.0, 0.004),
+    ];
+    let n_dot_vs = [0.3f32, 0.6, 0.9, 1.0];
+    for &(r, bar) in &bars {
+        let mut worst = 0.0f32;
+        let mut sum = 0.0f32;
+        let mut count = 0;
+        for &nv in &n_dot_vs {
+            let reflect = Vec3::new(-(1.0 - nv * nv).sqrt(), 0.0, nv);
+            // On R, beside it, and high above the normal; rectangles and a disc.
+            for centre in [
+                reflect,
+                (reflect + Vec3::new(0.0, 0.3, 0.0)).normalize(),
+                Vec3::new(0.3, 0.1, 1.0).normalize(),
+            ] {
+                let axis = centre.cross(Vec3::Y).normalize();
+                for (half, disc) in [
+                    ((0.09, 0.04), false),
+                    ((0.2, 0.1), false),
+                    ((0.05, 0.05), true),
+                ] {
+                    let light = Light {
+                        centre,
+                        axis,
+                        half,
+                        disc,
+                    };
+                    for metal in [true, false] {
+                        if let Some(d) = difference(&table, &light, nv, &material(r, metal)) {
+                            worst = worst.max(d);
+                            sum += d;
+                            count += 1;
+                        }
+                    }
+                }
+            }
+        }
+        let mean = sum / count as f32;
+        eprintln!(
+            "r = {r}: mean {:.2} %, worst {:.2} %",
+            100.0 * mean,
+            100.0 * worst
+        );
+        assert!(mean <= bar, "r = {r}: mean {mean} over {bar}");
+    }
+}
+
+/// A light far narrower than the lobe is shaded as the exact BRDF at its centre (the LTC
+/// carries only its extent): a 0.2° square within 0.5 % of one directional light of its
+/// energy, at every roughness from 0.25 and every view.
+#[test]
+fn a_small_light_is_the_brdf_at_its_centre() {
+    let table = LtcTable::fit(LightBrdf::GENERIC, 16);
+    for r in [0.25f32, 0.5, 1.0] {
+        for nv in [0.2f32, 0.5, 1.0] {
+            let n = Vec3::Z;
+            let v = Vec3::new((1.0 - nv * nv).sqrt(), 0.0, nv);
+            let centre = Vec3::new(-0.3, 0.2, 0.9).normalize();
+            let polygon = rect_polygon(centre, centre.cross(Vec3::Y).normalize(), 0.0017, 0.0017);
+            let omega = splitsum::math::ltc::polygon_solid_angle(&polygon);
+            for metal in [true, false] {
+                let m = material(r, metal);
+                let (s, d) = shade_polygon(&table, n, v, nv, &m, &polygon, Vec3::ONE);
+                let (ps, pd) = directional_light(
+                    n,
+                    v,
+                    nv,
+                    r * r,
+                    m.f0,
+                    m.metallic,
+                    centre,
+                    Vec3::splat(omega),
+                    LightBrdf::GENERIC,
+                );
+                let (a, b) = ((s + d * m.albedo).x, (ps + pd * m.albedo).x);
+                assert!(
+                    (a / b - 1.0).abs() < 5e-3,
+                    "r {r} n·v {nv} metal {metal}: {a} vs {b}"
+                );
+            }
+        }
+    }
+}
