@@ -21,8 +21,9 @@ use splitsum::plan::scene::ROUGHNESS;
 use splitsum::stages::preview::{render_preview, BakedLight, PreviewOptions};
 use splitsum::{take_sources_out, BrdfLut, Environment, LightBrdf, LtcTable, SphereStats, SunMode};
 
-const HDRIS: [&str; 5] = [
+const HDRIS: [&str; 6] = [
     "studio_small_03_1k.hdr",
+    "blender_studiolight_studio.exr",
     "blender_studiolight_interior.exr",
     "quarry_01_1k.hdr",
     "royal_esplanade_1k.hdr",
