@@ -1,25 +1,24 @@
-//! The area-light study: what taking every compact source out of an environment and
-//! shading it as an area light buys. For each bundled HDRI with an area source
-//! (`find_sources`), the preview's spheres three ways against the same ground truth (the
-//! full reflectance integral over the environment as read):
+//! The area-light study: what shading the lights `--sun split` takes out as area lights
+//! buys. For each bundled HDRI with an area source (`find_sources`), the preview's spheres
+//! three ways against the same ground truth (the full reflectance integral over the
+//! environment as read):
 //!
 //! - **kept**: everything in the IBL (`--sun keep`);
-//! - **split**: the sun-sized lights taken out and shaded as directional lights
-//!   (`--sun split`);
-//! - **area**: every area source taken out (`take_sources_out`) and shaded from the LTC
-//!   table fitted to the recipe's BRDF (`plan::ltc`), the residual through the recipe.
+//! - **directional**: the lights `--sun split` takes out (the sun-sized ones, then the
+//!   area sources of what they leave) each shaded as a directional light of its E⊥;
+//! - **split**: as `--sun split` shades them, the area sources from the LTC table fitted
+//!   to the recipe's BRDF (`plan::ltc`), the residual through the recipe.
 //!
 //! Prints a Markdown table per HDRI: per roughness the metals' range and the dielectric
-//! of the preview's figure (`preview --json`'s `mean`). 32-pixel cells, 1024 truth points
-//! and a 32² LTC table (the fit's cost grows with its cells): a quarter of the preview's
-//! pixels and half its points. `cargo run --release --example area_study`;
-//! docs/sun.md holds the output.
+//! of the preview's figure (`preview --json`'s `mean`). 32-pixel cells and 1024 truth
+//! points: a quarter of the preview's pixels and half its points.
+//! `cargo run --release --example area_study`; docs/sun.md holds the output.
 
 use splitsum::backend::CpuBackend;
 use splitsum::bake::{bake_environment, BakeOptions};
 use splitsum::plan::scene::ROUGHNESS;
 use splitsum::stages::preview::{render_preview, BakedLight, PreviewOptions};
-use splitsum::{take_sources_out, BrdfLut, Environment, LightBrdf, LtcTable, SphereStats, SunMode};
+use splitsum::{find_sources, BrdfLut, Environment, SphereStats, Sun, SunMode};
 
 const HDRIS: [&str; 6] = [
     "studio_small_03_1k.hdr",
@@ -29,9 +28,6 @@ const HDRIS: [&str; 6] = [
     "royal_esplanade_1k.hdr",
     "venice_sunset_1k_f32_piz.exr",
 ];
-
-/// Cells per side of the LTC table.
-const LTC_SIZE: u32 = 32;
 
 fn bake(env: Environment, sun: SunMode) -> Result<splitsum::BakedEnvironment, splitsum::Error> {
     let opts = BakeOptions {
@@ -62,7 +58,6 @@ fn cell(stats: &[SphereStats], r: f32) -> String {
 fn main() -> Result<(), splitsum::Error> {
     let cpu = CpuBackend;
     let lut: BrdfLut = splitsum::backend::Backend::brdf_lut(&cpu, 512, 512)?;
-    let table = LtcTable::fit(LightBrdf::GENERIC, LTC_SIZE);
     let opts = PreviewOptions {
         cell: 32,
         truth_samples: 1024,
@@ -71,30 +66,38 @@ fn main() -> Result<(), splitsum::Error> {
     for name in HDRIS {
         let path = std::path::Path::new("tests/data").join(name);
         let env = splitsum::io::input::load_input(&path, &Default::default())?.env;
-        let (sources, residual) = take_sources_out(&env);
+        let sources = find_sources(&env);
         if sources.is_empty() {
             continue;
         }
         let kept = bake(env.clone(), SunMode::Keep)?;
         let split = bake(env, SunMode::Split)?;
-        let rest = bake(residual, SunMode::Keep)?;
-        let seen = kept.seen();
+        let directional: Vec<Sun> = split
+            .split_lights()
+            .iter()
+            .map(|l| Sun { shape: None, ..*l })
+            .collect();
         let rows = [
             ("kept", BakedLight::of(name, &kept, &lut)),
-            ("split", BakedLight::of(name, &split, &lut)),
             (
-                "area",
+                "directional",
                 BakedLight {
-                    seen,
-                    area_lights: &sources,
-                    ltc: Some(&table),
-                    ..BakedLight::of(name, &rest, &lut)
+                    lights: &directional,
+                    ..BakedLight::of(name, &split, &lut)
                 },
             ),
+            ("split", BakedLight::of(name, &split, &lut)),
         ];
-        println!("\n#### {name}: {} area source(s)\n", sources.len());
-        for s in &sources {
-            println!("- {}, {:.1} % of the light", s.shape, 100.0 * s.share);
+        println!(
+            "\n#### {name}: {} light(s) split\n",
+            split.split_lights().len()
+        );
+        for l in split.split_lights() {
+            let shape = l.shape.map_or(
+                format!("sun-sized, radius {:.2}°", l.angular_radius_deg),
+                |s| s.to_string(),
+            );
+            println!("- {shape}, {:.1} % of the light", 100.0 * l.share);
         }
         print!("\n| | ");
         ROUGHNESS[1..].iter().for_each(|r| print!("r = {r} | "));

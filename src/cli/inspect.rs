@@ -85,10 +85,10 @@ pub fn inspect(args: InspectArgs) -> anyhow::Result<()> {
         );
     }
     for (k, s) in lights.iter().enumerate() {
-        let label = if k == 0 {
-            "sun".to_string()
-        } else {
-            format!("light {}", k + 1)
+        let label = match (k, s.shape) {
+            (0, None) => "sun".to_string(),
+            (_, None) => format!("light {}", k + 1),
+            (_, Some(_)) => format!("light {} area", k + 1),
         };
         println!(
             "  {label:<14}azimuth {:.2}°, elevation {:.2}°, direction ({:.5}, {:.5}, {:.5})",
@@ -106,6 +106,9 @@ pub fn inspect(args: InspectArgs) -> anyhow::Result<()> {
             s.irradiance[2],
             100.0 * s.share
         );
+        if let Some(shape) = s.shape {
+            println!("                {shape}: shaded as an area light with --sun split");
+        }
         println!(
             "                angular radius {:.3}°, solid angle {:.3e} sr, {} texels{}",
             s.angular_radius_deg,

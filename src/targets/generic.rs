@@ -159,6 +159,9 @@ struct LightJson {
     /// The cap taken out of the environment for it (absent from older files).
     #[serde(default)]
     region_radius_deg: f32,
+    /// An area source's shape (absent for a directional light).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    shape: Option<crate::environment::sun::SourceShape>,
     share: f32,
     clipped: bool,
     azimuth_deg: f32,
@@ -199,6 +202,7 @@ pub fn sun_json(lights: &[Sun], target: &Target) -> Option<String> {
         angular_radius_deg: sun.angular_radius_deg,
         solid_angle_sr: sun.solid_angle_sr,
         region_radius_deg: sun.region_radius_deg,
+        shape: sun.shape.map(|s| s.in_frame(target.orientation.frame)),
         share: sun.share,
         clipped: sun.clipped,
         azimuth_deg: sun.azimuth_deg(),
@@ -230,6 +234,7 @@ pub fn read_sun_json(path: &std::path::Path) -> Result<Vec<Sun>> {
         clipped: l.clipped,
         texels: 0,
         region_radius_deg: l.region_radius_deg,
+        shape: l.shape,
     };
     Ok(std::iter::once(&j.sun)
         .chain(&j.additional_lights)

@@ -177,6 +177,7 @@ pub(crate) fn fit_sun(grid: &Grid, seed: usize, flux: f64) -> Option<SunFit> {
             clipped,
             texels: region.len(),
             region_radius_deg: region_radius.to_degrees() as f32,
+            shape: None,
         },
         region,
         fill,

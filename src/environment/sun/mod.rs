@@ -54,9 +54,8 @@ use crate::environment::Environment;
 use crate::math::cubemap::rotate_y;
 use fit::{clusters, fit_sun, flux_stats};
 use grid::{luminance, tangent_frame, Grid};
-pub use source::{
-    find_sources, take_sources_out, Source, SourceShape,
-};
+pub use source::{find_sources, take_sources_out, Source, SourceShape};
+use source::take_sources_out_of;
 
 /// A texel is a candidate when its luminance exceeds this multiple of the environment's
 /// mean (the hot-texel threshold of [`crate::environment::hot`]).
@@ -177,6 +176,11 @@ pub struct Sun {
     /// does not give it.
     #[serde(default)]
     pub region_radius_deg: f32,
+    /// An area source's shape (a soft box, a window, a lamp wider than a sun): `None` for
+    /// a sun-sized light, which is shaded as a directional light. A renderer with area
+    /// lights shades the shape; one without, a directional light of the same E⊥.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shape: Option<SourceShape>,
 }
 
 impl Sun {
@@ -321,23 +325,37 @@ pub fn find_lights(env: &Environment) -> Vec<Sun> {
 /// [`find_lights`], taking each light out of `env` as it is found: `env` becomes the
 /// residual (a cube keeps its level 0 alone, its mips being stale).
 pub fn split_lights(env: &mut Environment) -> Vec<Sun> {
-    let flux = flux_stats(&Grid::of(env)).flux;
-    let mut lights = Vec::new();
-    take_further_lights(env, flux, &mut lights);
-    lights
+    match take_lights_out(env) {
+        Some((lights, residual)) => {
+            *env = residual;
+            lights
+        }
+        None => Vec::new(),
+    }
 }
 
 /// The lights of `env` ([`find_lights`]) and the residual they leave, or `None` when it
 /// has none (and nothing is copied): what `--sun split` bakes from, with `env` kept as
-/// seen for a background.
+/// seen for a background. The sun-sized lights first (at most [`MAX_LIGHTS`]), then the
+/// area sources of what they leave ([`take_sources_out`], each with its [`Sun::shape`]),
+/// every share of `env`'s flux.
 pub fn take_lights_out(env: &Environment) -> Option<(Vec<Sun>, Environment)> {
     let flux = flux_stats(&Grid::of(env)).flux;
-    let sun = find_next(env, flux)?;
-    let mut residual = env.clone();
-    apply_fill(&mut residual, &sun);
-    let mut lights = vec![sun.sun];
-    take_further_lights(&mut residual, flux, &mut lights);
-    Some((lights, residual))
+    let mut lights = Vec::new();
+    let mut residual = None;
+    if let Some(sun) = find_next(env, flux) {
+        let mut rest = env.clone();
+        apply_fill(&mut rest, &sun);
+        lights.push(sun.sun);
+        take_further_lights(&mut rest, flux, &mut lights);
+        residual = Some(rest);
+    }
+    let (sources, rest) = take_sources_out_of(residual.as_ref().unwrap_or(env), flux);
+    if !sources.is_empty() {
+        lights.extend(sources.iter().map(Source::as_light));
+        residual = Some(rest);
+    }
+    residual.map(|r| (lights, r))
 }
 
 /// Finds and takes out of `env` the lights after `lights`, up to [`MAX_LIGHTS`] in all.
@@ -394,6 +412,7 @@ mod tests {
             clipped: false,
             texels: 0,
             region_radius_deg: 2.5,
+            shape: None,
         };
         let cells = sun.disc_cells(4);
         assert_eq!(cells.len(), 37);

@@ -35,7 +35,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::environment::sun::fit::{fill_region, fit_plane, flux_centre, flux_stats, Filled};
 use crate::environment::sun::grid::{angle, dot, luminance, normalize, tangent_frame, Grid};
-use crate::environment::sun::{azimuth_deg, elevation_deg, HOT_FACTOR, MIN_SHARE, RING_TEXELS};
+use crate::environment::sun::{
+    azimuth_deg, elevation_deg, Sun, HOT_FACTOR, MIN_SHARE, RING_TEXELS,
+};
 use crate::environment::Environment;
 use crate::math::cubemap::rotate_y;
 
@@ -92,6 +94,23 @@ impl SourceShape {
         }
     }
 
+    /// This shape with its axis in the frame `frame` maps the generic frame to (a target's
+    /// world frame, as its lights' directions are).
+    pub fn in_frame(self, frame: crate::math::cubemap::AxisMap) -> SourceShape {
+        match self {
+            SourceShape::Rect {
+                half_width_deg,
+                half_height_deg,
+                width_axis,
+            } => SourceShape::Rect {
+                half_width_deg,
+                half_height_deg,
+                width_axis: frame.apply(width_axis),
+            },
+            disc => disc,
+        }
+    }
+
     /// The angular radius of the disc of the same solid angle, in degrees: one size to
     /// compare sources of either shape by.
     pub fn equivalent_radius_deg(&self) -> f64 {
@@ -124,9 +143,28 @@ pub struct Source {
     pub shape_residual: f32,
     /// How many texels its region holds (taken out and filled).
     pub texels: usize,
+    /// The widest angle from its direction to a texel of its region, in degrees.
+    pub region_radius_deg: f32,
 }
 
 impl Source {
+    /// This source as a light of the environment: its E⊥, direction and share, the disc of
+    /// its solid angle for a size, its shape kept ([`Sun::shape`]): a renderer without
+    /// area lights shades it as a directional light.
+    pub fn as_light(&self) -> Sun {
+        Sun {
+            direction: self.direction,
+            irradiance: self.irradiance,
+            solid_angle_sr: self.solid_angle_sr,
+            angular_radius_deg: self.shape.equivalent_radius_deg() as f32,
+            share: self.share,
+            clipped: false,
+            texels: self.texels,
+            region_radius_deg: self.region_radius_deg,
+            shape: Some(self.shape),
+        }
+    }
+
     /// The uniform radiance of the shape that carries E⊥, per channel.
     pub fn radiance(&self) -> [f32; 3] {
         let omega = self.solid_angle_sr.max(f32::MIN_POSITIVE);
@@ -188,7 +226,8 @@ struct SourceFit {
 
 /// The compact bright sources of `env`, most energetic first (see the module's estimator).
 pub fn find_sources(env: &Environment) -> Vec<Source> {
-    fit_sources(&Grid::of(env))
+    let grid = Grid::of(env);
+    fit_sources(&grid, flux_stats(&grid).flux)
         .into_iter()
         .map(|f| f.source)
         .collect()
@@ -197,7 +236,14 @@ pub fn find_sources(env: &Environment) -> Vec<Source> {
 /// [`find_sources`] and the residual they leave: `env` with each source's region replaced
 /// by its fill (a cube keeps its level 0 alone, its mips being stale).
 pub fn take_sources_out(env: &Environment) -> (Vec<Source>, Environment) {
-    let fits = fit_sources(&Grid::of(env));
+    let grid = Grid::of(env);
+    take_sources_out_of(env, flux_stats(&grid).flux)
+}
+
+/// [`take_sources_out`] of `env`, a residual of an environment of luminous flux `flux`:
+/// the hot threshold and each source's share are the environment's, not the residual's.
+pub(crate) fn take_sources_out_of(env: &Environment, flux: f64) -> (Vec<Source>, Environment) {
+    let fits = fit_sources(&Grid::of(env), flux);
     let mut residual = env.clone();
     for fit in &fits {
         match &mut residual {
@@ -267,8 +313,8 @@ fn hot_regions(grid: &Grid, threshold: f64) -> (Vec<bool>, Vec<(Vec<usize>, f64)
     (hot, regions)
 }
 
-fn fit_sources(grid: &Grid) -> Vec<SourceFit> {
-    let flux = flux_stats(grid).flux;
+/// The sources of `grid`, a residual of an environment of luminous flux `flux`.
+fn fit_sources(grid: &Grid, flux: f64) -> Vec<SourceFit> {
     if flux.is_nan() || flux <= 0.0 {
         return Vec::new();
     }
@@ -339,6 +385,7 @@ fn fit_source(grid: &Grid, region: Vec<usize>, claimed: &[bool], flux: f64) -> O
             share: share as f32,
             shape_residual: shape_residual as f32,
             texels: region.len(),
+            region_radius_deg: reach.to_degrees() as f32,
         },
         region,
         fill,

@@ -1,7 +1,7 @@
 //! The lights taken out of the environment, shaded on the preview's split-sum side: the sun
-//! and the compact lights as directional lights ([`add_sun_light`]), area sources
-//! ([`crate::environment::sun::take_sources_out`]) from an LTC table
-//! ([`add_area_light`], [`crate::plan::ltc::shade_polygon`]). An area source is a polygon
+//! and the sun-sized lights as directional lights ([`add_sun_light`]), area sources (a
+//! light with a [`Sun::shape`]) from an LTC table ([`add_area_light`],
+//! [`crate::plan::ltc::shade_polygon`]). An area source is a polygon
 //! (a rectangle's corners, a disc's equal-area regular polygon,
 //! [`crate::math::ltc::disc_polygon`]) of uniform radiance E⊥ / Ω_polygon, so the light it
 //! carries is its E⊥ exactly.
@@ -10,7 +10,7 @@ use glam::Vec3;
 
 use crate::cpu::preview_split_sum::{sample_lut, specular_compensation};
 use crate::cpu::preview_truth::hot_texels_shade;
-use crate::environment::sun::{Source, SourceShape, Sun};
+use crate::environment::sun::{SourceShape, Sun};
 use crate::environment::texels::SourceTexel;
 use crate::math::ltc::{disc_polygon, polygon_solid_angle, rect_polygon};
 use crate::plan::ltc::{shade_polygon, LtcTable};
@@ -19,10 +19,11 @@ use crate::plan::scene::{pixel_geometry, preview_material, PixelGeometry, SceneU
 use crate::plan::material::ShadeMaterial;
 use crate::plan::shading::LightBrdf;
 
-/// The polygon `source` is shaded as (unit vertices in order) and its uniform radiance.
-pub fn source_polygon(source: &Source) -> (Vec<Vec3>, Vec3) {
-    let centre = Vec3::from(source.direction);
-    let polygon = match source.shape {
+/// The polygon an area light of `shape` about `light`'s direction is shaded as (unit
+/// vertices in order) and its uniform radiance, E⊥ over the polygon's solid angle.
+pub fn area_polygon(light: &Sun, shape: SourceShape) -> (Vec<Vec3>, Vec3) {
+    let centre = Vec3::from(light.direction);
+    let polygon = match shape {
         SourceShape::Disc { radius_deg } => disc_polygon(centre, radius_deg.to_radians()),
         SourceShape::Rect {
             half_width_deg,
@@ -37,7 +38,7 @@ pub fn source_polygon(source: &Source) -> (Vec<Vec3>, Vec3) {
         .to_vec(),
     };
     let omega = polygon_solid_angle(&polygon).max(f32::MIN_POSITIVE);
-    (polygon, Vec3::from(source.irradiance) / omega)
+    (polygon, Vec3::from(light.irradiance) / omega)
 }
 
 /// The scene and tables a light is added to the split-sum panel with.
@@ -106,10 +107,16 @@ pub fn add_sun_light(pass: &LightPass, sun: &Sun, panel: &mut [[f32; 3]]) {
     });
 }
 
-/// Adds area source `source` to every sphere pixel of the split-sum panel, shaded from
-/// `table` ([`shade_polygon`]).
-pub fn add_area_light(pass: &LightPass, source: &Source, table: &LtcTable, panel: &mut [[f32; 3]]) {
-    let (polygon, radiance) = source_polygon(source);
+/// Adds an area light, `light` of `shape`, to every sphere pixel of the split-sum panel,
+/// shaded from `table` ([`shade_polygon`]).
+pub fn add_area_light(
+    pass: &LightPass,
+    light: &Sun,
+    shape: SourceShape,
+    table: &LtcTable,
+    panel: &mut [[f32; 3]],
+) {
+    let (polygon, radiance) = area_polygon(light, shape);
     pass.add(panel, |n, v, n_dot_v, m| {
         shade_polygon(table, n, v, n_dot_v, m, &polygon, radiance)
     });

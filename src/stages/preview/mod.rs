@@ -30,10 +30,10 @@ use glam::Vec3;
 use crate::backend::Backend;
 use std::borrow::Cow;
 
-use crate::environment::sun::{Source, Sun};
+use crate::environment::sun::Sun;
 use crate::environment::Cubemap;
 use crate::plan::chain::SpecularChain;
-use crate::plan::ltc::LtcTable;
+use crate::plan::ltc::shared_table;
 use crate::plan::lut::{BrdfLut, LutLayout, DEFAULT_LUT_SIZE};
 use crate::plan::scene::{
     disk_points, material_table, pixel_geometry, PixelGeometry, Scene,
@@ -65,17 +65,13 @@ pub struct BakedLight<'a> {
     /// The split-sum LUT (scale, bias).
     pub lut: &'a BrdfLut,
     /// The lights taken out of the chain and the irradiance (`--sun split`, the sun
-    /// first): the split-sum shades each as a directional light with the preview's BRDF.
+    /// first): the split-sum shades each with the preview's BRDF, as a directional light,
+    /// or as an area light from the BRDF's LTC table where it has a shape.
     pub lights: &'a [Sun],
     /// The environment as read, lights included, in its level 0
     /// ([`BakedEnvironment::seen`]): what the truth integrates and the exposure is chosen
     /// from, whatever was taken out of the chain.
     pub seen: &'a Cubemap,
-    /// Area sources taken out of the chain and the irradiance, shaded from `ltc`
-    /// ([`lights::add_area_light`]); none where `ltc` is `None`.
-    pub area_lights: &'a [Source],
-    /// The LTC table the area sources are shaded from.
-    pub ltc: Option<&'a LtcTable>,
 }
 
 /// What the per-sphere figures are, as `preview --json` and the manifest state them.
@@ -385,12 +381,17 @@ pub fn render_preview(
         brdf: shading.light,
         lut: light.lut,
     };
+    let table = light
+        .lights
+        .iter()
+        .any(|l| l.shape.is_some())
+        .then(|| shared_table(shading.light));
     for sun in light.lights {
-        add_sun_light(&pass, sun, &mut split_sum);
-    }
-    if let Some(table) = light.ltc {
-        for source in light.area_lights {
-            lights::add_area_light(&pass, source, table, &mut split_sum);
+        match (sun.shape, &table) {
+            (Some(shape), Some(table)) => {
+                lights::add_area_light(&pass, sun, shape, table, &mut split_sum)
+            }
+            _ => add_sun_light(&pass, sun, &mut split_sum),
         }
     }
     let split_sum_seconds = t.elapsed().as_secs_f64();
@@ -464,8 +465,6 @@ impl<'a> BakedLight<'a> {
             lut,
             lights: baked.split_lights(),
             seen: baked.seen(),
-            area_lights: &[],
-            ltc: None,
         }
     }
 }
