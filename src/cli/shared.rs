@@ -68,13 +68,20 @@ pub(super) fn sun_line(
             100.0 * lights[1..].iter().map(|l| l.share).sum::<f32>()
         ),
     };
+    // The first light is the sun, or a studio's lamp (an area light, whose shape it gives).
+    let first = |l: &splitsum::Sun| match l.shape {
+        Some(_) => "brightest light",
+        None => "sun",
+    };
     Some(match (lights.first(), mode) {
         (Some(sun), SunMode::Keep) => format!(
-            "{input}: sun at {sun}{more}; baked into the IBL (--sun split writes them as lights, the sun with shadows)"
+            "{input}: {} at {sun}{more}; baked into the IBL (--sun split writes them as lights, the first with shadows)",
+            first(sun)
         ),
-        (Some(sun), SunMode::Split) => {
-            format!("{input}: sun at {sun}{more}; taken out of the IBL, written as {light}")
-        }
+        (Some(sun), SunMode::Split) => format!(
+            "{input}: {} at {sun}{more}; taken out of the IBL, written as {light}",
+            first(sun)
+        ),
         (None, SunMode::Keep) => return None,
         (None, SunMode::Split) => format!(
             "{input}: no sun (no compact source holds {:.0} % of the light): nothing taken out, no light written",

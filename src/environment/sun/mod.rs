@@ -260,14 +260,18 @@ pub(crate) fn azimuth_deg(d: [f32; 3]) -> f32 {
 }
 
 impl std::fmt::Display for Sun {
-    /// "azimuth 36.0°, elevation 10.1°, radius 0.62°, 48.3 % of the light, E 3.64 (clipped)".
+    /// "azimuth 36.0°, elevation 10.1°, radius 0.62°, 48.3 % of the light, E 3.64 (clipped)";
+    /// an area light gives its shape ("rectangle, 6.25° × 6.14°") for the radius.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let size = match self.shape {
+            Some(shape) => format!("an area light: {shape}"),
+            None => format!("radius {:.2}°", self.angular_radius_deg),
+        };
         write!(
             f,
-            "azimuth {:.1}°, elevation {:.1}°, radius {:.2}°, {:.1} % of the light, E {:.4}{}",
+            "azimuth {:.1}°, elevation {:.1}°, {size}, {:.1} % of the light, E {:.4}{}",
             self.azimuth_deg(),
             self.elevation_deg(),
-            self.angular_radius_deg,
             100.0 * self.share,
             self.illuminance(),
             if self.clipped {
