@@ -402,7 +402,7 @@ fn inspect_lists_the_area_sources() {
         "{v}"
     );
     let sources = v["sources"].as_array().unwrap();
-    assert_eq!(sources.len(), 1, "{v}");
+    assert!(!sources.is_empty(), "{v}");
     let s = &sources[0];
     assert!(s["share"].as_f64().unwrap() > 0.6, "{s}");
     assert!(
