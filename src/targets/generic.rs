@@ -202,7 +202,7 @@ pub fn sun_json(lights: &[Sun], target: &Target) -> Option<String> {
         angular_radius_deg: sun.angular_radius_deg,
         solid_angle_sr: sun.solid_angle_sr,
         region_radius_deg: sun.region_radius_deg,
-        shape: sun.shape.map(|s| s.in_frame(target.orientation.frame)),
+        shape: sun.shape.map(|s| s.map_axis(|d| target.orientation.frame.apply(d))),
         share: sun.share,
         clipped: sun.clipped,
         azimuth_deg: sun.azimuth_deg(),

@@ -200,10 +200,12 @@ impl Sun {
         luminance(self.irradiance.map(f64::from)) as f32
     }
 
-    /// This sun turned about +Y as `--rotate DEG` turns the environment.
+    /// This light turned about +Y as `--rotate DEG` turns the environment: its direction,
+    /// and an area light's axis with it.
     pub fn rotated(mut self, rotate_degrees: f32) -> Sun {
-        let r = rotate_degrees.to_radians();
-        self.direction = rotate_y(self.direction, r.cos(), r.sin());
+        let turn = turn_about_y(rotate_degrees);
+        self.direction = turn(self.direction);
+        self.shape = self.shape.map(|s| s.map_axis(turn));
         self
     }
 
@@ -246,6 +248,13 @@ impl Sun {
         }
         cells
     }
+}
+
+/// The turn about +Y of `--rotate DEG`, as a map of directions.
+pub(crate) fn turn_about_y(rotate_degrees: f32) -> impl Fn([f32; 3]) -> [f32; 3] + Copy {
+    let r = rotate_degrees.to_radians();
+    let (c, s) = (r.cos(), r.sin());
+    move |d| rotate_y(d, c, s)
 }
 
 /// Elevation of unit `d` above the horizon (the XZ plane) in degrees.
@@ -426,6 +435,35 @@ mod tests {
             let a = angle(d.map(f64::from), sun.direction.map(f64::from)).to_degrees();
             assert!(a < 2.0, "{a}");
         }
+    }
+
+    /// `--rotate` turns an area light's axis with its direction, whether the light is
+    /// turned as a source or as a light of the bake.
+    #[test]
+    fn a_turn_turns_an_area_lights_axis() {
+        let source = Source {
+            direction: [1.0, 0.0, 0.0],
+            irradiance: [1.0; 3],
+            shape: SourceShape::Rect {
+                half_width_deg: 4.0,
+                half_height_deg: 2.0,
+                width_axis: [0.0, 0.0, 1.0],
+            },
+            solid_angle_sr: 0.01,
+            share: 0.5,
+            shape_residual: 0.0,
+            texels: 10,
+            region_radius_deg: 6.0,
+        };
+        let light = source.as_light().rotated(90.0);
+        assert_eq!(light, source.rotated(90.0).as_light());
+        let turned = rotate_y([0.0, 0.0, 1.0], 0.0, 1.0);
+        let Some(SourceShape::Rect { width_axis, .. }) = light.shape else {
+            panic!("{light:?}")
+        };
+        let d = angle(width_axis.map(f64::from), turned.map(f64::from));
+        assert!(d < 1e-6, "{width_axis:?} against {turned:?}");
+        assert!(angle(light.direction.map(f64::from), rotate_y([1.0, 0.0, 0.0], 0.0, 1.0).map(f64::from)) < 1e-6);
     }
 
     #[test]

@@ -36,10 +36,10 @@ use serde::{Deserialize, Serialize};
 use crate::environment::sun::fit::{fill_region, fit_plane, flux_centre, flux_stats, Filled};
 use crate::environment::sun::grid::{angle, dot, luminance, normalize, tangent_frame, Grid};
 use crate::environment::sun::{
-    azimuth_deg, elevation_deg, Sun, HALO_TEXELS, HOT_FACTOR, MIN_SHARE, RING_TEXELS,
+    azimuth_deg, elevation_deg, turn_about_y, Sun, HALO_TEXELS, HOT_FACTOR, MIN_SHARE,
+    RING_TEXELS,
 };
 use crate::environment::Environment;
-use crate::math::cubemap::rotate_y;
 
 /// At most this many sources are measured, the most energetic first: a studio's lamps
 /// and soft boxes, an interior's windows and brightest lamps.
@@ -100,9 +100,9 @@ impl SourceShape {
         }
     }
 
-    /// This shape with its axis in the frame `frame` maps the generic frame to (a target's
-    /// world frame, as its lights' directions are).
-    pub fn in_frame(self, frame: crate::math::cubemap::AxisMap) -> SourceShape {
+    /// This shape with its axis mapped by `map` (a turn, a target's frame), as its
+    /// light's direction is: a disc has no axis.
+    pub fn map_axis(self, map: impl Fn([f32; 3]) -> [f32; 3]) -> SourceShape {
         match self {
             SourceShape::Rect {
                 half_width_deg,
@@ -111,7 +111,7 @@ impl SourceShape {
             } => SourceShape::Rect {
                 half_width_deg,
                 half_height_deg,
-                width_axis: frame.apply(width_axis),
+                width_axis: map(width_axis),
             },
             disc => disc,
         }
@@ -194,12 +194,9 @@ impl Source {
 
     /// This source turned about +Y as `--rotate DEG` turns the environment.
     pub fn rotated(mut self, rotate_degrees: f32) -> Source {
-        let r = rotate_degrees.to_radians();
-        let turn = |d: [f32; 3]| rotate_y(d, r.cos(), r.sin());
+        let turn = turn_about_y(rotate_degrees);
         self.direction = turn(self.direction);
-        if let SourceShape::Rect { width_axis, .. } = &mut self.shape {
-            *width_axis = turn(*width_axis);
-        }
+        self.shape = self.shape.map_axis(turn);
         self
     }
 }
