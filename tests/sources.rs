@@ -5,6 +5,9 @@
 //! within 5 % and its energy within 0.1 %; the sources and the residual hold the input's
 //! flux per channel, and the residual is nowhere negative nor above the input.
 
+mod common;
+
+use common::{angle_deg, cross, direction, dot, normalize};
 use splitsum::math::cubemap::{cube_texel_direction, cube_texel_solid_angle};
 use splitsum::{find_sources, take_sources_out, Cubemap, Environment, Equirect, SourceShape};
 
@@ -13,32 +16,6 @@ use splitsum::{find_sources, take_sources_out, Cubemap, Environment, Equirect, S
 const LAMP_E: f64 = 3.0;
 /// Sub-samples per texel edge of the rasterisation.
 const SUB: usize = 8;
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn normalize(a: [f64; 3]) -> [f64; 3] {
-    let l = dot(a, a).sqrt();
-    a.map(|v| v / l)
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn direction(azimuth: f64, elevation: f64) -> [f64; 3] {
-    let (a, e) = (azimuth.to_radians(), elevation.to_radians());
-    [e.cos() * a.cos(), e.sin(), e.cos() * a.sin()]
-}
-
-fn angle_deg(a: [f64; 3], b: [f64; 3]) -> f64 {
-    dot(a, b).clamp(-1.0, 1.0).acos().to_degrees()
-}
 
 /// A known source: its centre, its shape (full sides or diameter in degrees) and, for a
 /// rectangle, the turn of its width from the local east.
@@ -410,10 +387,7 @@ fn inspect_lists_the_area_sources() {
         "{s}"
     );
     assert!(s["solid_angle_sr"].as_f64().unwrap() > 0.0, "{s}");
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_splitsum"))
-        .args(["inspect", studio])
-        .output()
-        .unwrap();
+    let out = common::run_ok(common::splitsum().args(["inspect", studio]));
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(
         text.contains("source 1") && text.contains("% of the light"),

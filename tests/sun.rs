@@ -11,7 +11,10 @@ use splitsum::environment::{Cubemap, Environment, Equirect};
 use splitsum::math::cubemap::cube_face_direction;
 use splitsum::{find_sun, split_sun, Sun};
 
-use common::{brute_force_irradiance, light_irradiance, test_equirect, uniform_directions};
+use common::{
+    brute_force_irradiance, direction, dot, light_irradiance, normalize, test_equirect,
+    uniform_directions,
+};
 
 /// The synthetic sun's irradiance E⊥ per channel (the sky's is about 2.3, so the sun
 /// holds about two thirds of the light, as outdoor HDRIs' suns do).
@@ -23,20 +26,6 @@ const SUPERSAMPLE: usize = 32;
 /// sun has no flat top, while a uniform disc wider than a few texels is a plateau, as a
 /// saturated camera's sun is (`a_flat_topped_sun_reads_as_clipped`).
 const LIMB_DARKENING: f64 = 0.6;
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn normalize(a: [f64; 3]) -> [f64; 3] {
-    let l = dot(a, a).sqrt();
-    a.map(|v| v / l)
-}
-
-fn direction(azimuth_deg: f64, elevation_deg: f64) -> [f64; 3] {
-    let (a, e) = (azimuth_deg.to_radians(), elevation_deg.to_radians());
-    [e.cos() * a.cos(), e.sin(), e.cos() * a.sin()]
-}
 
 fn angle_deg(a: [f64; 3], b: [f64; 3]) -> f64 {
     let c = [

@@ -15,7 +15,7 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::{output_dir, run_ok, splitsum};
+use common::{angle_deg, direction, output_dir, run_ok, splitsum};
 use splitsum::backend::CpuBackend;
 use splitsum::bake::{bake_environment, BakeOptions};
 use splitsum::stages::preview::{render_preview, BakedLight, SphereStats};
@@ -38,19 +38,6 @@ fn texel_direction(x: u32, y: u32) -> [f64; 3] {
         theta.cos(),
         theta.sin() * phi.sin(),
     ]
-}
-
-/// The unit direction of azimuth and elevation in degrees.
-fn direction(azimuth: f64, elevation: f64) -> [f64; 3] {
-    let (a, e) = (azimuth.to_radians(), elevation.to_radians());
-    [e.cos() * a.cos(), e.sin(), e.cos() * a.sin()]
-}
-
-fn angle_deg(a: [f64; 3], b: [f64; 3]) -> f64 {
-    (a[0] * b[0] + a[1] * b[1] + a[2] * b[2])
-        .clamp(-1.0, 1.0)
-        .acos()
-        .to_degrees()
 }
 
 /// An equirect of `sky(direction)` with `lamps` (centre, radius in degrees) of [`LAMP`]

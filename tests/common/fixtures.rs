@@ -1,6 +1,7 @@
 //! Fixtures of the integration tests: the binary, output folders under `target/`, the
 //! backends and GPU context (skipped with a message without an adapter, unless required),
-//! the bundled HDRIs, random directions, and the peers (cmgen) some tests compare with.
+//! the bundled HDRIs, random directions, the vector arithmetic of synthetic environments,
+//! and the peers (cmgen) some tests compare with.
 
 use std::f64::consts::PI;
 use std::path::PathBuf;
@@ -228,4 +229,36 @@ pub fn forward_pass_bar(ctx: &splitsum::gpu::GpuContext) -> (u8, usize) {
     } else {
         (2, 50)
     }
+}
+
+/// a · b.
+pub fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// a / |a|.
+pub fn normalize(a: [f64; 3]) -> [f64; 3] {
+    let l = dot(a, a).sqrt();
+    a.map(|v| v / l)
+}
+
+/// a × b.
+pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// The unit direction of azimuth and elevation in degrees (docs/conventions.md: azimuth 0
+/// along +X, 90 along +Z; elevation above the XZ plane).
+pub fn direction(azimuth_deg: f64, elevation_deg: f64) -> [f64; 3] {
+    let (a, e) = (azimuth_deg.to_radians(), elevation_deg.to_radians());
+    [e.cos() * a.cos(), e.sin(), e.cos() * a.sin()]
+}
+
+/// The angle between unit vectors, in degrees.
+pub fn angle_deg(a: [f64; 3], b: [f64; 3]) -> f64 {
+    dot(a, b).clamp(-1.0, 1.0).acos().to_degrees()
 }
