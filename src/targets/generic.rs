@@ -162,6 +162,10 @@ struct LightJson {
     /// An area source's shape (absent for a directional light).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     shape: Option<crate::environment::sun::SourceShape>,
+    /// The rectangle an engine's rect area light draws for an area source (derived from
+    /// `shape`; not read back).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    rect_light: Option<crate::environment::sun::RectLight>,
     share: f32,
     clipped: bool,
     azimuth_deg: f32,
@@ -182,7 +186,7 @@ struct SunJson {
 }
 
 /// What `sun.json`'s figures mean.
-const SUN_JSON_ABOUT: &str = "the sun, taken out of the IBL, as a directional light (cast its shadows); additional_lights: further compact lights taken out, in the same terms. direction: unit vector toward the light in the frame below; irradiance: E on a surface facing it per channel (the sum of L dw over it, in the HDRI's radiance units); illuminance: its luminance (0.2126 R + 0.7152 G + 0.0722 B); angular_radius_deg and solid_angle_sr: the uniform disc of the same second moment, never narrower than one of the HDRI's texels; region_radius_deg: the cap taken out of the HDRI for it; shape (an area light: a soft box, a window, a lamp wider than a sun): kind disc with radius_deg, or kind rect with half_width_deg and half_height_deg along width_axis (a unit vector in the frame below), the gnomonic rectangle about direction, of uniform radiance irradiance / solid_angle_sr, which a renderer without area lights shades as a directional light; share: of the HDRI's luminous flux; azimuth and elevation in the generic frame (azimuth 0 along +X, 90 along +Z); clipped: its core is a plateau (a saturated camera), so its irradiance is a lower bound";
+const SUN_JSON_ABOUT: &str = "the sun, taken out of the IBL, as a directional light (cast its shadows); additional_lights: further compact lights taken out, in the same terms. direction: unit vector toward the light in the frame below; irradiance: E on a surface facing it per channel (the sum of L dw over it, in the HDRI's radiance units); illuminance: its luminance (0.2126 R + 0.7152 G + 0.0722 B); angular_radius_deg and solid_angle_sr: the uniform disc of the same second moment, never narrower than one of the HDRI's texels; region_radius_deg: the cap taken out of the HDRI for it; shape (an area light: a soft box, a window, a lamp wider than a sun): kind disc with radius_deg, or kind rect with half_width_deg and half_height_deg along width_axis (a unit vector in the frame below), the gnomonic rectangle about direction, of uniform radiance irradiance / solid_angle_sr, which a renderer without area lights shades as a directional light; rect_light (with shape): the rectangle a rect area light draws for it, facing the origin from distance d along direction, 2 d tan(half_width_deg) along width_axis by 2 d tan(half_height_deg) along height_axis (perpendicular to both), of uniform radiance (per channel, luminance its luminance) so that it gives a surface facing it irradiance from the origin, a disc being the square of its solid angle; share: of the HDRI's luminous flux; azimuth and elevation in the generic frame (azimuth 0 along +X, 90 along +Z); clipped: its core is a plateau (a saturated camera), so its irradiance is a lower bound";
 
 /// Stages `sun.json` when lights were taken out of `baked` (their directions in the
 /// target's world frame). Every target's writer calls it: the IBL of a split bake lacks
@@ -203,6 +207,9 @@ pub fn sun_json(lights: &[Sun], target: &Target) -> Option<String> {
         solid_angle_sr: sun.solid_angle_sr,
         region_radius_deg: sun.region_radius_deg,
         shape: sun.shape.map(|s| s.map_axis(|d| target.orientation.frame.apply(d))),
+        rect_light: sun
+            .rect_light()
+            .map(|r| r.map_axes(|d| target.orientation.frame.apply(d))),
         share: sun.share,
         clipped: sun.clipped,
         azimuth_deg: sun.azimuth_deg(),

@@ -201,6 +201,14 @@ pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
+pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
 pub(crate) fn normalize(a: [f64; 3]) -> [f64; 3] {
     let l = dot(a, a).sqrt();
     if l > 0.0 {
@@ -217,25 +225,12 @@ pub(crate) fn tangent_frame(c: [f64; 3]) -> ([f64; 3], [f64; 3]) {
     } else {
         [1.0, 0.0, 0.0]
     };
-    let t1 = normalize([
-        up[1] * c[2] - up[2] * c[1],
-        up[2] * c[0] - up[0] * c[2],
-        up[0] * c[1] - up[1] * c[0],
-    ]);
-    let t2 = [
-        c[1] * t1[2] - c[2] * t1[1],
-        c[2] * t1[0] - c[0] * t1[2],
-        c[0] * t1[1] - c[1] * t1[0],
-    ];
-    (t1, t2)
+    let t1 = normalize(cross(up, c));
+    (t1, cross(c, t1))
 }
 
 /// The angle between unit vectors, accurate for small angles.
 pub(crate) fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
-    let cross = [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ];
-    dot(cross, cross).sqrt().atan2(dot(a, b))
+    let c = cross(a, b);
+    dot(c, c).sqrt().atan2(dot(a, b))
 }

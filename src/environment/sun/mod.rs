@@ -46,6 +46,7 @@
 
 mod fit;
 pub(crate) mod grid;
+mod rect;
 mod source;
 
 use serde::{Deserialize, Serialize};
@@ -54,6 +55,7 @@ use crate::environment::Environment;
 use crate::math::cubemap::rotate_y;
 use fit::{clusters, fit_sun, flux_stats};
 use grid::{luminance, tangent_frame, Grid};
+pub use rect::RectLight;
 pub use source::{find_sources, take_sources_out, Source, SourceShape};
 use source::take_sources_out_of;
 
