@@ -101,8 +101,8 @@ pub use bake::{
 };
 pub use environment::inventory::{inventory, Inventory};
 pub use environment::sun::{
-    find_lights, find_sources, find_sun, split_lights, split_sun, take_sources_out, Source,
-    SourceShape, Sun, SunFit, SunMode, MAX_LIGHTS, MIN_SHARE as MIN_SUN_SHARE,
+    find_lights, find_sources, find_sun, split_lights, split_sun, take_sources_out, RectLight,
+    Source, SourceShape, Sun, SunFit, SunMode, MAX_LIGHTS, MIN_SHARE as MIN_SUN_SHARE,
 };
 pub use environment::{Cubemap, Environment, Equirect};
 pub use error::{Error, Result};
@@ -112,13 +112,14 @@ pub use io::check_output_extension;
 pub use io::cubemap::{check_cube_path, write_cubemap, Container, CubeLayout, CubeWriteOptions};
 pub use io::format::CUBE_PIXEL_FORMATS;
 pub use io::input::input_stem;
+pub use io::ltc::{read_ltc, write_ltc};
 pub use io::lut::{check_lut_path, png_clip_warning, write_lut, LutWriteOptions};
 pub use io::staging::OutputRecord;
 pub use io::PixelFormat;
 pub use math::lookup::SpecularLookup;
 pub use plan::bc6h::Bc6hQuality;
 pub use plan::chain::{MipRoughness, SpecularChain};
-pub use plan::ltc::{LtcCell, LtcTable};
+pub use plan::ltc::{fit_ltc, LtcCell, LtcTable};
 pub use plan::lut::{BrdfLut, LutModel, DEFAULT_LUT_SIZE, MAX_LUT_SIZE};
 pub use plan::shading::{
     DiffuseLobe, IblTerms, IrradianceSource, LightBrdf, Masking, Shading, ShadingTerms,

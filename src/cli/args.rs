@@ -167,9 +167,10 @@ pub struct ViewArgs {
     #[arg(long, default_value_t = 1)]
     pub frames: u32,
 
-    /// An HDRI's sun at start: split out as a light with its shadow, or kept in the IBL
-    /// (U swaps; an HDRI with a sun is baked both ways).
-    #[arg(long, value_name = "MODE", default_value = "split", value_parser = sun_mode_parser())]
+    /// An HDRI's lights (its sun, a studio's lamps) at start: split out as lights with
+    /// their shadows, or kept in the IBL (U swaps; an HDRI with lights is baked both ways).
+    /// --lights is the same option.
+    #[arg(long, visible_alias = "lights", value_name = "MODE", default_value = "split", value_parser = sun_mode_parser())]
     pub sun: splitsum::SunMode,
 
     #[command(flatten)]
@@ -317,9 +318,11 @@ pub struct PreviewArgs {
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
 
-    /// With an environment: keep the sun in the IBL, or split it out and shade it as a
-    /// light with the BRDF [default: keep]. A bake folder is shown as it was baked.
-    #[arg(long, value_name = "MODE", value_parser = sun_mode_parser())]
+    /// With an environment: keep the lights (the sun, a studio's lamps) in the IBL, or
+    /// split them out and shade them as lights with the BRDF, area lights from the LTC
+    /// table [default: keep]. A bake folder is shown as it was baked. --lights is the same
+    /// option.
+    #[arg(long, visible_alias = "lights", value_name = "MODE", value_parser = sun_mode_parser())]
     pub sun: Option<splitsum::SunMode>,
 
     /// With an environment: bake it for this engine (its chain layout, its lookup's
@@ -352,11 +355,12 @@ pub struct InspectArgs {
 /// What to do with the sun (`--sun`), shared by `bake`, `cubemap` and `preview`.
 #[derive(Debug, Args)]
 pub struct SunArgs {
-    /// keep: the sun stays in the environment (a sun found is reported); split: it is taken
-    /// out, its texels filled from the sky around it, and written as a light (bake:
-    /// sun.json beside an IBL baked from the rest; cubemap: the rest as the cube and
-    /// <output stem>_sun.json)
-    #[arg(long, value_name = "MODE", default_value = "keep", value_parser = sun_mode_parser())]
+    /// keep: the lights (the sun, a studio's lamps and soft boxes) stay in the environment
+    /// (those found are reported); split: they are taken out, their texels filled from the
+    /// sky around them, and written as lights (bake: sun.json beside an IBL baked from the
+    /// rest; cubemap: the rest as the cube and <output stem>_sun.json). --lights is the
+    /// same option.
+    #[arg(long, visible_alias = "lights", value_name = "MODE", default_value = "keep", value_parser = sun_mode_parser())]
     pub sun: splitsum::SunMode,
 }
 
@@ -387,9 +391,9 @@ pub struct LutArgs {
     #[arg(short, long, default_value = "out/brdf_lut.png")]
     pub output: PathBuf,
 
-    /// Width and height of the table in texels.
-    #[arg(long, default_value_t = 512)]
-    pub size: u32,
+    /// Width and height of the table in texels [default: 512; 64 with --ltc].
+    #[arg(long)]
+    pub size: Option<u32>,
 
     /// KTX2/DDS: store 32-bit floats instead of 16-bit.
     #[arg(long = "f32")]
@@ -398,6 +402,12 @@ pub struct LutArgs {
     /// What the channels hold (docs/conventions.md, "BRDF LUT").
     #[arg(long, default_value = "schlick-ggx", value_parser = lut_model_parser())]
     pub model: LutModel,
+
+    /// Write the LTC table that area lights are shaded from instead (.json, in three.js's
+    /// LTC_1/LTC_2 layout; docs/targets.md, "Area lights"), fitted to the GGX lobe with
+    /// --model's masking (schlick-ggx or smith-correlated and their multiscatter models).
+    #[arg(long)]
+    pub ltc: bool,
 
     #[command(flatten)]
     pub common: CommonArgs,

@@ -259,17 +259,21 @@ pub fn verify(args: VerifyArgs) -> anyhow::Result<()> {
 
 /// `splitsum lut`.
 pub fn lut(args: LutArgs) -> anyhow::Result<()> {
+    if args.ltc {
+        return ltc(args);
+    }
+    let size = args.size.unwrap_or(splitsum::DEFAULT_LUT_SIZE);
     check_lut_path(&args.output).map_err(|e| for_user("lut", e))?;
     let mut baker = open_baker("lut", BakeOptions::default(), &args.common)?;
     let start = Instant::now();
     let lut = baker
-        .lut(args.model, args.size)
+        .lut(args.model, size)
         .map_err(|e| for_user("lut", e))?;
     warn(baker.take_warnings());
     if args.common.verbose {
         eprintln!(
             "brdf lut {0}x{0}: {1:.3} s",
-            args.size,
+            size,
             start.elapsed().as_secs_f64()
         );
     }
@@ -280,8 +284,32 @@ pub fn lut(args: LutArgs) -> anyhow::Result<()> {
     eprintln!(
         "wrote {} ({}×{} {})",
         args.output.display(),
-        args.size,
-        args.size,
+        size,
+        size,
+        args.model.name()
+    );
+    Ok(())
+}
+
+/// Cells per side of `lut --ltc`'s table by default: three.js's and Heitz's 64.
+const DEFAULT_LTC_SIZE: u32 = 64;
+
+/// `splitsum lut --ltc`: the LTC table of `--model`'s masking.
+fn ltc(args: LutArgs) -> anyhow::Result<()> {
+    let size = args.size.unwrap_or(DEFAULT_LTC_SIZE);
+    check_output_extension(&args.output, "an LTC table", &["json"])
+        .map_err(|e| for_user("lut", e))?;
+    let start = Instant::now();
+    let table = splitsum::fit_ltc(args.model, size).map_err(|e| for_user("lut", e))?;
+    if args.common.verbose {
+        eprintln!("ltc {0}x{0}: {1:.3} s", size, start.elapsed().as_secs_f64());
+    }
+    splitsum::write_ltc(&args.output, &table)?;
+    eprintln!(
+        "wrote {} ({}×{} LTC table, {} masking)",
+        args.output.display(),
+        size,
+        size,
         args.model.name()
     );
     Ok(())

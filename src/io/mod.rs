@@ -14,6 +14,7 @@ pub mod ktx1;
 pub mod ktx2;
 pub mod ldr;
 pub mod limits;
+pub mod ltc;
 pub mod lut;
 pub mod png;
 pub mod sh_text;

@@ -36,13 +36,16 @@
 
 use std::sync::{Arc, Mutex};
 
+use crate::{Error, Result};
+
 use glam::{Mat3, Vec3};
 use rayon::prelude::*;
 
 use crate::math::brdf::d_ggx;
 use crate::math::ltc::{polygon_form_factor, polygon_solid_angle, Ltc};
 use crate::plan::material::{diffuse_weight, directional_light, light_masking, ShadeMaterial};
-use crate::plan::shading::LightBrdf;
+use crate::plan::lut::LutModel;
+use crate::plan::shading::{DiffuseLobe, LightBrdf, Masking};
 
 /// Cells per side of the table the preview and the viewer shade area lights from: the
 /// mean of `tests/ltc.rs`'s lights within 1.5 % of brute force at r = 0.25 (2.8 % at
@@ -62,6 +65,40 @@ pub fn shared_table(brdf: LightBrdf) -> Arc<LtcTable> {
     tables.push(Arc::clone(&table));
     table
 }
+
+/// The `size`² LTC table that goes with the split-sum LUT `model`: fitted to the GGX lobe
+/// with its masking (Schlick-GGX for `schlick-ggx` and its multiscatter model, the
+/// height-correlated Smith for `smith-correlated`, its multiscatter model and Filament's
+/// DFG). The sheen models have no GGX lobe: an [`Error::InvalidOption`].
+pub fn fit_ltc(model: LutModel, size: u32) -> Result<LtcTable> {
+    let masking = match model {
+        LutModel::SchlickGgx | LutModel::MultiscatterSchlickGgx => Masking::SchlickGgx,
+        LutModel::SmithCorrelated | LutModel::MultiscatterSmithCorrelated | LutModel::FilamentDfg => {
+            Masking::SmithCorrelated
+        }
+        LutModel::Charlie | LutModel::SheenAlbedo => {
+            return Err(Error::InvalidOption {
+                option: "model",
+                message: format!("{} is a sheen lobe; an LTC table is fitted to a GGX lobe (schlick-ggx or smith-correlated)", model.name()),
+            })
+        }
+    };
+    if !(2..=MAX_LTC_SIZE).contains(&size) {
+        return Err(Error::InvalidOption {
+            option: "size",
+            message: format!("{size} cells a side; an LTC table has 2 to {MAX_LTC_SIZE}"),
+        });
+    }
+    let brdf = LightBrdf {
+        masking,
+        diffuse: DiffuseLobe::FresnelWeighted,
+        compensated: false,
+    };
+    Ok(LtcTable::fit(brdf, size))
+}
+
+/// The largest table [`fit_ltc`] fits: 256² cells cost about 16 × a 64² fit's 28 CPU-s.
+pub const MAX_LTC_SIZE: u32 = 256;
 
 /// The smallest α fitted: a mirror has no lobe to fit. Heitz's 1e-5 underflows GGX D in
 /// f32 ((n·h)² (α² − 1) + 1 rounds to 0 within f32's 6e-8 of n·h = 1); at 1e-3 the lobe is
