@@ -287,3 +287,73 @@ fn a_png_that_clips_the_lut_says_so() {
         assert!(o.status.success() && !err.contains("warning"), "{err}");
     }
 }
+
+/// `lut --ltc` writes the LTC table as `io::ltc` reads it back, for the model's masking;
+/// a sheen model, a size out of range and a format other than JSON are usage errors that
+/// write nothing.
+#[test]
+fn lut_ltc_writes_the_table() {
+    let dir = common::output_dir("cli-ltc");
+    let out = dir.join("ltc.json");
+    common::run_ok(
+        splitsum()
+            .args([
+                "lut",
+                "--ltc",
+                "--size",
+                "8",
+                "--model",
+                "smith-correlated",
+                "-o",
+            ])
+            .arg(&out),
+    );
+    let table = splitsum::read_ltc(&out).unwrap();
+    assert_eq!(table.size, 8);
+    assert_eq!(
+        table.brdf.masking,
+        splitsum::plan::shading::Masking::SmithCorrelated
+    );
+    // Normal incidence (row 0): an isotropic lobe, (1, 0, 0, w), w growing with r, and
+    // a magnitude A + B with F = 1 falling with r (Heitz's table: 0.307 at r = 1).
+    let row: Vec<_> = table.cells[..8].to_vec();
+    assert!(
+        row.iter()
+            .all(|c| c.inverse[0] == 1.0 && c.inverse[1].abs() < 1e-3 && c.inverse[2].abs() < 1e-3),
+        "{row:?}"
+    );
+    assert!(
+        row.windows(2)
+            .all(|w| w[1].inverse[3] > w[0].inverse[3] && w[1].norm <= w[0].norm + 1e-4),
+        "{row:?}"
+    );
+    assert!((row[7].norm - 0.307).abs() < 0.01, "{:?}", row[7]);
+    for (args, what) in [
+        (&["--model", "charlie"][..], "sheen"),
+        (&["--size", "1"], "2 to"),
+        (&["--size", "1000"], "2 to"),
+    ] {
+        let bad = dir.join("bad.json");
+        let o = splitsum()
+            .args(["lut", "--ltc"])
+            .args(args)
+            .arg("-o")
+            .arg(&bad)
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        assert!(
+            String::from_utf8_lossy(&o.stderr).contains(what),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        assert!(!bad.exists());
+    }
+    let o = splitsum()
+        .args(["lut", "--ltc", "-o"])
+        .arg(dir.join("ltc.png"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!dir.join("ltc.png").exists());
+}
