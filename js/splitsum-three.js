@@ -8,6 +8,7 @@
 //   scene.environment = bake.envMap;
 //   scene.background = bake.envMap;
 //   scene.add(bake.lightProbe); // optional: the SH as a THREE.LightProbe
+//   bake.areaLights.forEach((l) => scene.add(l)); // a studio's lamps as RectAreaLights
 //   if (bake.sunLight) {        // a `--sun split` bake: the sun, taken out of the IBL
 //     renderer.shadowMap.enabled = true;
 //     scene.add(bake.sunLight, bake.sunLight.target);
@@ -40,12 +41,17 @@ import {
   LinearFilter,
   LinearMipmapLinearFilter,
   LinearSRGBColorSpace,
+  Matrix4,
+  RectAreaLight,
   RGBAFormat,
+  ShaderChunk,
   SphericalHarmonics3,
   UnsignedInt101111Type,
   UnsignedInt5999Type,
+  Vector3,
 } from 'three';
 import { KTX2Loader } from 'three/addons/loaders/KTX2Loader.js';
+import { RectAreaLightUniformsLib } from 'three/addons/lights/RectAreaLightUniformsLib.js';
 import {
   read as readKtx2,
   KHR_SUPERCOMPRESSION_NONE,
@@ -237,18 +243,123 @@ export function directionalLightFromSun(light, { distance = 50, shadows = true, 
   return sun;
 }
 
+// three r187's RE_Direct_RectArea_Physical (lights_physical_pars_fragment) as it ships, and
+// what compensateRectAreaLights puts in its place.
+const RECT_SPECULAR = 'reflectedLight.directSpecular += lightColor * fresnel * LTC_Evaluate( normal, viewDir, position, mInv, rectCoords );';
+const RECT_DIFFUSE = 'reflectedLight.directDiffuse += lightColor * material.diffuseContribution * LTC_Evaluate( normal, viewDir, position, mat3( 1.0 ), rectCoords );';
+const RECT_COMPENSATED = `// splitsum (js/splitsum-three.js, compensateRectAreaLights): the LTC as a control
+		// variate, the multiple-scattering compensation and the Fresnel-weighted diffuse of
+		// RE_Direct_Physical, as splitsum's preview shades an area light (plan::ltc::shade_polygon).
+		{
+			// The rectangle's centre and its solid angle (two spherical triangles, Van Oosterom
+			// and Strackee 1983).
+			vec3 splitsumC = normalize( lightPos - position );
+			vec3 splitsumP[ 4 ];
+			for ( int i = 0; i < 4; i ++ ) splitsumP[ i ] = normalize( rectCoords[ i ] - position );
+			float splitsumOmega = 0.0;
+			for ( int i = 1; i < 3; i ++ ) {
+				vec3 a = splitsumP[ 0 ], b = splitsumP[ i ], c = splitsumP[ i + 1 ];
+				splitsumOmega += 2.0 * atan( abs( dot( a, cross( b, c ) ) ), 1.0 + dot( a, b ) + dot( b, c ) + dot( c, a ) );
+			}
+			// The LTC's density at the centre: D_o(M^-1 c / |M^-1 c|) |det M^-1| / |M^-1 c|^3.
+			vec3 splitsumT1 = normalize( viewDir - normal * dot( viewDir, normal ) );
+			vec3 splitsumT2 = - cross( normal, splitsumT1 );
+			vec3 splitsumLo = mInv * ( transpose( mat3( splitsumT1, splitsumT2, normal ) ) * splitsumC );
+			float splitsumLen = length( splitsumLo );
+			float splitsumDensity = max( splitsumLo.z / splitsumLen, 0.0 ) * RECIPROCAL_PI * abs( determinant( mInv ) ) / ( splitsumLen * splitsumLen * splitsumLen );
+			// The exact BRDF at the centre, weighted by how small the light is against the lobe.
+			float splitsumAlpha = pow2( max( roughness, 0.045 ) );
+			float splitsumLobe = 4.0 * PI * splitsumAlpha * splitsumAlpha;
+			float splitsumBeta = splitsumLobe / ( splitsumLobe + splitsumOmega );
+			vec3 splitsumPoint = BRDF_GGX( splitsumC, viewDir, normal, material ) * saturate( dot( normal, splitsumC ) ) * splitsumOmega;
+			vec3 splitsumLtc = fresnel * LTC_Evaluate( normal, viewDir, position, mInv, rectCoords );
+			vec3 splitsumSpecular = max( splitsumLtc + splitsumBeta * ( splitsumPoint - fresnel * splitsumDensity * splitsumOmega ), 0.0 );
+			float splitsumEss = material.dfg.x + material.dfg.y;
+			vec3 splitsumCompensation = 1.0 + material.specularColorBlended * ( 1.0 / splitsumEss - 1.0 );
+			reflectedLight.directSpecular += lightColor * splitsumSpecular * splitsumCompensation;
+			float splitsumVH = saturate( dot( viewDir, normalize( splitsumC + viewDir ) ) );
+			vec3 splitsumF = F_Schlick( material.specularColor, material.specularF90, splitsumVH );
+			reflectedLight.directDiffuse += lightColor * material.diffuseContribution * LTC_Evaluate( normal, viewDir, position, mat3( 1.0 ), rectCoords ) * ( 1.0 - splitsumF );
+		}`;
+
+/**
+ * Shades three's RectAreaLight as splitsum's preview shades an area light, with the BRDF
+ * three's punctual lights have. three r187's RE_Direct_RectArea_Physical shades the
+ * specular from its LTC table alone, whose fit is 8–10 % off the GGX lobe at r ≥ 0.35
+ * (tests/ltc.rs), and leaves out two terms that RE_Direct_Physical (a DirectionalLight)
+ * applies: the specular's multiple-scattering compensation 1 + F0 (1 / (A + B) − 1) and the
+ * diffuse's weight 1 − F(v·h). Without them a white metal sphere at r = 1 under a studio
+ * lamp gets 45 % of the lamp's light and a dielectric 5 % too much (docs/targets.md, "Area
+ * lights"). This replaces those two lines of THREE.ShaderChunk.lights_physical_pars_fragment:
+ * the specular is the LTC plus β (the exact BRDF at the rectangle's centre − the LTC there)
+ * times its solid angle, β = 4πα² / (4πα² + Ω), compensated; the diffuse weighted at the
+ * centre. Call it before the first render that compiles a material lit by a RectAreaLight.
+ * It is idempotent, and throws where the chunk is not r187's.
+ */
+export function compensateRectAreaLights() {
+  const chunk = ShaderChunk.lights_physical_pars_fragment;
+  if (chunk.includes(RECT_COMPENSATED)) return;
+  if (!chunk.includes(RECT_SPECULAR) || !chunk.includes(RECT_DIFFUSE)) {
+    throw new Error(
+      "compensateRectAreaLights: this three.js's lights_physical_pars_fragment is not r187's; " +
+        'load the bake with { compensateAreaLights: false } (its RectAreaLights then lack the compensation)',
+    );
+  }
+  ShaderChunk.lights_physical_pars_fragment = chunk.replace(RECT_DIFFUSE, '').replace(RECT_SPECULAR, RECT_COMPENSATED);
+}
+
+/**
+ * An area light of a splitsum sun.json (a light with `rect_light`: a studio's lamp or soft
+ * box) as a THREE.RectAreaLight: the rectangle facing the origin from `distance` away along
+ * `direction`, 2·distance·tan(half_width_deg) wide along `width_axis` and
+ * 2·distance·tan(half_height_deg) high, of the radiance `rect_light.radiance` (three's
+ * RectAreaLight shines its colour × intensity as radiance from its local −z side), which
+ * gives the origin the light's irradiance. A point p away from the origin sees it off by
+ * about 2·(p·direction)/distance in irradiance, so keep `distance` well beyond the scene.
+ * Calls RectAreaLightUniformsLib.init() (three's LTC tables), which RectAreaLight needs.
+ * RectAreaLight casts no shadows.
+ * @param {object} light - sun.json, or an entry of its additional_lights, with rect_light.
+ * @param {{distance?: number}} options
+ * @returns {RectAreaLight}
+ */
+export function rectAreaLightFromSun(light, { distance = 100 } = {}) {
+  const rect = light.rect_light;
+  if (!rect) throw new Error('rectAreaLightFromSun: this light has no rect_light (a directional light: directionalLightFromSun)');
+  RectAreaLightUniformsLib.init();
+  const tan = (deg) => Math.tan((deg * Math.PI) / 180);
+  const area = new RectAreaLight(0xffffff, rect.luminance, 2 * distance * tan(rect.half_width_deg), 2 * distance * tan(rect.half_height_deg));
+  if (rect.luminance > 0) {
+    const [r, g, b] = rect.radiance;
+    area.color.setRGB(r / rect.luminance, g / rect.luminance, b / rect.luminance, LinearSRGBColorSpace);
+  }
+  // Local x along the width, local z toward the light (it shines along −z), y = z × x.
+  const z = new Vector3(...light.direction).normalize();
+  const x = new Vector3(...rect.width_axis).normalize();
+  const y = new Vector3().crossVectors(z, x);
+  area.quaternion.setFromRotationMatrix(new Matrix4().makeBasis(x, y, z));
+  area.position.copy(z).multiplyScalar(distance);
+  area.name = 'splitsum area light';
+  return area;
+}
+
 /**
  * Loads a `--target three` bake folder: specular.ktx2 as the PMREM environment,
  * sh.json (when written) as a LightProbe, and the manifest. A `--sun split` bake that
- * found a sun also gives `sunLight` (a shadow-casting DirectionalLight, see
- * directionalLightFromSun), `lights` (the further compact lights taken out, without
- * shadows) and `background` (background.ktx2: the environment as seen, the sun in it, for
- * `scene.background`); they are null (lights empty) otherwise.
+ * took lights out also gives them: each area light (a studio's lamp, a soft box: a light
+ * with `rect_light`) in `areaLights` as a RectAreaLight (rectAreaLightFromSun, at
+ * `areaDistance`), the first directional light in `sunLight` (shadow-casting, see
+ * directionalLightFromSun) and the further ones in `lights` (without shadows), and
+ * `background` (background.ktx2: the environment as seen, the lights in it, for
+ * `scene.background`); they are null or empty otherwise. With area lights it calls
+ * compensateRectAreaLights (`compensateAreaLights: false` leaves three's shader as it is).
+ * With `areaLights: false` every light is a directional light of the same irradiance
+ * (shadows, but a lamp's highlight the size of a point).
  * @param {string} dir - the bake's folder (URL), e.g. 'out/sky'.
  * @param {THREE.WebGLRenderer} renderer
- * @returns {Promise<{envMap: CompressedCubeTexture, lightProbe: LightProbe|null, sunLight: DirectionalLight|null, lights: DirectionalLight[], background: CompressedCubeTexture|null, manifest: object}>}
+ * @param {{areaLights?: boolean, areaDistance?: number, compensateAreaLights?: boolean}} options
+ * @returns {Promise<{envMap: CompressedCubeTexture, lightProbe: LightProbe|null, sunLight: DirectionalLight|null, lights: DirectionalLight[], areaLights: RectAreaLight[], background: CompressedCubeTexture|null, manifest: object}>}
  */
-export async function loadSplitsumBake(dir, renderer) {
+export async function loadSplitsumBake(dir, renderer, { areaLights = true, areaDistance = 100, compensateAreaLights = true } = {}) {
   const manifest = await (await fetch(`${dir}/manifest.json`)).json();
   if (manifest.target?.name !== 'three') {
     throw new Error(`${dir}: baked for target '${manifest.target?.name}', not 'three' (bake with --target three)`);
@@ -260,13 +371,23 @@ export async function loadSplitsumBake(dir, renderer) {
     : null;
   let sunLight = null;
   let lights = [];
+  const areas = [];
   if (has('sun.json')) {
     const sun = await (await fetch(`${dir}/sun.json`)).json();
-    sunLight = directionalLightFromSun(sun);
-    lights = (sun.additional_lights ?? []).map((l) => directionalLightFromSun(l, { shadows: false }));
+    const all = [sun, ...(sun.additional_lights ?? [])];
+    const directional = [];
+    for (const light of all) {
+      if (areaLights && light.rect_light) areas.push(rectAreaLightFromSun(light, { distance: areaDistance }));
+      else directional.push(light);
+    }
+    if (areas.length > 0 && compensateAreaLights) compensateRectAreaLights();
+    if (directional.length > 0) {
+      sunLight = directionalLightFromSun(directional[0]);
+      lights = directional.slice(1).map((l) => directionalLightFromSun(l, { shadows: false }));
+    }
   }
   const background = has('background.ktx2')
     ? await loadSplitsumCube(`${dir}/background.ktx2`, renderer, { pmrem: false })
     : null;
-  return { envMap, lightProbe, sunLight, lights, background, manifest };
+  return { envMap, lightProbe, sunLight, lights, areaLights: areas, background, manifest };
 }

@@ -5,13 +5,16 @@
 // mapping), so the numbers are linear radiance.
 import * as THREE from 'three';
 import { HDRLoader } from 'three/addons/loaders/HDRLoader.js';
-import { loadSplitsumBake, loadSplitsumCube, supportsBc6h } from '/js/splitsum-three.js';
+import { compensateRectAreaLights, loadSplitsumBake, loadSplitsumCube, supportsBc6h } from '/js/splitsum-three.js';
 import * as measure from '/engines/measure.js';
 
 // Edge of the renders; the mirror sphere is rendered larger, since one pixel of it turns
 // the reflected direction by twice the normal's change (about 2.3° at 160 px).
 let SIZE = 160;
 const MIRROR_SIZE = 512;
+// Edge of the studio case's sphere renders, which tests/engine_renders.rs integrates the
+// truth of per pixel (its cost grows with the square of this).
+const STUDIO_SIZE = 96;
 
 const renderer = new THREE.WebGLRenderer({ antialias: false });
 renderer.setSize(SIZE, SIZE);
@@ -73,7 +76,8 @@ function pixelRay(camera, [x, y]) {
 
 const degrees = (a, b) => THREE.MathUtils.radToDeg(a.angleTo(b));
 
-window.runCheck = async function ({ hdrUrl, bakeDir, cubeUrl, roughness, splitDir }) {
+window.runCheck = async function ({ hdrUrl, bakeDir, cubeUrl, roughness, splitDir, studio }) {
+  if (studio) return studioCase(studio, roughness);
   const manifest = await (await fetch(`${bakeDir}/manifest.json`)).json();
   const format = manifest.parameters.pixel_format;
   if (format === 'bc6h' && !supportsBc6h(renderer)) {
@@ -238,7 +242,7 @@ async function sunLight(full, splitDir, images) {
   const want = sides(fullScene);
   const splitScene = new THREE.Scene();
   splitScene.environment = split.envMap;
-  splitScene.add(split.sunLight, split.sunLight.target, ...split.lights);
+  splitScene.add(split.sunLight, split.sunLight.target, ...split.lights, ...split.areaLights);
   const got = sides(splitScene);
   images.sun_sphere_full_ibl = toPng(want.px);
   images.sun_sphere_split = toPng(got.px);
@@ -273,6 +277,72 @@ async function sunLight(full, splitDir, images) {
     // The orthographic camera from above: pixel x along +x, pixel y along −z.
     shadow: measure.shadowAzimuth(px, SHADOW_SIZE, ([x, y]) => [((2 * x) / SHADOW_SIZE - 1) * EXTENT, -((2 * y) / SHADOW_SIZE - 1) * EXTENT], sun, HEIGHT),
   };
+}
+
+// A studio's lamps as RectAreaLights: the spheres of a `--sun split` bake (the residual IBL,
+// its area lights as loadSplitsumBake makes them, any directional light), as three shades
+// RectAreaLights (`plain_sphere_*`) and with compensateRectAreaLights (`sphere_*`, what
+// the loader does), and of the same HDRI baked with its lamps kept in the IBL
+// (`kept_sphere_*`), seen 40° from the first light, returned as linear floats for
+// tests/engine_renders.rs to hold against the integral of the HDRI as read (the
+// preview's truth, with three's BRDF). The plain renders come first: three caches a
+// built-in material's program by its parameters, not its source, so the compensated ones
+// use a material of their own program key.
+async function studioCase({ splitDir, keptDir }, roughness) {
+  const split = await loadSplitsumBake(splitDir, renderer, { compensateAreaLights: false });
+  const kept = await loadSplitsumBake(keptDir, renderer);
+  if (split.areaLights.length === 0) throw new Error(`${splitDir}: no area light in sun.json`);
+  const first = split.areaLights[0].position.clone().normalize();
+  const eye = measure.scale(measure.turnedFrom(first.toArray(), 40), measure.SPHERE_DISTANCE);
+  const camera = new THREE.PerspectiveCamera(measure.SPHERE_FOV, 1, 0.1, 1000);
+  camera.position.set(...eye);
+  camera.lookAt(0, 0, 0);
+  camera.updateMatrixWorld();
+  const geometry = new THREE.SphereGeometry(1, 128, 64);
+  const spheres = (scene, material) => {
+    const sphere = new THREE.Mesh(geometry, material);
+    scene.add(sphere);
+    const out = {};
+    for (const metalness of [1, 0]) {
+      for (const r of roughness) {
+        material.metalness = metalness;
+        material.roughness = r;
+        out[`sphere_m${metalness}_r${r}`] = render(scene, camera);
+      }
+    }
+    scene.remove(sphere);
+    return out;
+  };
+  const splitScene = new THREE.Scene();
+  splitScene.environment = split.envMap;
+  splitScene.add(...split.areaLights);
+  if (split.sunLight) splitScene.add(split.sunLight, split.sunLight.target, ...split.lights);
+  const keptScene = new THREE.Scene();
+  keptScene.environment = kept.envMap;
+  const saved = SIZE;
+  setSize(STUDIO_SIZE);
+  const plain = spheres(splitScene, new THREE.MeshStandardMaterial({ color: 0xffffff }));
+  const keep = spheres(keptScene, new THREE.MeshStandardMaterial({ color: 0xffffff }));
+  compensateRectAreaLights();
+  const compensated = new THREE.MeshStandardMaterial({ color: 0xffffff });
+  compensated.customProgramCacheKey = () => 'splitsum compensated rect area lights';
+  const got = spheres(splitScene, compensated);
+  setSize(saved);
+  const images = {};
+  const raw = {};
+  for (const [prefix, set] of [['', got], ['plain_', plain], ['kept_', keep]]) {
+    for (const [name, px] of Object.entries(set)) {
+      images[`${prefix}${name}`] = measure.toPng(px, STUDIO_SIZE);
+      raw[`${prefix}${name}.rgba32f`] = measure.base64(px);
+    }
+  }
+  const out = {
+    areaLights: split.areaLights.length,
+    directionalLights: (split.sunLight ? 1 : 0) + split.lights.length,
+    sphereCamera: { eye, fov: measure.SPHERE_FOV, size: STUDIO_SIZE },
+    path: `${split.areaLights.length} RectAreaLight(s) at ${split.areaLights.map((l) => l.position.length().toFixed(0)).join(', ')} units`,
+  };
+  return { out, images, raw };
 }
 
 window.checkReady = true;

@@ -49,6 +49,16 @@ execFileSync(
   ['bake', ...HDRIS.map((h) => `tests/data/${h}.hdr`), '--target', 'three', '--pixel-format', 'bc6h', '-q', '-o', 'target/engines/three/bakes_bc6h'],
   { cwd: root, stdio: 'inherit' },
 );
+// A studio's lamps as area lights: studio_small_03 split (its lamps as RectAreaLights) and
+// kept, for tests/engine_renders.rs to hold against the truth.
+const STUDIO_HDRI = 'studio_small_03_1k';
+for (const mode of ['split', 'keep']) {
+  execFileSync(
+    splitsum,
+    ['bake', `tests/data/${STUDIO_HDRI}.hdr`, '--target', 'three', '--sun', mode, '-q', '-o', `target/engines/three/studio_${mode}`],
+    { cwd: root, stdio: 'inherit' },
+  );
+}
 // The sun as a light: quarry_01 with its sun split out.
 execFileSync(
   splitsum,
@@ -112,9 +122,15 @@ await runEngineCheck({
   recipe,
   page: '/engines/three/check.html',
   out,
-  cases: [...HDRIS, ...HDRIS.map((h) => `${h}_bc6h`)],
+  cases: [...HDRIS, ...HDRIS.map((h) => `${h}_bc6h`), STUDIO_HDRI],
   bars: BARS,
   config: (name) => {
+    if (name === STUDIO_HDRI) {
+      return {
+        roughness: ROUGHNESS,
+        studio: { splitDir: `/target/engines/three/studio_split/${name}`, keptDir: `/target/engines/three/studio_keep/${name}` },
+      };
+    }
     const hdri = name.replace(/_bc6h$/, '');
     const bakes = name.endsWith('_bc6h') ? 'bakes_bc6h' : 'bakes';
     return {
@@ -128,6 +144,11 @@ await runEngineCheck({
   judge: (r, { bad, note }) => {
     note(true, `path: ${r.path}`);
     if (r.skipped) return;
+    if (r.areaLights !== undefined) {
+      // Held against the truth by tests/engine_renders.rs (studio_area_lights_against_truth).
+      bad(r.areaLights > 0, `studio: ${r.areaLights} area light(s), ${r.directionalLights} directional`);
+      return;
+    }
     bad(r.background.sunError <= BARS.sunDegrees,
       `background sun ${r.background.sunError.toFixed(2)}° from three's equirect path (bar ${BARS.sunDegrees}°; three's own path is ${r.background.threeSunVsEquirect.toFixed(2)}° from the HDRI's sun); mean |Δ ln(1+L)| ${r.background.logDiff.toFixed(4)} at the sun, ${r.background.logDiffAllViews.toFixed(4)} over six views`);
     bad(r.mirror.sunError <= BARS.sunDegrees,
