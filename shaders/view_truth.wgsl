@@ -32,7 +32,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     } else {
         let shift = pixel_shift(pixel + frame.truth_frame * frame.width * frame.height);
         c = truth_shade(px.s.n, px.v, px.n_dot_v, px.m, shift) + direct_lights(px, frame.light_count)
-            + sun_texels_shade(px, frame.sun.x, frame.sun.y);
+            + truth_texels_shade(px, SPLIT_RECORD * frame.sun.x, frame.sun.y);
     }
     let w = f32(truth.point_count);
     let estimate = vec4<f32>(c * w, w);

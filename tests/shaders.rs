@@ -407,3 +407,17 @@ fn viewer_shaders_validate_and_match_rust() {
         );
     }
 }
+
+/// The viewer's area lights and soft shadow: a split-out light's record and the soft
+/// shadow's grids are the same on both sides.
+#[test]
+fn view_area_light_constants_match_rust() {
+    let module = parse("view_split_sum", splitsum::gpu::shaders::VIEW_SPLIT_SUM);
+    for (name, rust) in [
+        ("SPLIT_RECORD", splitsum::view::frame::SPLIT_RECORD as u32),
+        ("BLOCKER_TAPS", splitsum::view::shadow::BLOCKER_TAPS),
+        ("FILTER_TAPS", splitsum::view::shadow::FILTER_TAPS),
+    ] {
+        assert_eq!(wgsl_u32_constant(&module, name), rust, "{name}");
+    }
+}

@@ -116,6 +116,21 @@ pub fn benchmarks() {
             moving,
             None,
         );
+        // A studio's lamps split out as area lights (the LTC), the first with its shadow.
+        let studio = load_light(
+            &LightSource::File("tests/data/studio_small_03_1k.hdr".into()),
+            BackendChoice::Auto,
+            splitsum::SunMode::Split,
+            &mut |_| {},
+        )
+        .unwrap();
+        let moving = turning(&mut gpu_viewer(&studio, true));
+        row(
+            &name,
+            "camera turning (forward), studio_small_03's lamps as area lights, the first with its shadow",
+            moving,
+            None,
+        );
     }
     let mut v = Viewer::new(light, models, Renderer::Cpu(CpuFrame::default()), "cpu").unwrap();
     let moving = time(FRAMES / 4, |i| {

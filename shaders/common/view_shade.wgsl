@@ -13,5 +13,5 @@ fn background_radiance(dir: vec3<f32>) -> vec3<f32> {
 
 // `point_lights`: frame.light_count; `sun_lights`: frame.sun.x (the lights taken out).
 fn surface_radiance(px: PixelView, point_lights: u32, sun_lights: u32) -> vec3<f32> {
-    return split_sum_shade(px.s.n, px.v, px.n_dot_v, px.m) + direct_lights(px, point_lights) + sun_texels_shade(px, 0u, sun_lights);
+    return split_sum_shade(px.s.n, px.v, px.n_dot_v, px.m) + direct_lights(px, point_lights) + split_lights_shade(px, sun_lights);
 }

@@ -1,16 +1,68 @@
 // The lights taken out of the environment (`--sun split`) in the viewer: each a
 // directional light shaded by `directional_light` (common/material.wgsl, the truth's
-// BRDF, as the preview shades them), the sun (light 0) seen through its shadow map.
-// The including shader declares `frame` (FrameParams), `sun_texels` (storage:
-// (direction, solid angle), (radiance, light index) each; src/view/frame.rs,
-// `sun_texel_table`) and `shadow_map` (r32float: distance along the sun's rays to the
-// object). Mirror of src/view/shadow.rs (`visibility`) and `sun_texels_shade` in
+// BRDF, as the preview shades them), or an area light (a studio's lamp) shaded from the
+// LTC table (common/ltc.wgsl, as the preview shades it), the sun (light 0) seen through its
+// shadow map. The including shader declares `frame` (FrameParams), `sun_texels` (storage,
+// src/view/frame.rs, `sun_texel_table`: per light split out (direction, 1), (E⊥, or an
+// area light's radiance, light index), (first vertex entry, vertex count, LTC table
+// entry, LTC table size); then the truth's texels, (direction, solid angle), (radiance,
+// light index) each; then the area lights' vertices and the LTC table, two entries a cell)
+// and `shadow_map` (r32float: distance along the sun's rays to the object). Mirror of
+// src/view/shadow.rs (`visibility`) and `split_lights_shade`, `truth_texels_shade` in
 // src/view/cpu.rs.
 
+// Texels per side of the soft shadow's blocker search and of its filter (src/view/shadow.rs).
+const BLOCKER_TAPS: u32 = 3u;
+const FILTER_TAPS: u32 = 4u;
+
+// The map's depth at texel (i, j), clamped to the map.
+fn shadow_depth(i: i32, j: i32, size: i32) -> f32 {
+    return textureLoad(shadow_map, vec2<i32>(clamp(i, 0, size - 1), clamp(j, 0, size - 1)), 0).r;
+}
+
+// The texel nearest texel-centre coordinate c.
+fn nearest_texel(c: f32) -> i32 {
+    return i32(floor(c + 0.5));
+}
+
+// Tap k of a taps x taps grid across +-radius texels about (u, w).
+fn shadow_grid(u: f32, w: f32, taps: u32, radius: f32, k: u32) -> vec2<i32> {
+    let step = 2.0 * radius / f32(taps);
+    return vec2<i32>(nearest_texel(u - radius + (f32(k % taps) + 0.5) * step), nearest_texel(w - radius + (f32(k / taps) + 0.5) * step));
+}
+
+// An area light's visibility at texel-centre coordinates (u, w) of a receiver at depth z
+// (less the bias), `spread` its penumbra's growth in texels per unit of depth:
+// percentage-closer soft shadows (src/view/shadow.rs says how).
+fn soft_visibility(u: f32, w: f32, z: f32, spread: f32, size: i32) -> f32 {
+    let search = spread * z;
+    var sum = 0.0;
+    var count = 0.0;
+    for (var k = 0u; k < BLOCKER_TAPS * BLOCKER_TAPS; k++) {
+        let t = shadow_grid(u, w, BLOCKER_TAPS, search, k);
+        let d = shadow_depth(t.x, t.y, size);
+        if (d < z) {
+            sum += d;
+            count += 1.0;
+        }
+    }
+    if (count == 0.0) {
+        return 1.0;
+    }
+    let radius = max(spread * (z - sum / count), 1.0);
+    var lit = 0.0;
+    for (var k = 0u; k < FILTER_TAPS * FILTER_TAPS; k++) {
+        let t = shadow_grid(u, w, FILTER_TAPS, radius, k);
+        lit += select(0.0, 1.0, shadow_depth(t.x, t.y, size) >= z);
+    }
+    return lit / f32(FILTER_TAPS * FILTER_TAPS);
+}
+
 // The sun's visibility at surface point p with unit normal n, in [0, 1]: p moved off the
-// surface along n, projected into the map, and the 2 x 2 texels around it, each lit (1)
-// where the object there stands further along the rays, less the bias, else 0,
-// interpolated bilinearly at the point (percentage-closer filtering).
+// surface along n, projected into the map; for a directional light the 2 x 2 texels
+// around it, each lit (1) where the object there stands further along the rays, less the
+// bias, else 0, interpolated bilinearly at the point (percentage-closer filtering); for an
+// area light (the map's spread, frame.shadow[3].w, above 0) its soft shadow.
 fn sun_visibility(p: vec3<f32>, n: vec3<f32>) -> f32 {
     if (frame.sun.z == 0u) {
         return 1.0;
@@ -24,41 +76,128 @@ fn sun_visibility(p: vec3<f32>, n: vec3<f32>) -> f32 {
     }
     let z = dot(d, frame.shadow[3].xyz) - frame.shadow[1].w;
     let size = i32(frame.sun.w);
-    // Texel-centre coordinates (texel i's centre at i), the four around, clamped.
+    // Texel-centre coordinates (texel i's centre at i).
     let u = (x + 1.0) * 0.5 * f32(size) - 0.5;
     let w = (1.0 - y) * 0.5 * f32(size) - 0.5;
     let u0 = floor(u);
     let w0 = floor(w);
     let fx = u - u0;
     let fy = w - w0;
-    let i0 = clamp(i32(u0), 0, size - 1);
-    let i1 = clamp(i32(u0) + 1, 0, size - 1);
-    let j0 = clamp(i32(w0), 0, size - 1);
-    let j1 = clamp(i32(w0) + 1, 0, size - 1);
-    let l00 = select(0.0, 1.0, textureLoad(shadow_map, vec2<i32>(i0, j0), 0).r >= z);
-    let l10 = select(0.0, 1.0, textureLoad(shadow_map, vec2<i32>(i1, j0), 0).r >= z);
-    let l01 = select(0.0, 1.0, textureLoad(shadow_map, vec2<i32>(i0, j1), 0).r >= z);
-    let l11 = select(0.0, 1.0, textureLoad(shadow_map, vec2<i32>(i1, j1), 0).r >= z);
-    return (l00 * (1.0 - fx) + l10 * fx) * (1.0 - fy) + (l01 * (1.0 - fx) + l11 * fx) * fy;
+    let i = i32(u0);
+    let j = i32(w0);
+    let l00 = select(0.0, 1.0, shadow_depth(i, j, size) >= z);
+    let l10 = select(0.0, 1.0, shadow_depth(i + 1, j, size) >= z);
+    let l01 = select(0.0, 1.0, shadow_depth(i, j + 1, size) >= z);
+    let l11 = select(0.0, 1.0, shadow_depth(i + 1, j + 1, size) >= z);
+    var visibility = (l00 * (1.0 - fx) + l10 * fx) * (1.0 - fy) + (l01 * (1.0 - fx) + l11 * fx) * fy;
+    // The soft shadow in a loop that runs once or not at all: lavapipe runs both sides of
+    // an `if`, and the sun's frame should not pay for the area light's 25 loads.
+    let spread = frame.shadow[3].w;
+    for (var k = 0u; k < min(select(0u, 1u, spread > 0.0), AREA_LIGHTS); k++) {
+        visibility = soft_visibility(u, w, z, spread / (2.0 * half / f32(size)), size);
+    }
+    return visibility;
 }
 
-// The entries `first` .. first + count of `sun_texels` shading the surface a pixel sees,
-// light 0's through the sun's visibility.
-fn sun_texels_shade(px: PixelView, first: u32, count: u32) -> vec3<f32> {
-    var sum = vec3<f32>(0.0);
-    // The sun's visibility, looked up in a loop that runs once when there are entries and
-    // not at all when there are none: a software rasteriser (lavapipe) runs both sides of
-    // an `if` on every lane, but skips a loop no lane enters, so a frame without lights
-    // does not pay for the map's four loads (with `count` a constant, as in the forward
-    // pass, the compiler removes the loop).
+// Entries of a split-out light's record in `sun_texels`.
+const SPLIT_RECORD: u32 = 3u;
+
+// 1 when an area light is split out (its LTC shading and the soft shadow are compiled in),
+// else 0: a constant of the pipeline (src/view/gpu, `area_lights`), since lavapipe's code
+// for a light's LTC, run or not, costs a frame of directional lights twice its time.
+override AREA_LIGHTS: u32 = 0u;
+
+// The sun's visibility, looked up in a loop that runs once when `count` > 0 and not at all
+// otherwise: a software rasteriser (lavapipe) runs both sides of an `if` on every lane,
+// but skips a loop no lane enters, so a frame without lights does not pay for the map's
+// four loads (with `count` a constant, as in the forward pass, the compiler removes the
+// loop).
+fn lights_visibility(px: PixelView, count: u32) -> f32 {
     var visibility = 1.0;
     for (var once = 0u; once < min(count, 1u); once++) {
         visibility = sun_visibility(px.s.p, px.s.n);
     }
+    return visibility;
+}
+
+// The LTC table's cell at (n.v, roughness), bilinear between cells, clamped (mirror of
+// `LtcTable::lookup`): cell (i, j) at entries base + 2 (j size + i), + 1.
+fn ltc_table_lookup(base: u32, size: u32, n_dot_v: f32, roughness: f32) -> LtcCell {
+    let last = f32(size - 1u);
+    let u = clamp(roughness, 0.0, 1.0) * last;
+    let w = sqrt(1.0 - clamp(n_dot_v, 0.0, 1.0)) * last;
+    let i0 = min(floor(u), last - 1.0);
+    let j0 = min(floor(w), last - 1.0);
+    let fu = u - i0;
+    let fw = w - j0;
+    var inverse = vec4<f32>(0.0);
+    var magnitude = vec2<f32>(0.0);
+    for (var k = 0u; k < 4u; k++) {
+        let di = k & 1u;
+        let dj = k >> 1u;
+        let weight = select(1.0 - fu, fu, di == 1u) * select(1.0 - fw, fw, dj == 1u);
+        let e = base + 2u * ((u32(j0) + dj) * size + u32(i0) + di);
+        inverse += weight * sun_texels[e];
+        magnitude += weight * sun_texels[e + 1u].xy;
+    }
+    var c: LtcCell;
+    c.inverse = inverse;
+    c.norm = magnitude.x;
+    c.fresnel = magnitude.y;
+    return c;
+}
+
+// The area lights' polygon vertices, for common/ltc.wgsl.
+fn ltc_vertex(i: u32) -> vec3<f32> {
+    return sun_texels[i].xyz;
+}
+
+// An area light of `radiance` whose record's third entry is `a` shading the surface a
+// pixel sees (specular plus diffuse times the albedo).
+fn area_light_shade(px: PixelView, a: vec4<f32>, radiance: vec3<f32>) -> vec3<f32> {
+    let cell = ltc_table_lookup(u32(a.z), u32(a.w), px.n_dot_v, px.m.roughness);
+    let s = ltc_shade_polygon(cell, px.s.n, px.v, px.n_dot_v, px.m.f0, px.m.metallic, px.m.roughness, u32(a.x), u32(a.y), radiance, generic_light_brdf());
+    return s.spec + s.diff * px.m.albedo;
+}
+
+// The `count` lights split out shading the surface a pixel sees, light 0 through the sun's
+// visibility: a directional light of E⊥, or an area light from the LTC table. Each light
+// takes one of the two paths in a loop that runs once or not at all (as in
+// `lights_visibility`), so a frame of directional lights does not pay for the LTC.
+fn split_lights_shade(px: PixelView, count: u32) -> vec3<f32> {
+    let visibility = lights_visibility(px, count);
     let alpha = alpha_from_roughness(px.m.roughness);
-    for (var i = first; i < first + count; i++) {
-        let t = sun_texels[2u * i];
-        let r = sun_texels[2u * i + 1u];
+    var sum = vec3<f32>(0.0);
+    for (var i = 0u; i < count; i++) {
+        let t = sun_texels[SPLIT_RECORD * i];
+        let r = sun_texels[SPLIT_RECORD * i + 1u];
+        let a = sun_texels[SPLIT_RECORD * i + 2u];
+        let area = min(min(u32(a.y), 1u), AREA_LIGHTS);
+        var c = vec3<f32>(0.0);
+        for (var k = 0u; k < 1u - area; k++) {
+            let s = directional_light(px.s.n, px.v, px.n_dot_v, alpha, px.m.f0, px.m.metallic, t.xyz, r.rgb * t.w, generic_light_brdf());
+            c = s.spec + s.diff * px.m.albedo;
+        }
+        for (var k = 0u; k < area; k++) {
+            c = area_light_shade(px, a, r.rgb);
+        }
+        if (r.w < 0.5) {
+            c *= visibility;
+        }
+        sum += c;
+    }
+    return sum;
+}
+
+// The truth's `count` texels of the lights' regions, from entry `first` on (two entries
+// each), shading the surface a pixel sees, light 0's through the sun's visibility.
+fn truth_texels_shade(px: PixelView, first: u32, count: u32) -> vec3<f32> {
+    let visibility = lights_visibility(px, count);
+    let alpha = alpha_from_roughness(px.m.roughness);
+    var sum = vec3<f32>(0.0);
+    for (var i = 0u; i < count; i++) {
+        let t = sun_texels[first + 2u * i];
+        let r = sun_texels[first + 2u * i + 1u];
         let s = directional_light(px.s.n, px.v, px.n_dot_v, alpha, px.m.f0, px.m.metallic, t.xyz, r.rgb * t.w, generic_light_brdf());
         var c = s.spec + s.diff * px.m.albedo;
         if (r.w < 0.5) {

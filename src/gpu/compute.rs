@@ -38,16 +38,30 @@ impl ComputeKernel {
         source: &str,
         workgroup: [u32; 3],
     ) -> Result<Self> {
+        Self::with_constants(device, label, source, workgroup, &[])
+    }
+
+    /// [`ComputeKernel::new`] with further pipeline-overridable constants of the shader.
+    pub fn with_constants(
+        device: &wgpu::Device,
+        label: &'static str,
+        source: &str,
+        workgroup: [u32; 3],
+        overrides: &[(&str, f64)],
+    ) -> Result<Self> {
         with_error_scope(device, &format!("{label} pipeline"), || {
             let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some(label),
                 source: wgpu::ShaderSource::Wgsl(source.into()),
             });
-            let constants = [
+            let constants: Vec<(&str, f64)> = [
                 ("WORKGROUP_X", workgroup[0] as f64),
                 ("WORKGROUP_Y", workgroup[1] as f64),
                 ("WORKGROUP_Z", workgroup[2] as f64),
-            ];
+            ]
+            .into_iter()
+            .chain(overrides.iter().copied())
+            .collect();
             let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(label),
                 layout: None,

@@ -88,14 +88,15 @@ pub const PREVIEW_TRUTH: &str = kernel_source!(
     ]
 );
 
-/// `shaders/view_split_sum.wgsl` with brdf, cubemap, cube_fetch_bordered, cube_bilinear,
-/// cube_sample, material, split_sum, view_frame, view_surface, view_sun, view_gbuffer_read,
-/// view_shade.
+/// `shaders/view_split_sum.wgsl` with brdf, sampling, cubemap, cube_fetch_bordered,
+/// cube_bilinear, cube_sample, material, split_sum, view_frame, view_surface, ltc,
+/// view_sun, view_gbuffer_read, view_shade.
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub const VIEW_SPLIT_SUM: &str = kernel_source!(
     "view_split_sum.wgsl",
     [
         "brdf.wgsl",
+        "sampling.wgsl",
         "cubemap.wgsl",
         "cube_fetch_bordered.wgsl",
         "cube_bilinear.wgsl",
@@ -105,6 +106,7 @@ pub const VIEW_SPLIT_SUM: &str = kernel_source!(
         "split_sum.wgsl",
         "view_frame.wgsl",
         "view_surface.wgsl",
+        "ltc.wgsl",
         "view_sun.wgsl",
         "view_gbuffer_read.wgsl",
         "view_shade.wgsl"
@@ -112,7 +114,8 @@ pub const VIEW_SPLIT_SUM: &str = kernel_source!(
 );
 
 /// `shaders/view_truth.wgsl` with brdf, sampling, cubemap, cube_fetch_bordered,
-/// cube_bilinear, cube_sample, material, truth, view_frame, view_surface, view_sun, view_gbuffer_read.
+/// cube_bilinear, cube_sample, material, truth, view_frame, view_surface, ltc, view_sun,
+/// view_gbuffer_read.
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub const VIEW_TRUTH: &str = kernel_source!(
     "view_truth.wgsl",
@@ -127,6 +130,7 @@ pub const VIEW_TRUTH: &str = kernel_source!(
         "truth.wgsl",
         "view_frame.wgsl",
         "view_surface.wgsl",
+        "ltc.wgsl",
         "view_sun.wgsl",
         "view_gbuffer_read.wgsl"
     ]
@@ -144,14 +148,16 @@ pub const VIEW_GBUFFER: &str = render_source!(
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub const VIEW_PRESENT_BODY: &str = render_source!("view_present.wgsl", ["view_display.wgsl"]);
 
-/// `shaders/view_forward.wgsl` with brdf, cubemap, cube_filter_bordered, cube_sample,
-/// material, split_sum, view_frame, view_surface, view_sun, view_shade, view_raster, view_display,
+/// `shaders/view_forward.wgsl` with brdf, sampling, cubemap, cube_filter_bordered,
+/// cube_sample, material, split_sum, view_frame, view_surface, ltc, view_sun, view_shade,
+/// view_raster, view_display,
 /// without the constants the viewer writes before it (`view::gpu::forward_source`).
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub const VIEW_FORWARD_BODY: &str = render_source!(
     "view_forward.wgsl",
     [
         "brdf.wgsl",
+        "sampling.wgsl",
         "cubemap.wgsl",
         "cube_filter_bordered.wgsl",
         "cube_sample.wgsl",
@@ -160,6 +166,7 @@ pub const VIEW_FORWARD_BODY: &str = render_source!(
         "split_sum.wgsl",
         "view_frame.wgsl",
         "view_surface.wgsl",
+        "ltc.wgsl",
         "view_sun.wgsl",
         "view_shade.wgsl",
         "view_raster.wgsl",

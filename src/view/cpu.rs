@@ -15,11 +15,14 @@ use crate::cpu::preview_truth::{pixel_shift, truth_shade};
 use crate::environment::sample::sample_cube_lod;
 use crate::math::brdf::alpha_from_roughness;
 use crate::math::color::linear_to_srgb;
+use crate::plan::ltc::{shade_polygon, shared_table, LtcTable};
 use crate::plan::material::{directional_light, point_light, ShadeMaterial};
 use crate::plan::shading::LightBrdf;
 use crate::stages::preview::picture::{luminance, pbr_neutral, HEAT_BACKGROUND};
 use crate::view::camera::CameraFrame;
-use crate::view::frame::{unpack_material, FrameUniform, Mode, PresentUniform, Surface, ViewLight};
+use crate::view::frame::{
+    unpack_material, FrameUniform, Mode, PresentUniform, Surface, ViewLight, SPLIT_RECORD,
+};
 use crate::view::raster::GBuffer;
 use crate::view::shadow;
 
@@ -92,42 +95,62 @@ fn direct_lights(frame: &FrameUniform, lights: &[[f32; 4]], px: &PixelView) -> V
         .sum()
 }
 
-/// The entries `first` .. first + count of the light's sun texels shading the surface a
-/// pixel sees, light 0's through the sun's visibility in `shadow` (the map's texels;
-/// `sun_texels_shade` in view_sun.wgsl).
-fn sun_texels_shade(
-    frame: &FrameUniform,
-    texels: &[[f32; 4]],
-    shadow: &[f32],
-    px: &PixelView,
-    (first, count): (u32, u32),
-) -> Vec3 {
-    if count == 0 {
-        return Vec3::ZERO;
-    }
-    let visibility = if frame.sun[2] == 0 {
+/// The sun's visibility for the surface a pixel sees, 1 without a shadow or lights
+/// (`lights_visibility` in view_sun.wgsl).
+fn lights_visibility(frame: &FrameUniform, shadow: &[f32], px: &PixelView, count: u32) -> f32 {
+    if count == 0 || frame.sun[2] == 0 {
         1.0
     } else {
         shadow::visibility(&frame.shadow, frame.sun[3], shadow, px.p, px.n)
-    };
+    }
+}
+
+/// A directional light of irradiance `e` from `l` shading the surface a pixel sees.
+fn directional(px: &PixelView, l: Vec3, e: Vec3) -> Vec3 {
     let alpha = alpha_from_roughness(px.m.roughness);
-    (first..first + count)
+    let (spec, diff) = directional_light(
+        px.n,
+        px.v,
+        px.n_dot_v,
+        alpha,
+        px.m.f0,
+        px.m.metallic,
+        l,
+        e,
+        LightBrdf::GENERIC,
+    );
+    spec + diff * px.m.albedo
+}
+
+/// The `count` lights split out shading the surface a pixel sees, light 0 through the
+/// sun's visibility in `shadow` (the map's texels): a directional light of E⊥, or an area
+/// light from `ltc` (the table `texels` holds; `split_lights_shade` in view_sun.wgsl).
+fn split_lights_shade(
+    frame: &FrameUniform,
+    texels: &[[f32; 4]],
+    ltc: Option<&LtcTable>,
+    shadow: &[f32],
+    px: &PixelView,
+    count: u32,
+) -> Vec3 {
+    let visibility = lights_visibility(frame, shadow, px, count);
+    (0..count as usize)
         .map(|i| {
-            let (t, r) = (texels[2 * i as usize], texels[2 * i as usize + 1]);
-            let e = Vec3::from_slice(&r[..3]) * t[3];
-            let l = Vec3::from_slice(&t[..3]);
-            let (spec, diff) = directional_light(
-                px.n,
-                px.v,
-                px.n_dot_v,
-                alpha,
-                px.m.f0,
-                px.m.metallic,
-                l,
-                e,
-                LightBrdf::GENERIC,
-            );
-            let c = spec + diff * px.m.albedo;
+            let [t, r, a] = [0, 1, 2].map(|k| texels[SPLIT_RECORD * i + k]);
+            let radiance = Vec3::from_slice(&r[..3]);
+            let c = match ltc {
+                Some(table) if a[1] > 0.0 => {
+                    let first = a[0] as usize;
+                    let polygon: Vec<Vec3> = texels[first..first + a[1] as usize]
+                        .iter()
+                        .map(|v| Vec3::from_slice(&v[..3]))
+                        .collect();
+                    let (spec, diff) =
+                        shade_polygon(table, px.n, px.v, px.n_dot_v, &px.m, &polygon, radiance);
+                    spec + diff * px.m.albedo
+                }
+                _ => directional(px, Vec3::from_slice(&t[..3]), radiance * t[3]),
+            };
             if r[3] < 0.5 {
                 c * visibility
             } else {
@@ -135,6 +158,44 @@ fn sun_texels_shade(
             }
         })
         .sum()
+}
+
+/// The truth's `count` texels of the lights' regions from entry `first` on, shading the
+/// surface a pixel sees, light 0's through the sun's visibility (`truth_texels_shade` in
+/// view_sun.wgsl).
+fn truth_texels_shade(
+    frame: &FrameUniform,
+    texels: &[[f32; 4]],
+    shadow: &[f32],
+    px: &PixelView,
+    (first, count): (usize, u32),
+) -> Vec3 {
+    let visibility = lights_visibility(frame, shadow, px, count);
+    (0..count as usize)
+        .map(|i| {
+            let (t, r) = (texels[first + 2 * i], texels[first + 2 * i + 1]);
+            let c = directional(
+                px,
+                Vec3::from_slice(&t[..3]),
+                Vec3::from_slice(&r[..3]) * t[3],
+            );
+            if r[3] < 0.5 {
+                c * visibility
+            } else {
+                c
+            }
+        })
+        .sum()
+}
+
+/// The LTC table the light's area lights are shaded from, when it has one (the table
+/// `sun_texel_table` packed).
+fn area_table(light: &ViewLight) -> Option<std::sync::Arc<LtcTable>> {
+    light
+        .split_lights()
+        .iter()
+        .any(|l| l.shape.is_some())
+        .then(|| shared_table(LightBrdf::GENERIC))
 }
 
 /// The split-sum pass: per pixel (radiance, surface id), the background's and the
@@ -149,6 +210,7 @@ pub fn shade_split_sum(
 ) -> Vec<[f32; 4]> {
     let camera = frame.camera();
     let split = light.split_sum();
+    let ltc = area_table(light);
     (0..g.position.len())
         .into_par_iter()
         .map(|k| {
@@ -158,7 +220,14 @@ pub fn shade_split_sum(
             } else {
                 split_sum_shade(&split, px.n, px.v, px.n_dot_v, &px.m)
                     + direct_lights(frame, lights, &px)
-                    + sun_texels_shade(frame, &light.sun_texels, shadow, &px, (0, frame.sun[0]))
+                    + split_lights_shade(
+                        frame,
+                        &light.sun_texels,
+                        ltc.as_deref(),
+                        shadow,
+                        &px,
+                        frame.sun[0],
+                    )
             };
             c.extend(px.surface as u32 as f32).into()
         })
@@ -192,12 +261,12 @@ pub fn shade_truth(
             );
             truth_shade(&truth, px.n, px.v, px.n_dot_v, &px.m, pixel_shift(seed))
                 + direct_lights(frame, lights, &px)
-                + sun_texels_shade(
+                + truth_texels_shade(
                     frame,
                     &light.sun_texels,
                     shadow,
                     &px,
-                    (frame.sun[0], frame.sun[1]),
+                    (SPLIT_RECORD * frame.sun[0] as usize, frame.sun[1]),
                 )
         };
         let estimate = [c.x * weight, c.y * weight, c.z * weight, weight];

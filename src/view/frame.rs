@@ -15,11 +15,13 @@ use crate::environment::texels::SourceTexel;
 use crate::environment::Cubemap;
 use crate::math::lookup::SpecularLookup;
 use crate::plan::chain::SpecularChain;
+use crate::plan::ltc::shared_table;
 use crate::plan::lut::BrdfLut;
 use crate::plan::material::{ShadeMaterial, MIN_DIRECT_ALPHA};
 use crate::plan::scene::{SplitSumLight, TruthLight, MIN_N_DOT_V};
 use crate::plan::shading::{LightBrdf, ShadingTerms};
 use crate::stages::light::BakedEnvironment;
+use crate::stages::preview::lights::area_polygon;
 use crate::stages::preview::picture::{auto_exposure, luminance, HEAT_LOG10_RANGE};
 use crate::stages::preview::truth_environment;
 use crate::view::camera::CameraFrame;
@@ -111,28 +113,40 @@ pub struct ViewLight {
     /// The lights found in the environment, the sun first (kept in it or split out).
     pub found: Vec<Sun>,
     /// The lights taken out, as the shading passes read them ([`sun_texel_table`]): one
-    /// entry per light for the split-sum, then the environment's hot texels within each
-    /// light's region for the truth.
+    /// record per light for the split-sum, the environment's hot texels within each
+    /// light's region for the truth, the area lights' polygons and their LTC table.
     pub sun_texels: Vec<[f32; 4]>,
+    /// How many of the environment's texels in `sun_texels` the truth view integrates as
+    /// the lights'.
+    pub sun_cells: u32,
     /// The same environment baked in the other sun mode, when that differs (an HDRI
     /// with a sun): what the viewer's U key swaps in.
     pub alternate: Option<Box<ViewLight>>,
 }
 
-/// The entries of [`ViewLight::sun_texels`]: (unit direction, solid angle), (radiance,
-/// light index), the sun being light 0 (the one with a shadow). First one per light, its
-/// irradiance E⊥ from its direction (what the split-sum view shades, as the preview
-/// does); then the truth's hot texels of the environment as read (`hot`) that lie within
-/// a light's region ([`Sun::region_radius_deg`]), moved out of `hot`: the truth
-/// integrates the light as the environment holds it, the sun's part through the same
-/// shadow as the split-sum's.
-pub fn sun_texel_table(lights: &[Sun], hot: &mut Vec<SourceTexel>) -> Vec<[f32; 4]> {
-    let mut table = Vec::new();
-    for (i, sun) in lights.iter().enumerate() {
-        let (d, e) = (sun.direction, sun.irradiance);
-        table.push([d[0], d[1], d[2], 1.0]);
-        table.push([e[0], e[1], e[2], i as f32]);
-    }
+/// Entries of a split-out light's record in [`ViewLight::sun_texels`] (`SPLIT_RECORD` in
+/// view_sun.wgsl).
+pub const SPLIT_RECORD: usize = 3;
+
+/// The entries of [`ViewLight::sun_texels`] (vec4s), the sun being light 0 (the one with a
+/// shadow):
+///
+/// 1. per light, [`SPLIT_RECORD`] entries, what the split-sum view shades (as the preview
+///    does): (unit direction, 1), (its irradiance E⊥ from that direction, or for an area
+///    light the uniform radiance of its polygon, light index), (first vertex entry, vertex
+///    count, LTC table entry, LTC table size) with a vertex count of 0 for a directional
+///    light;
+/// 2. the truth's hot texels of the environment as read (`hot`) that lie within a light's
+///    region ([`Sun::region_radius_deg`]), moved out of `hot`, two entries each: (unit
+///    direction, solid angle), (radiance, light index): the truth integrates the light as
+///    the environment holds it, the sun's part through the same shadow as the split-sum's;
+/// 3. the area lights' polygons (`stages::preview::lights::area_polygon`), a unit vertex an
+///    entry;
+/// 4. when there is an area light, the LTC table of the viewer's light BRDF
+///    (`plan::ltc::shared_table`), two entries a cell: M⁻¹'s four numbers, (A + B, B, 0, 0).
+///
+/// Returns the table and the count of part 2's texels.
+pub fn sun_texel_table(lights: &[Sun], hot: &mut Vec<SourceTexel>) -> (Vec<[f32; 4]>, u32) {
     let owner = |t: &SourceTexel| {
         let l = Vec3::from_slice(&t.dir_omega[..3]);
         lights.iter().position(|sun| {
@@ -140,15 +154,64 @@ pub fn sun_texel_table(lights: &[Sun], hot: &mut Vec<SourceTexel>) -> Vec<[f32; 
             cos.acos().to_degrees() <= sun.region_radius_deg
         })
     };
+    let mut cells = Vec::new();
     hot.retain(|t| match owner(t) {
         Some(i) => {
-            table.push(t.dir_omega);
-            table.push([t.radiance[0], t.radiance[1], t.radiance[2], i as f32]);
+            cells.push(t.dir_omega);
+            cells.push([t.radiance[0], t.radiance[1], t.radiance[2], i as f32]);
             false
         }
         None => true,
     });
-    table
+    let polygons: Vec<Option<(Vec<Vec3>, Vec3)>> = lights
+        .iter()
+        .map(|l| l.shape.map(|shape| area_polygon(l, shape)))
+        .collect();
+    let table = polygons
+        .iter()
+        .any(Option::is_some)
+        .then(|| shared_table(LightBrdf::GENERIC));
+    let mut vertex = SPLIT_RECORD * lights.len() + cells.len();
+    let vertices: usize = polygons.iter().flatten().map(|(p, _)| p.len()).sum();
+    let ltc_entry = vertex + vertices;
+    let ltc_size = table.as_ref().map_or(0, |t| t.size);
+    let mut out = Vec::new();
+    for (i, (sun, polygon)) in lights.iter().zip(&polygons).enumerate() {
+        out.push([sun.direction[0], sun.direction[1], sun.direction[2], 1.0]);
+        match polygon {
+            Some((p, radiance)) => {
+                out.push([radiance.x, radiance.y, radiance.z, i as f32]);
+                out.push([
+                    vertex as f32,
+                    p.len() as f32,
+                    ltc_entry as f32,
+                    ltc_size as f32,
+                ]);
+                vertex += p.len();
+            }
+            None => {
+                let e = sun.irradiance;
+                out.push([e[0], e[1], e[2], i as f32]);
+                out.push([0.0; 4]);
+            }
+        }
+    }
+    let count = (cells.len() / 2) as u32;
+    out.extend(cells);
+    out.extend(
+        polygons
+            .iter()
+            .flatten()
+            .flat_map(|(p, _)| p.iter().map(|v| v.extend(0.0).to_array())),
+    );
+    if let Some(t) = table {
+        out.extend(
+            t.cells
+                .iter()
+                .flat_map(|c| [c.inverse, [c.norm, c.fresnel, 0.0, 0.0]]),
+        );
+    }
+    (out, count)
 }
 
 impl ViewLight {
@@ -156,7 +219,7 @@ impl ViewLight {
     pub fn new(name: impl Into<String>, baked: &BakedEnvironment, lut: BrdfLut) -> ViewLight {
         let (env, split) = truth_environment(baked.seen());
         let mut hot = split.hot;
-        let sun_texels = sun_texel_table(baked.split_lights(), &mut hot);
+        let (sun_texels, sun_cells) = sun_texel_table(baked.split_lights(), &mut hot);
         ViewLight {
             name: name.into(),
             exposure: auto_exposure(baked.seen()),
@@ -170,6 +233,7 @@ impl ViewLight {
             sun_mode: baked.sun_mode,
             found: baked.lights.clone(),
             sun_texels,
+            sun_cells,
             alternate: None,
         }
     }
@@ -187,7 +251,7 @@ impl ViewLight {
     /// How many of the environment's texels the truth view integrates as the lights'
     /// (the rest of `sun_texels`).
     pub fn sun_cell_count(&self) -> u32 {
-        (self.sun_texels.len() / 2) as u32 - self.sun_count()
+        self.sun_cells
     }
 
     /// A black environment, shown while the first bake runs.
@@ -217,6 +281,7 @@ impl ViewLight {
             sun_mode: SunMode::Keep,
             found: Vec::new(),
             sun_texels: Vec::new(),
+            sun_cells: 0,
             alternate: None,
         }
     }

@@ -161,7 +161,7 @@ impl Viewer {
             .light
             .split_lights()
             .first()
-            .map(|sun| ShadowMap::new(Vec3::from(sun.direction), model));
+            .map(|sun| ShadowMap::new(Vec3::from(sun.direction), model, sun.penumbra_spread()));
         if let Renderer::Gpu(g) = &mut self.renderer {
             g.set_shadow(self.shadow.as_ref())?;
         }

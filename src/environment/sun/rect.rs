@@ -87,6 +87,16 @@ impl RectLight {
 }
 
 impl Sun {
+    /// How its shadow's penumbra widens per unit of distance from the blocker, tan ρ of
+    /// its angular radius, for an area light; 0 for a sun-sized light, whose penumbra a
+    /// shadow map draws as a hard edge.
+    pub fn penumbra_spread(&self) -> f32 {
+        match self.shape {
+            Some(_) => self.angular_radius_deg.to_radians().tan(),
+            None => 0.0,
+        }
+    }
+
     /// The rectangle an engine's rect area light draws for this light, when it is an
     /// area source (`None` for a sun-sized light, a directional light).
     pub fn rect_light(&self) -> Option<RectLight> {

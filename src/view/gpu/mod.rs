@@ -102,6 +102,9 @@ pub struct GpuRenderer {
     /// Whether the G-buffer and the split-sum buffer hold the last frame drawn.
     deferred_current: bool,
     split_sum: ComputeKernel,
+    /// Whether `split_sum`, `truth` and the forward pipelines shade area lights (`AREA_LIGHTS`):
+    /// 1 when the light shown has one.
+    area_lights: u32,
     truth: ComputeKernel,
     frame: wgpu::Buffer,
     present: wgpu::Buffer,
@@ -151,16 +154,34 @@ fn gpu_error(stage: &str, message: impl Into<String>) -> Error {
     }
 }
 
+/// The truth kernel, compiled with or without area lights (`AREA_LIGHTS`: the soft
+/// shadow of light 0).
+fn truth_kernel(device: &wgpu::Device, area_lights: u32) -> Result<ComputeKernel> {
+    ComputeKernel::with_constants(
+        device,
+        "view_truth",
+        shaders::VIEW_TRUTH,
+        WORKGROUP,
+        &[("AREA_LIGHTS", area_lights as f64)],
+    )
+}
+
+/// The deferred split-sum kernel, compiled with or without area lights (`AREA_LIGHTS`).
+fn split_sum_kernel(device: &wgpu::Device, area_lights: u32) -> Result<ComputeKernel> {
+    ComputeKernel::with_constants(
+        device,
+        "view_split_sum",
+        shaders::VIEW_SPLIT_SUM,
+        WORKGROUP,
+        &[("AREA_LIGHTS", area_lights as f64)],
+    )
+}
+
 impl GpuRenderer {
     /// Compiles the passes on `device`.
     pub fn new(device: wgpu::Device, queue: wgpu::Queue) -> Result<GpuRenderer> {
-        let split_sum = ComputeKernel::new(
-            &device,
-            "view_split_sum",
-            shaders::VIEW_SPLIT_SUM,
-            WORKGROUP,
-        )?;
-        let truth = ComputeKernel::new(&device, "view_truth", shaders::VIEW_TRUTH, WORKGROUP)?;
+        let split_sum = split_sum_kernel(&device, 0)?;
+        let truth = truth_kernel(&device, 0)?;
         let (mesh_pipeline, sphere_pipeline, present_module, forward_module) =
             with_error_scope(&device, "viewer pipelines", || {
                 let gbuffer = device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -252,6 +273,7 @@ impl GpuRenderer {
             forward: true,
             deferred_current: false,
             split_sum,
+            area_lights: 0,
             truth,
             frame,
             present,
@@ -370,6 +392,12 @@ impl GpuRenderer {
             }
         })?;
         self.light = Some(textures);
+        let area_lights = u32::from(light.split_lights().iter().any(|l| l.shape.is_some()));
+        if area_lights != self.area_lights {
+            self.split_sum = split_sum_kernel(&self.device, area_lights)?;
+            self.truth = truth_kernel(&self.device, area_lights)?;
+            self.area_lights = area_lights;
+        }
         Ok(())
     }
 
@@ -459,7 +487,7 @@ impl GpuRenderer {
         let split_sum_view = points.is_none() && present.mode == Mode::SplitSum as u32;
         let forward = self.draws_forward() && split_sum_view && geometry_changed;
         let deferred = !forward && (geometry_changed || !self.deferred_current);
-        let forward_key = ForwardKey::of(frame, format);
+        let forward_key = ForwardKey::of(frame, format, self.area_lights);
         if forward {
             self.forward_pipelines(forward_key)?;
         }

@@ -79,14 +79,21 @@ pub(super) struct ForwardKey {
     pub(super) point_lights: u32,
     /// `FrameUniform::sun[0]`.
     pub(super) sun_lights: u32,
+    /// 1 when an area light is among them (`AREA_LIGHTS` in `common/view_sun.wgsl`).
+    pub(super) area_lights: u32,
 }
 
 impl ForwardKey {
-    pub(super) fn of(frame: &FrameUniform, format: wgpu::TextureFormat) -> ForwardKey {
+    pub(super) fn of(
+        frame: &FrameUniform,
+        format: wgpu::TextureFormat,
+        area_lights: u32,
+    ) -> ForwardKey {
         ForwardKey {
             format,
             point_lights: frame.light_count,
             sun_lights: frame.sun[0],
+            area_lights,
         }
     }
 }
@@ -143,6 +150,7 @@ impl ForwardPipelines {
         let constants = [
             ("POINT_LIGHTS", key.point_lights as f64),
             ("SUN_LIGHTS", key.sun_lights as f64),
+            ("AREA_LIGHTS", key.area_lights as f64),
         ];
         let surface = |fragment| {
             render_pipeline(
