@@ -8,51 +8,13 @@ mod common;
 
 use common::gpu;
 use splitsum::stages::preview::picture::luminance;
-use splitsum::view::frame::{Mode, Surface, ViewLight};
+use splitsum::view::frame::{Surface, ViewLight};
 use splitsum::view::gpu::GpuRenderer;
-use splitsum::view::model::Model;
-use splitsum::view::session::{CpuFrame, Renderer, Viewer};
-use splitsum::view::state::Action;
-use splitsum::view::{load_light, LightSource};
-use splitsum::{BackendChoice, SunMode};
+use splitsum::view::session::{CpuFrame, Renderer};
 
 /// studio_small_03_1k baked on the CPU with its lights split (and kept, as the alternate).
 fn studio() -> ViewLight {
-    let path = std::path::PathBuf::from("tests/data/studio_small_03_1k.hdr");
-    load_light(
-        &LightSource::File(path),
-        BackendChoice::Cpu,
-        SunMode::Split,
-        &mut |_| {},
-    )
-    .unwrap()
-}
-
-/// The split-sum frame and the truth's accumulation of a viewer of Spot under `light`
-/// drawn by `renderer` at `size`, with `frames` truth estimates of 16 points.
-fn frames(
-    light: &ViewLight,
-    renderer: Renderer,
-    size: (u32, u32),
-    frames: u32,
-) -> (Vec<[f32; 4]>, Vec<[f32; 4]>) {
-    let mut v = Viewer::new(
-        light.clone(),
-        vec![Model::spot().unwrap()],
-        renderer,
-        "test",
-    )
-    .unwrap();
-    v.state.hud = false;
-    v.render_image(size).unwrap();
-    let (shaded, _) = v.hdr().unwrap();
-    v.state.mode = Mode::Truth;
-    v.points_per_estimate = 16;
-    for _ in 0..frames {
-        v.render_image(size).unwrap();
-    }
-    let (_, accum) = v.hdr().unwrap();
-    (shaded, accum)
+    common::split_view_light("studio_small_03_1k.hdr")
 }
 
 /// Σ |split-sum − truth| / Σ truth over the object's pixels, in luminance, and
@@ -85,10 +47,12 @@ fn area_lights_bring_the_split_sum_to_the_truth() {
         "studio_small_03 split has no area light"
     );
     let size = (160, 90);
-    let (shaded, accum) = frames(&light, Renderer::Cpu(CpuFrame::default()), size, 4);
+    let (shaded, accum) =
+        common::viewer_frames(&light, Renderer::Cpu(CpuFrame::default()), size, 4);
     let (area, area_brightness) = object_difference(&shaded, &accum);
     let kept = light.alternate.as_deref().expect("the kept bake");
-    let (k_shaded, k_accum) = frames(kept, Renderer::Cpu(CpuFrame::default()), size, 4);
+    let (k_shaded, k_accum) =
+        common::viewer_frames(kept, Renderer::Cpu(CpuFrame::default()), size, 4);
     let (keep, keep_brightness) = object_difference(&k_shaded, &k_accum);
     println!(
         "Spot under studio_small_03 against the truth: area lights {:.2} % ({:+.2} %), kept {:.2} % ({:+.2} %)",
@@ -113,33 +77,16 @@ fn gpu_and_cpu_agree_with_area_lights() {
     let light = studio();
     let size = (160, 90);
     let gpu_renderer = GpuRenderer::new(ctx.device.clone(), ctx.queue.clone()).unwrap();
-    let (gpu_shaded, gpu_accum) = frames(&light, Renderer::Gpu(Box::new(gpu_renderer)), size, 1);
-    let (cpu_shaded, cpu_accum) = frames(&light, Renderer::Cpu(CpuFrame::default()), size, 1);
-    let n = gpu_shaded.len();
-    let mut worst = 0.0f32;
-    let close = (0..n)
-        .filter(|&k| {
-            gpu_shaded[k][3] == cpu_shaded[k][3]
-                && (0..3).all(|c| {
-                    let (a, b) = (gpu_shaded[k][c], cpu_shaded[k][c]);
-                    let d = (a - b).abs() / b.abs().max(1e-3);
-                    worst = worst.max(d);
-                    d <= 1e-3
-                })
-        })
-        .count();
-    println!("{close} of {n} pixels within 1e-3, the worst {worst}");
-    assert!(
-        close as f64 >= 0.995 * n as f64,
-        "{close} of {n} pixels agree"
+    let (gpu_shaded, gpu_accum) =
+        common::viewer_frames(&light, Renderer::Gpu(Box::new(gpu_renderer)), size, 1);
+    let (cpu_shaded, cpu_accum) =
+        common::viewer_frames(&light, Renderer::Cpu(CpuFrame::default()), size, 1);
+    let (close, worst) =
+        common::assert_viewer_frames_agree((&gpu_shaded, &gpu_accum), (&cpu_shaded, &cpu_accum));
+    println!(
+        "{close} of {} pixels within 1e-3, the worst {worst}",
+        gpu_shaded.len()
     );
-    let mean = |a: &[[f32; 4]]| {
-        a.iter()
-            .map(|p| luminance([p[0], p[1], p[2]]) as f64 / p[3] as f64)
-            .sum::<f64>()
-    };
-    let (g, c) = (mean(&gpu_accum), mean(&cpu_accum));
-    assert!((g - c).abs() <= 1e-3 * c, "truth: {g} vs {c}");
 }
 
 #[test]
@@ -148,43 +95,5 @@ fn forward_pass_draws_area_lights_as_the_deferred_passes_do() {
     // do, to the bar of tests/view.rs (`forward_and_deferred_pictures_are_the_same`), with
     // the lamps split and kept (U).
     let Some(ctx) = gpu() else { return };
-    let (bar_steps, bar_per_mille) = common::forward_pass_bar(&ctx);
-    let light = studio();
-    let size = (320, 180);
-    let render = |forward: bool, swap: bool| {
-        let mut r = GpuRenderer::new(ctx.device.clone(), ctx.queue.clone()).unwrap();
-        r.set_forward(forward);
-        if forward && !r.draws_forward() {
-            return None;
-        }
-        let mut v = Viewer::new(
-            light.clone(),
-            vec![Model::spot().unwrap()],
-            Renderer::Gpu(Box::new(r)),
-            "test",
-        )
-        .unwrap();
-        v.state.hud = false;
-        if swap {
-            v.apply(Action::ToggleSun).unwrap();
-        }
-        Some(v.render_image(size).unwrap())
-    };
-    for swap in [false, true] {
-        let Some(forward) = render(true, swap) else {
-            println!(
-                "skipped: {} does not filter rgba32float textures",
-                ctx.adapter_description()
-            );
-            return;
-        };
-        let deferred = render(false, swap).unwrap();
-        let (worst, differing) = common::step_differences(&forward, &deferred);
-        let n = (size.0 * size.1) as usize;
-        println!("swapped {swap}: {differing} of {n} pixels differ, by up to {worst} steps");
-        assert!(
-            worst <= bar_steps && differing * 1000 <= bar_per_mille * n,
-            "swapped {swap}: {differing} of {n} pixels differ, by up to {worst} steps"
-        );
-    }
+    common::forward_matches_deferred(&ctx, &studio(), (320, 180), &["", "u"]);
 }

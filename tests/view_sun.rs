@@ -20,14 +20,7 @@ use splitsum::{BackendChoice, SunMode};
 
 /// quarry_01_1k baked on the CPU with the sun split (and kept, as the alternate).
 fn quarry() -> ViewLight {
-    let path = std::path::PathBuf::from("tests/data/quarry_01_1k.hdr");
-    load_light(
-        &LightSource::File(path),
-        BackendChoice::Cpu,
-        SunMode::Split,
-        &mut |_| {},
-    )
-    .unwrap()
+    common::split_view_light("quarry_01_1k.hdr")
 }
 
 /// A viewer of `light` on `model` alone, drawn by the CPU renderer.
@@ -195,47 +188,11 @@ fn gpu_and_cpu_agree_with_the_sun() {
     let Some(ctx) = gpu() else { return };
     let light = quarry();
     let size = (160, 90);
-    let render = |renderer: Renderer| {
-        let mut v = Viewer::new(
-            light.clone(),
-            vec![Model::spot().unwrap()],
-            renderer,
-            "test",
-        )
-        .unwrap();
-        v.state.hud = false;
-        v.render_image(size).unwrap();
-        let (shaded, _) = v.hdr().unwrap();
-        v.state.mode = Mode::Truth;
-        v.points_per_estimate = 16;
-        v.render_image(size).unwrap();
-        let (_, accum) = v.hdr().unwrap();
-        (shaded, accum)
-    };
+    let render = |renderer: Renderer| common::viewer_frames(&light, renderer, size, 1);
     let gpu_renderer = GpuRenderer::new(ctx.device.clone(), ctx.queue.clone()).unwrap();
     let (gpu_shaded, gpu_accum) = render(Renderer::Gpu(Box::new(gpu_renderer)));
     let (cpu_shaded, cpu_accum) = render(Renderer::Cpu(CpuFrame::default()));
-    let n = gpu_shaded.len();
-    let close = (0..n)
-        .filter(|&k| {
-            gpu_shaded[k][3] == cpu_shaded[k][3]
-                && (0..3).all(|c| {
-                    let (a, b) = (gpu_shaded[k][c], cpu_shaded[k][c]);
-                    (a - b).abs() <= 1e-3 * b.abs().max(1e-3)
-                })
-        })
-        .count();
-    assert!(
-        close as f64 >= 0.995 * n as f64,
-        "{close} of {n} pixels agree"
-    );
-    let mean = |a: &[[f32; 4]]| {
-        a.iter()
-            .map(|p| luminance([p[0], p[1], p[2]]) as f64 / p[3] as f64)
-            .sum::<f64>()
-    };
-    let (g, c) = (mean(&gpu_accum), mean(&cpu_accum));
-    assert!((g - c).abs() <= 1e-3 * c, "truth: {g} vs {c}");
+    common::assert_viewer_frames_agree((&gpu_shaded, &gpu_accum), (&cpu_shaded, &cpu_accum));
 }
 
 #[test]
@@ -245,38 +202,5 @@ fn forward_pass_draws_the_sun_as_the_deferred_passes_do() {
     // under quarry_01 with the sun's shadow as the deferred passes do, to the bar of
     // tests/view.rs (`forward_and_deferred_pictures_are_the_same`, which says why).
     let Some(ctx) = gpu() else { return };
-    let (bar_steps, bar_per_mille) = common::forward_pass_bar(&ctx);
-    let light = quarry();
-    let size = (320, 180);
-    let render = |forward: bool, keys: &str| {
-        let mut r = GpuRenderer::new(ctx.device.clone(), ctx.queue.clone()).unwrap();
-        r.set_forward(forward);
-        if forward && !r.draws_forward() {
-            return None;
-        }
-        let models = vec![Model::spot().unwrap()];
-        let mut v = Viewer::new(light.clone(), models, Renderer::Gpu(Box::new(r)), "test").unwrap();
-        v.state.hud = false;
-        for action in splitsum::parse_keys(keys).unwrap() {
-            v.apply(action).unwrap();
-        }
-        Some(v.render_image(size).unwrap())
-    };
-    for keys in ["", "l", "l u"] {
-        let Some(forward) = render(true, keys) else {
-            println!(
-                "skipped: {} does not filter rgba32float textures",
-                ctx.adapter_description()
-            );
-            return;
-        };
-        let deferred = render(false, keys).unwrap();
-        let (worst, differing) = common::step_differences(&forward, &deferred);
-        let n = (size.0 * size.1) as usize;
-        println!("keys {keys:?}: {differing} of {n} pixels differ, by up to {worst} steps");
-        assert!(
-            worst <= bar_steps && differing * 1000 <= bar_per_mille * n,
-            "keys {keys:?}: {differing} of {n} pixels differ, by up to {worst} steps"
-        );
-    }
+    common::forward_matches_deferred(&ctx, &quarry(), (320, 180), &["", "l", "l u"]);
 }

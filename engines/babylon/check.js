@@ -8,11 +8,28 @@
 // here), so materials write linear radiance, clamped by Babylon to 30; each render lowers
 // scene.environmentIntensity until nothing reaches the clamp and divides it back out.
 import * as measure from '/engines/measure.js';
+import { compensateRectAreaLights, directionalLightFromSun, rectAreaLightFromSun } from '/js/splitsum-babylon.js';
 
 const B = window.BABYLON;
 const { SIZE, MIRROR_SIZE, SPHERE_DISTANCE, SPHERE_FOV, SKY_FOV, add, scale, normalize, degrees } = measure;
 // Babylon's PBR output clamp with the image processing as a post-process (pbr.fragment).
 const CLAMP = 30;
+// The distance of a studio's area lights from the origin (sun.json's rect_light gives the
+// origin the light's irradiance from any distance along its direction; a point p off the
+// origin sees it off by about 2·(p·direction)/distance, 2 % on the unit sphere).
+const AREA_DISTANCE = 100;
+// Edge of the studio case's sphere renders, which tests/engine_renders.rs integrates the
+// truth of per pixel (its cost grows with the square of this): engines/three's.
+const STUDIO_SIZE = 96;
+// The unit check of the area light (areaLightUnit): its direction, radiance and angular
+// half-sizes (°: a studio lamp's and a soft box's), the cap of normals about its axis whose
+// pixels are averaged (their radiance within 0.1 % of the axis's), and the cells per side
+// of the specular's sum over the rectangle.
+const UNIT_DIRECTION = [0.3, 0.5, -0.8];
+const UNIT_RADIANCE = 1000;
+const UNIT_LIGHTS = [[3, 3], [20, 10]];
+const UNIT_CAP = 2;
+const UNIT_CELLS = 128;
 
 const canvas = measure.pageCanvas(64);
 const engine = new B.Engine(canvas, false, { preserveDrawingBuffer: true });
@@ -39,15 +56,16 @@ function pixelRay([x, y], size) {
   return normalize([p.x - camera.position.x, p.y - camera.position.y, p.z - camera.position.z]);
 }
 
-// Renders `meshes` size² into a float target with the environment (and scaledLights)
+// Renders `meshes` size² into a float target with the environment (and lightScales)
 // scaled by `e`; returns
 // linear radiance (alpha: coverage) and the largest value written.
-// Lights scaled with the environment: [light, its intensity at e = 1].
-const scaledLights = [];
+// Lights scaled with the environment: functions of e that set a light's output to e times
+// its own.
+const lightScales = [];
 
 async function renderAt(meshes, size, e) {
   scene.environmentIntensity = e;
-  for (const [light, intensity] of scaledLights) light.intensity = intensity * e;
+  for (const scaleTo of lightScales) scaleTo(e);
   // Shaders compile asynchronously: wait until every mesh and its material can draw.
   for (let tries = 0; !meshes.every((m) => m.isReady(true)); tries++) {
     if (tries > 3000) throw new Error('a material never compiled');
@@ -96,7 +114,8 @@ const ready = (texture) => new Promise((ok, fail) => {
   setTimeout(() => fail(new Error(`${texture.name} did not load`)), 120000);
 });
 
-window.runCheck = async function ({ hdrUrl, exactUrl, envUrl, irradianceUrl, controlUrl, roughness, split }) {
+window.runCheck = async function ({ hdrUrl, exactUrl, envUrl, irradianceUrl, controlUrl, roughness, split, studio }) {
+  if (studio) return studioCase(studio, roughness);
   const own = await ready(new B.HDRCubeTexture(hdrUrl, scene, 256, false, true, false, true));
   // Babylon's own path from splitsum's exact cube (engines/panorama.mjs): its SH and its
   // prefiltering of the cube splitsum bakes from, with the clamp its SH projection puts on
@@ -245,13 +264,292 @@ window.runCheck = async function ({ hdrUrl, exactUrl, envUrl, irradianceUrl, con
 // intensity illuminance (Babylon shades it with colour × intensity, the environment with
 // its radiance, both × 1/π for a Lambertian surface), from 50 units away for its shadows.
 function sunLightFrom(sun) {
-  const light = new B.DirectionalLight('sun', new B.Vector3(...scale(sun.direction, -1)), scene);
-  const color = new B.Color3(...sun.irradiance.map((c) => c / sun.illuminance));
-  light.diffuse = color;
-  light.specular = color;
-  light.intensity = sun.illuminance;
-  light.position = new B.Vector3(...scale(sun.direction, 50));
-  return light;
+  return directionalLightFromSun(B, scene, sun);
+}
+
+// A light's scaling with the environment (lightScales): its intensity, e times its own.
+function intensityScale(light) {
+  const intensity = light.intensity;
+  return (e) => {
+    light.intensity = intensity * e;
+  };
+}
+
+// An area light of a split bake's sun.json as js/splitsum-babylon.js's rectAreaLightFromSun
+// makes it (a RectAreaLight under a TransformNode, its radiance a 1×1 float
+// emissionTexture; units and orientation there), `distance` away. Returns the light, its
+// frame, and its scaling with the environment (lightScales: the emission texture's radiance
+// × e).
+function rectAreaLightFrom(light, distance = AREA_DISTANCE) {
+  const area = rectAreaLightFromSun(B, scene, light, { distance });
+  const emission = area.emissionTexture, frame = area.parent;
+  const radiance = light.rect_light.radiance;
+  return {
+    light: area,
+    frame,
+    scale: (e) => emission.update(new Float32Array([...radiance.map((c) => c * e), 1])),
+    dispose: () => {
+      area.dispose();
+      emission.dispose();
+      frame.dispose();
+    },
+  };
+}
+
+// Waits until Babylon holds its LTC tables (fetched once per scene by the first area light,
+// Lights/areaLight.pure.ts, CreateSceneLTCTextures). PBRMaterial.isReadyForSubMesh asks
+// the lights' _isReady only when its defines already say AREALIGHTUSED, which it sets
+// later in the same call (_prepareEffect), and not at all once its effect is ready
+// (pbrBaseMaterial.pure.ts): a shader that compiles before the fetch ends draws from empty
+// tables (measured: the studio's first sphere black when the case ran after the others).
+async function ltcReady(lights) {
+  for (let tries = 0; !lights.every((l) => l._isReady()); tries++) {
+    if (tries > 3000) throw new Error("Babylon's LTC tables never loaded");
+    await new Promise((ok) => setTimeout(ok, 10));
+  }
+}
+
+// How far (degrees) the rectangle Babylon draws for `area` (rectAreaLightFrom) is from
+// sun.json's: its centre against direction · distance, its width against ±width_axis, its
+// height against height_axis (its parent's world matrix on x, y and the position, as
+// RectAreaLight.transferToEffect does).
+function rectError(light, { light: area, frame }) {
+  const world = frame.getWorldMatrix();
+  const at = B.Vector3.TransformCoordinates(area.position, world);
+  const across = B.Vector3.TransformNormal(new B.Vector3(1, 0, 0), world);
+  const up = B.Vector3.TransformNormal(new B.Vector3(0, 1, 0), world);
+  const { width_axis: w, height_axis: h } = light.rect_light;
+  return Math.max(
+    degrees(at.asArray(), light.direction),
+    Math.min(degrees(across.asArray(), w), degrees(across.asArray(), scale(w, -1))),
+    degrees(up.asArray(), h),
+  );
+}
+
+// A studio's lamps as Babylon RectAreaLights (`studio`: a `--sun split` bake's .env,
+// irradiance .env and sun.json, the .env and irradiance .env of the bake with the lamps
+// kept, and where the page serves Babylon's LTC tables): PBRMaterial spheres under the
+// residual IBL and the lights (rectAreaLightFrom; a light without rect_light a
+// DirectionalLight, sunLightFrom), both environments as the README recipe sets them, and
+// under the kept IBL alone, seen 40° from the first light. The lights are shaded first as
+// Babylon ships its shader (`plain_sphere_*`), then with js/splitsum-babylon.js's
+// compensateRectAreaLights (`sphere_*`): the engine's compiled effects are released in
+// between and the material is a new one, and the page counts the compiled effects that
+// hold the patch (none before it, some after: shaderPatch). Their linear RGBA float rows
+// (from the bottom, STUDIO_SIZE²) and the camera, as measure.pinhole takes it in Babylon's
+// (left-handed) world, are for tests/engine_renders.rs to hold against the truth; then the
+// unit check of the area light (areaLightUnit), as shipped and patched.
+async function studioCase(studio, roughness) {
+  // Babylon's LTC tables from this server (check.mjs writes them) instead of its CDN.
+  B.Tools.AssetBaseUrl = studio.assetBaseUrl;
+  const split = await ready(new B.CubeTexture(studio.env, scene));
+  split.irradianceTexture = await ready(new B.CubeTexture(studio.irradiance, scene));
+  const kept = await ready(new B.CubeTexture(studio.keptEnv, scene));
+  kept.irradianceTexture = await ready(new B.CubeTexture(studio.keptIrradiance, scene));
+  const sun = await (await fetch(studio.sun)).json();
+  const all = [sun, ...(sun.additional_lights ?? [])];
+  const lights = all.map((l) => {
+    if (l.rect_light) return rectAreaLightFrom(l);
+    const light = sunLightFrom(l);
+    return { light, scale: intensityScale(light), dispose: () => light.dispose() };
+  });
+  const areas = all.flatMap((l, k) => (l.rect_light ? [[l, lights[k]]] : []));
+  await ltcReady(areas.map(([, area]) => area.light));
+  const eye = scale(measure.turnedFrom(sun.direction, 40), SPHERE_DISTANCE);
+  const sphere = B.MeshBuilder.CreateSphere('studio sphere', { diameter: 2, segments: 96 }, scene);
+  const newMaterial = (name) => {
+    const material = new B.PBRMaterial(name, scene);
+    material.albedoColor = new B.Color3(1, 1, 1);
+    material.maxSimultaneousLights = Math.max(4, lights.length);
+    sphere.material = material;
+    return material;
+  };
+  const e0 = 0.6 / measure.cubeStats(await faces(kept), kept.getSize().width).mean;
+  const sphereWith = async (texture, withLights) => {
+    scene.environmentTexture = texture;
+    for (const l of lights) l.light.setEnabled(withLights);
+    lightScales.length = 0;
+    if (withLights) lightScales.push(...lights.map((l) => l.scale));
+    aim(eye, [0, 0, 0], SPHERE_FOV);
+    const px = await render([sphere], STUDIO_SIZE, e0);
+    return measure.maskSphere(px, eye, (p) => pixelRay(p, STUDIO_SIZE), STUDIO_SIZE);
+  };
+  const images = {}, raw = {}, spheres = [];
+  // Whether every pixel is finite, and the mean luminance over the sphere.
+  const summary = (px) => {
+    let sum = 0, n = 0;
+    for (let i = 0; i < STUDIO_SIZE * STUDIO_SIZE; i++) {
+      if (px[4 * i + 3] === 1) {
+        sum += measure.luminance(px, 4 * i);
+        n++;
+      }
+    }
+    return { finite: px.every(Number.isFinite), mean: sum / n };
+  };
+  // The engine's compiled effects whose fragment shader holds the patch.
+  const patchedEffects = () => Object.values(engine._compiledEffects).filter((e) => (e.fragmentSourceCode ?? '').includes('splitsumAreaSpecularLighting')).length;
+  // As Babylon ships it (with the lamps kept in the IBL beside them), then patched.
+  let material = newMaterial('studio plain');
+  for (const metallic of [1, 0]) {
+    for (const r of roughness) {
+      material.metallic = metallic;
+      material.roughness = r;
+      const got = await sphereWith(split, true);
+      const keep = await sphereWith(kept, false);
+      images[`sphere_m${metallic}_r${r}_plain_area_lights`] = measure.toPng(got, STUDIO_SIZE);
+      images[`sphere_m${metallic}_r${r}_kept`] = measure.toPng(keep, STUDIO_SIZE);
+      raw[`plain_sphere_m${metallic}_r${r}.rgba32f`] = measure.base64(got);
+      raw[`kept_sphere_m${metallic}_r${r}.rgba32f`] = measure.base64(keep);
+      spheres.push({ metallic, roughness: r, plain: true, ...summary(got) }, { metallic, roughness: r, kept: true, ...summary(keep) });
+    }
+  }
+  const orientation = Math.max(0, ...areas.map(([l, area]) => rectError(l, area)));
+  for (const l of lights) l.light.setEnabled(false);
+  scene.environmentTexture = null;
+  lightScales.length = 0;
+  sphere.setEnabled(false);
+  const areaUnitPlain = await areaLightUnit(images, 'plain_');
+  sphere.setEnabled(true);
+  const shaderPatch = { before: patchedEffects() };
+  shaderPatch.patchedNow = compensateRectAreaLights(B);
+  engine.releaseEffects();
+  material.dispose();
+  material = newMaterial('studio');
+  for (const metallic of [1, 0]) {
+    for (const r of roughness) {
+      material.metallic = metallic;
+      material.roughness = r;
+      const got = await sphereWith(split, true);
+      images[`sphere_m${metallic}_r${r}_area_lights`] = measure.toPng(got, STUDIO_SIZE);
+      raw[`sphere_m${metallic}_r${r}.rgba32f`] = measure.base64(got);
+      spheres.push({ metallic, roughness: r, ...summary(got) });
+    }
+  }
+  shaderPatch.after = patchedEffects();
+  for (const l of lights) l.dispose();
+  for (const m of [sphere, material, split, kept]) m.dispose();
+  scene.environmentTexture = null;
+  lightScales.length = 0;
+  const out = {
+    areaLights: areas.length,
+    directionalLights: lights.length - areas.length,
+    rectError: orientation,
+    spheres,
+    sphereCamera: { eye, fov: SPHERE_FOV, size: STUDIO_SIZE },
+    areaUnitPlain,
+    areaUnit: await areaLightUnit(images, ''),
+    shaderPatch,
+    path: `${areas.length} RectAreaLight(s) ${AREA_DISTANCE} units away (radiance in a 1×1 float emissionTexture; specular compensated, js/splitsum-babylon.js), ${lights.length - areas.length} DirectionalLight(s)`,
+  };
+  out.renderer = engine.description;
+  return { out, images, raw };
+}
+
+// The unit check of the area light (judged in check.mjs, AREA_BARS): one RectAreaLight as
+// rectAreaLightFrom makes it, alone (no environment), of radiance UNIT_RADIANCE and each of
+// UNIT_LIGHTS' angular half-sizes, AREA_DISTANCE away, facing a unit sphere seen from the
+// light's side. Where the sphere faces it (the pixels whose normal is within UNIT_CAP° of
+// the light's direction; the point on its axis at d = AREA_DISTANCE − 1 from it, n = v =
+// the axis), against:
+// - diffuse: a white Lambertian sphere (metallic 0, roughness 1, F0 = 0 and with it no
+//   specular, metallicF0Factor), L · F, F the rectangle's form factor there,
+//   (2/π)[a/√(1+a²) atan(b/√(1+a²)) + b/√(1+b²) atan(a/√(1+b²))], a = w/(2d), b = h/(2d);
+// - specular: a white metal at r = 1 (F0 = F90 = 1, so F = 1) without Babylon's
+//   multiple-scattering gain (brdf.useEnergyConservation), L ∫ f(l, v) (n·l) dω over the
+//   rectangle, f the GGX BRDF as Babylon shades it (α = r² + 0.0005, height-correlated
+//   Smith visibility), summed over UNIT_CELLS² cells of it. Under compensateRectAreaLights
+//   that is Babylon's GGX at the centre × Ω plus the LTC's variation over the rectangle;
+//   as Babylon ships it, the LTC lobe alone.
+// Its images are named with `tag` before them (the check runs it as shipped and patched).
+async function areaLightUnit(images, tag) {
+  const toLight = normalize(UNIT_DIRECTION);
+  const across = normalize(measure.cross(toLight, [0, 1, 0]));
+  const up = measure.cross(toLight, across);
+  const eye = scale(toLight, SPHERE_DISTANCE);
+  const sphere = B.MeshBuilder.CreateSphere('unit sphere', { diameter: 2, segments: 96 }, scene);
+  const material = new B.PBRMaterial('unit', scene);
+  material.albedoColor = new B.Color3(1, 1, 1);
+  material.roughness = 1;
+  // Lambert's diffuse (Babylon shades an area light's diffuse so whatever this says) and no
+  // multiple-scattering gain on the metal's specular.
+  material.baseDiffuseModel = B.Constants.MATERIAL_DIFFUSE_MODEL_LAMBERT;
+  material.brdf.useEnergyConservation = false;
+  sphere.material = material;
+  scene.environmentTexture = null;
+  const results = [];
+  for (const [alpha, beta] of UNIT_LIGHTS) {
+    const light = {
+      direction: toLight,
+      rect_light: { half_width_deg: alpha, half_height_deg: beta, width_axis: across, height_axis: up, radiance: [UNIT_RADIANCE, UNIT_RADIANCE, UNIT_RADIANCE], luminance: UNIT_RADIANCE },
+    };
+    const area = rectAreaLightFrom(light);
+    await ltcReady([area.light]);
+    lightScales.push(area.scale);
+    const d = AREA_DISTANCE - 1;
+    const w = 2 * AREA_DISTANCE * Math.tan((alpha * Math.PI) / 180), h = 2 * AREA_DISTANCE * Math.tan((beta * Math.PI) / 180);
+    const terms = [
+      { term: 'diffuse', metallic: 0, want: UNIT_RADIANCE * formFactor(w / d, h / d) },
+      { term: 'specular', metallic: 1, want: UNIT_RADIANCE * ggxOverRect(d, w, h) },
+    ];
+    for (const { term, metallic, want } of terms) {
+      material.metallic = metallic;
+      // No specular on the diffuse sphere: F0 = 0.
+      material.metallicF0Factor = metallic;
+      aim(eye, [0, 0, 0], SPHERE_FOV);
+      const px = await render([sphere], SIZE, 1);
+      images[`${tag}area_unit_${term}_${alpha}x${beta}`] = measure.toPng(px, SIZE);
+      const { lit } = measure.sphereSides(eye, (p) => pixelRay(p, SIZE), SIZE, toLight, Math.cos((UNIT_CAP * Math.PI) / 180));
+      const got = lit.reduce((sum, [i]) => sum + measure.luminance(px, 4 * i), 0) / lit.length;
+      results.push({ term, what: `${term} under a ${2 * alpha}° × ${2 * beta}° light of radiance ${UNIT_RADIANCE}`, got, want, ratio: got / want, pixels: lit.length });
+    }
+    // One-sided: the same rectangle turned to shine away from the sphere (its frame half a
+    // turn about x, the light at z = −distance in it: the same place) lights nothing.
+    area.frame.rotationQuaternion = B.Quaternion.RotationQuaternionFromAxis(B.Vector3.Cross(new B.Vector3(...up), new B.Vector3(...toLight)), new B.Vector3(...scale(up, -1)), new B.Vector3(...scale(toLight, -1)));
+    area.frame.computeWorldMatrix(true);
+    area.light.position = new B.Vector3(0, 0, -AREA_DISTANCE);
+    material.metallic = 0;
+    material.metallicF0Factor = 0;
+    const back = await render([sphere], SIZE, 1);
+    let brightest = 0;
+    for (let i = 0; i < SIZE * SIZE; i++) brightest = Math.max(brightest, measure.luminance(back, 4 * i));
+    results.push({ term: 'back', what: `the ${2 * alpha}° × ${2 * beta}° light turned away: the brightest pixel`, got: brightest, want: 0 });
+    area.dispose();
+    lightScales.length = 0;
+  }
+  sphere.dispose();
+  material.dispose();
+  return results;
+}
+
+// The form factor of a w × h rectangle from a point on its axis at distance 1, facing it,
+// a = w/2 and b = h/2 there (in units of the distance).
+function formFactor(w, h) {
+  const a = w / 2, b = h / 2;
+  const sa = Math.sqrt(1 + a * a), sb = Math.sqrt(1 + b * b);
+  return (2 / Math.PI) * ((a / sa) * Math.atan(b / sa) + (b / sb) * Math.atan(a / sb));
+}
+
+// ∫ f(l, n) (n·l) dω over a w × h rectangle facing a point d away on its axis, n = v its
+// axis: f the GGX BRDF at r = 1 with F = 1 as Babylon's PBRMaterial shades it (alphaG =
+// r² + 0.0005, convertRoughnessToAverageSlope; normalDistributionFunction_TrowbridgeReitzGGX
+// and the height-correlated smithVisibility_GGXCorrelated at n·v = 1).
+function ggxOverRect(d, w, h) {
+  const a2 = (1 + 0.0005) ** 2;
+  let sum = 0;
+  for (let j = 0; j < UNIT_CELLS; j++) {
+    for (let i = 0; i < UNIT_CELLS; i++) {
+      const x = w * ((i + 0.5) / UNIT_CELLS - 0.5), y = h * ((j + 0.5) / UNIT_CELLS - 0.5);
+      const r2 = x * x + y * y + d * d;
+      const nl = d / Math.sqrt(r2);
+      // The cell's solid angle: its area × cos at the cell / distance².
+      const omega = ((w * h) / (UNIT_CELLS * UNIT_CELLS)) * nl / r2;
+      const nh = Math.sqrt((1 + nl) / 2);
+      const ggx = a2 / (Math.PI * (nh * nh * (a2 - 1) + 1) ** 2);
+      const vis = 0.5 / (nl + Math.sqrt(nl * nl * (1 - a2) + a2));
+      sum += ggx * vis * nl * omega;
+    }
+  }
+  return sum;
 }
 
 // The sun as a light (`split`: a `--sun split` bake's .env, irradiance .env and sun.json,
@@ -266,7 +564,7 @@ async function sunLight(full, split, images) {
   const toSun = sun.direction;
   const light = sunLightFrom(sun);
   light.setEnabled(false);
-  scaledLights.push([light, light.intensity]);
+  lightScales.push(intensityScale(light));
   const eye = scale(measure.turnedFrom(toSun, 90), SPHERE_DISTANCE);
   const sphere = B.MeshBuilder.CreateSphere('sun sphere', { diameter: 2, segments: 96 }, scene);
   const material = new B.PBRMaterial('diffuse', scene);
@@ -318,7 +616,7 @@ async function sunLight(full, split, images) {
   shadows.dispose();
   for (const m of [floor, box, white, material]) m.dispose();
   light.dispose();
-  scaledLights.length = 0;
+  lightScales.length = 0;
   return {
     direction: toSun,
     ...measure.sideRatios(got, want),

@@ -7,12 +7,16 @@
 //
 //   cd engines/babylon && npm ci && node check.mjs
 //
+// A studio case (studio_small_03_1k) renders a `--sun split` bake's lamps as Babylon
+// RectAreaLights (js/splitsum-babylon.js) for tests/engine_renders.rs, as Babylon shades
+// them and with its specular compensated, with a unit check of the area light.
+//
 // Environment: SPLITSUM (the binary; default ../../target/release/splitsum), CHROMIUM
 // (default /usr/bin/chromium). Writes renders and results.json to
 // ../../target/engines/babylon/. Exits 1 when a bar is missed or the console shows an error
 // or warning.
 import { execFileSync } from 'node:child_process';
-import { mkdirSync } from 'node:fs';
+import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join, resolve, dirname } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import puppeteer from 'puppeteer-core';
@@ -41,16 +45,89 @@ const HDRIS = ['venice_sunset_1k', 'quarry_01_1k'];
 // is 83 % under.
 const SUN_HDRI = 'quarry_01_1k';
 const SUN_BARS = { sides: 0.03, shadowDegrees: 2, skyboxPeak: 0.1 };
+// A studio's lamps as area lights: studio_small_03 (a 6° round lamp with ~2/3 of the light)
+// baked with --sun split (its lamps as RectAreaLights beside the residual IBL) and with
+// --sun keep; its spheres, shaded as Babylon ships its shader (plain_sphere_*) and with
+// js/splitsum-babylon.js's compensateRectAreaLights (sphere_*: the LTC as a control
+// variate), are held against the truth by tests/engine_renders.rs
+// (studio_area_lights_against_truth). Here: the renders exist and are finite, the
+// rectangles Babylon draws are sun.json's, the patched renders ran on the patched shader
+// (and the plain ones did not), and the unit check of Babylon's RectAreaLight (check.js,
+// areaLightUnit), which pins its units: where a unit sphere faces a light of radiance L, a
+// white Lambertian one within 2 % of albedo · L · F (F the rectangle's form factor),
+// Babylon's diffuse being the closed-form polygon integral in float32 with its edge term a
+// rational fit of θ / sin θ (measured: −0.03 % under a 6° × 6° and a 40° × 20° light); a
+// white metal at r = 1 within 2 % of L ∫ f (n·l) dω over the rectangle (GGX, F = 1), the
+// patched specular being Babylon's GGX at the rectangle's centre × its solid angle plus
+// the LTC's variation over it (measured: +0.04 % and +0.81 %; as Babylon ships it, Heitz's
+// fitted LTC lobe alone, which at r = 1 and normal incidence holds 3.4 % less than GGX over
+// a small light: −3.4 % and −2.6 %, reported); and the light turned away lights nothing
+// (one-sided).
+const STUDIO_HDRI = 'studio_small_03_1k';
+const AREA_BARS = { diffuse: 0.02, specular: 0.02 };
+// Babylon's RectAreaLight fetches its LTC tables (areaLightsLTC.bin: per texel LTC1's then
+// LTC2's RGBA as half floats, 64², Lights/LTC/ltcTextureTool.ts) from assets.babylonjs.com,
+// which the page cannot reach, through Tools.GetAssetUrl, which maps that host under
+// Tools.AssetBaseUrl. The page gets them from here: the tables three.js r187 ships
+// (Heitz's GGX fit, which Babylon's LTC shader code, ported from three's, reads:
+// LTC_MAT_1 then LTC_MAT_2 as f32), in Babylon's layout.
+const LTC_TABLE = 'tests/data/ltc_ggx_heitz_three_r187.f32';
+const LTC_ASSETS = 'target/engines/babylon/assets';
 
-requireTools([['splitsum', splitsum], ['chromium', chromium]]);
+requireTools([['splitsum', splitsum], ['chromium', chromium], ['the LTC table', join(root, LTC_TABLE)]]);
 
 mkdirSync(out, { recursive: true });
 const run = (...args) => execFileSync(splitsum, args, { cwd: root, stdio: 'inherit' });
 run('bake', ...HDRIS.map((h) => `tests/data/${h}.hdr`), '--target', 'babylon', '-q', '-o', 'target/engines/babylon/splitsum');
 // The sun as a light: quarry_01 with its sun split out.
 run('bake', `tests/data/${SUN_HDRI}.hdr`, '--target', 'babylon', '--sun', 'split', '-q', '-o', 'target/engines/babylon/split');
+// The studio: its lamps split out as area lights, and kept in the IBL.
+run('bake', `tests/data/${STUDIO_HDRI}.hdr`, '--target', 'babylon', '--sun', 'split', '-q', '-o', 'target/engines/babylon/studio_split');
+run('bake', `tests/data/${STUDIO_HDRI}.hdr`, '--target', 'babylon', '--sun', 'keep', '-q', '-o', 'target/engines/babylon/studio_kept');
+writeLtcAssets();
 // The negative control: the same bake turned a quarter about +Y.
 run('bake', ...HDRIS.map((h) => `tests/data/${h}.hdr`), '--target', 'babylon', '--rotate', '90', '-q', '-o', 'target/engines/babylon/control');
+
+// LTC_TABLE as Babylon's areaLightsLTC.bin under LTC_ASSETS (Tools.AssetBaseUrl's layout).
+function writeLtcAssets() {
+  const bytes = readFileSync(join(root, LTC_TABLE));
+  const table = new Float32Array(bytes.buffer, bytes.byteOffset, bytes.byteLength / 4);
+  const texels = 64 * 64;
+  if (table.length !== 8 * texels) throw new Error(`${LTC_TABLE}: ${table.length} floats, not two 64² RGBA tables`);
+  const half = new Uint16Array(8 * texels);
+  for (let t = 0; t < texels; t++) {
+    for (let c = 0; c < 4; c++) {
+      half[8 * t + c] = toHalf(table[4 * t + c]);
+      half[8 * t + 4 + c] = toHalf(table[4 * texels + 4 * t + c]);
+    }
+  }
+  mkdirSync(join(root, LTC_ASSETS, 'areaLights'), { recursive: true });
+  writeFileSync(join(root, LTC_ASSETS, 'areaLights/areaLightsLTC.bin'), Buffer.from(half.buffer));
+}
+
+// IEEE half-float bits of a number, rounded to nearest even.
+function toHalf(x) {
+  const bits = new Uint32Array(new Float32Array([x]).buffer)[0];
+  const sign = (bits >>> 16) & 0x8000;
+  const exp = (bits >>> 23) & 0xff;
+  let mant = bits & 0x7fffff;
+  if (exp === 0xff) return sign | 0x7c00 | (mant ? 0x200 : 0);
+  const e = exp - 112;
+  if (e >= 0x1f) return sign | 0x7c00;
+  if (e <= 0) {
+    // A subnormal half (or zero): the mantissa with its leading 1, shifted into 2^-24 units.
+    if (e < -10) return sign;
+    mant |= 0x800000;
+    const shift = 14 - e;
+    const round = (mant >>> (shift - 1)) & 1, sticky = mant & ((1 << (shift - 1)) - 1);
+    let h = mant >>> shift;
+    if (round && (sticky || h & 1)) h++;
+    return sign | h;
+  }
+  let h = sign | (e << 10) | (mant >>> 13);
+  if (mant & 0x1000 && mant & 0x2fff) h++;
+  return h;
+}
 
 // Babylon's own path converts the HDRI to a 256² cube (HDRCubeTexture's size here).
 const exact = Object.fromEntries(HDRIS.map((h) => [h, exactPanorama({
@@ -64,6 +141,7 @@ const recipe = {
   splitsum,
   heading: 'Babylon.js',
   head: '<script src="/engines/babylon/node_modules/babylonjs/babylon.js"></script>',
+  files: [['js/splitsum-babylon.js', 'splitsum-babylon.js']],
   prelude: `import * as measure from '/engines/measure.js';
 const size = 64;
 const canvas = measure.pageCanvas(size);
@@ -102,9 +180,19 @@ await runEngineCheck({
   recipe,
   page: '/engines/babylon/check.html',
   out,
-  cases: HDRIS,
-  bars: BARS,
-  config: (hdri) => ({
+  cases: [...HDRIS, STUDIO_HDRI],
+  bars: { ...BARS, area: AREA_BARS },
+  config: (hdri) => (hdri === STUDIO_HDRI ? {
+    roughness: ROUGHNESS,
+    studio: {
+      env: `/target/engines/babylon/studio_split/${hdri}/${hdri}.env`,
+      irradiance: `/target/engines/babylon/studio_split/${hdri}/${hdri}_irradiance.env`,
+      sun: `/target/engines/babylon/studio_split/${hdri}/sun.json`,
+      keptEnv: `/target/engines/babylon/studio_kept/${hdri}/${hdri}.env`,
+      keptIrradiance: `/target/engines/babylon/studio_kept/${hdri}/${hdri}_irradiance.env`,
+      assetBaseUrl: `/${LTC_ASSETS}`,
+    },
+  } : {
     hdrUrl: `/tests/data/${hdri}.hdr`,
     exactUrl: `/${exact[hdri]}`,
     envUrl: `/target/engines/babylon/splitsum/${hdri}/${hdri}.env`,
@@ -121,6 +209,10 @@ await runEngineCheck({
       : undefined,
   }),
   judge: (r, { bad, note, name: hdri }) => {
+    if (hdri === STUDIO_HDRI) {
+      judgeStudio(r, { bad, note });
+      return;
+    }
     bad(r.levels === 9 && Math.abs(r.lodGenerationScale - 0.8) < 1e-6, `the .env loads as a ${r.levels}-level cube with lodGenerationScale ${r.lodGenerationScale}`);
     bad(r.cube.correlation >= BARS.cubeCorrelation && r.cube.sunError <= 0.5,
       `level 0 as Babylon holds it against its own HDRCubeTexture: correlation ${r.cube.correlation.toFixed(4)} of ln(1+L) over 8×8 blocks (bar ${BARS.cubeCorrelation}), bright texels ${r.cube.sunError.toFixed(2)}° apart (bar 0.5°); flux ratio ${r.cube.fluxRatio.toFixed(4)}`);
@@ -169,3 +261,27 @@ await runEngineCheck({
     }
   },
 });
+
+// The studio case: its renders (held against the truth by tests/engine_renders.rs,
+// studio_area_lights_against_truth) and the unit check of Babylon's RectAreaLight.
+function judgeStudio(r, { bad, note }) {
+  note(true, `path: ${r.path}`);
+  bad(r.rectError < 0.01, `studio: the rectangles Babylon draws (their parent's world matrix on position, width and height) ${r.rectError.toExponential(1)}° from sun.json's rect_light (bar 0.01°)`);
+  bad(r.areaLights > 0 && r.spheres.every((s) => s.finite && s.mean > 0),
+    `studio: ${r.areaLights} area light(s), ${r.directionalLights} directional; ${r.spheres.length} sphere renders, every pixel finite (mean luminance ${r.spheres.map((s) => s.mean.toPrecision(3)).join(', ')})`);
+  bad(r.shaderPatch.before === 0 && r.shaderPatch.patchedNow && r.shaderPatch.after > 0,
+    `studio: js/splitsum-babylon.js's compensateRectAreaLights patched Babylon's GLSL (${r.shaderPatch.patchedNow ? 'now' : 'already before'}); compiled effects holding it: ${r.shaderPatch.before} for the plain renders, ${r.shaderPatch.after} for the patched ones`);
+  const pc = (x) => `${(100 * (x - 1)).toFixed(2)} %`;
+  for (const u of r.areaUnitPlain) {
+    if (u.term !== 'back') note(true, `RectAreaLight unit check as Babylon ships it, ${u.what}: ${u.got.toPrecision(5)} against ${u.want.toPrecision(5)}, ${pc(u.ratio)}`);
+  }
+  for (const u of r.areaUnit) {
+    if (u.term === 'back') {
+      bad(u.got === 0, `RectAreaLight unit check, ${u.what}: ${u.got} (one-sided: must be 0)`);
+      continue;
+    }
+    const bar = AREA_BARS[u.term];
+    bad(Math.abs(u.ratio - 1) <= bar,
+      `RectAreaLight unit check, ${u.what}: ${u.got.toPrecision(5)} against ${u.want.toPrecision(5)}, ${pc(u.ratio)} (bar ${100 * bar} %; ${u.pixels} pixels)`);
+  }
+}

@@ -231,6 +231,132 @@ pub fn forward_pass_bar(ctx: &splitsum::gpu::GpuContext) -> (u8, usize) {
     }
 }
 
+/// Spot under `light` drawn by the GPU renderer's forward pass and by its deferred passes
+/// at `size` after each set of `--keys` tokens in `keys`: the two pictures within
+/// [`forward_pass_bar`] (where the adapter cannot draw the forward pass, says so and
+/// checks nothing).
+pub fn forward_matches_deferred(
+    ctx: &splitsum::gpu::GpuContext,
+    light: &splitsum::view::frame::ViewLight,
+    size: (u32, u32),
+    keys: &[&str],
+) {
+    use splitsum::view::gpu::GpuRenderer;
+    use splitsum::view::model::Model;
+    use splitsum::view::session::{Renderer, Viewer};
+    let (bar_steps, bar_per_mille) = forward_pass_bar(ctx);
+    let render = |forward: bool, keys: &str| {
+        let mut r = GpuRenderer::new(ctx.device.clone(), ctx.queue.clone()).unwrap();
+        r.set_forward(forward);
+        if forward && !r.draws_forward() {
+            return None;
+        }
+        let models = vec![Model::spot().unwrap()];
+        let mut v = Viewer::new(light.clone(), models, Renderer::Gpu(Box::new(r)), "test").unwrap();
+        v.state.hud = false;
+        for action in splitsum::parse_keys(keys).unwrap() {
+            v.apply(action).unwrap();
+        }
+        Some(v.render_image(size).unwrap())
+    };
+    for keys in keys {
+        let Some(forward) = render(true, keys) else {
+            println!(
+                "skipped: {} does not filter rgba32float textures",
+                ctx.adapter_description()
+            );
+            return;
+        };
+        let deferred = render(false, keys).unwrap();
+        let (worst, differing) = step_differences(&forward, &deferred);
+        let n = (size.0 * size.1) as usize;
+        println!("keys {keys:?}: {differing} of {n} pixels differ, by up to {worst} steps");
+        assert!(
+            worst <= bar_steps && differing * 1000 <= bar_per_mille * n,
+            "keys {keys:?}: {differing} of {n} pixels differ, by up to {worst} steps"
+        );
+    }
+}
+
+/// The split-sum frame and the truth's accumulation of a viewer of Spot under `light`
+/// drawn by `renderer` at `size`, with `frames` truth estimates of 16 points.
+pub fn viewer_frames(
+    light: &splitsum::view::frame::ViewLight,
+    renderer: splitsum::view::session::Renderer,
+    size: (u32, u32),
+    frames: u32,
+) -> (Vec<[f32; 4]>, Vec<[f32; 4]>) {
+    use splitsum::view::frame::Mode;
+    use splitsum::view::model::Model;
+    use splitsum::view::session::Viewer;
+    let mut v = Viewer::new(
+        light.clone(),
+        vec![Model::spot().unwrap()],
+        renderer,
+        "test",
+    )
+    .unwrap();
+    v.state.hud = false;
+    v.render_image(size).unwrap();
+    let (shaded, _) = v.hdr().unwrap();
+    v.state.mode = Mode::Truth;
+    v.points_per_estimate = 16;
+    for _ in 0..frames {
+        v.render_image(size).unwrap();
+    }
+    let (_, accum) = v.hdr().unwrap();
+    (shaded, accum)
+}
+
+/// The bundled HDRI `tests/data/<name>` baked for the viewer on the CPU with its lights
+/// split (and kept, as the alternate).
+pub fn split_view_light(name: &str) -> splitsum::view::frame::ViewLight {
+    let path = std::path::Path::new("tests/data").join(name);
+    splitsum::view::load_light(
+        &splitsum::view::LightSource::File(path),
+        splitsum::BackendChoice::Cpu,
+        splitsum::SunMode::Split,
+        &mut |_| {},
+    )
+    .unwrap()
+}
+
+/// The viewer's GPU and CPU frames of one view agree: the split-sum HDR pixels (RGB,
+/// surface id) on the same surface and within 1e-3 relative at ≥ 99.5 % of the pixels,
+/// and the truth accumulations' means (RGB·weight, weight) within 1e-3. Returns how many
+/// pixels agree and the largest relative difference.
+pub fn assert_viewer_frames_agree(
+    (gpu_shaded, gpu_accum): (&[[f32; 4]], &[[f32; 4]]),
+    (cpu_shaded, cpu_accum): (&[[f32; 4]], &[[f32; 4]]),
+) -> (usize, f32) {
+    use splitsum::stages::preview::picture::luminance;
+    let n = gpu_shaded.len();
+    let mut worst = 0.0f32;
+    let close = (0..n)
+        .filter(|&k| {
+            gpu_shaded[k][3] == cpu_shaded[k][3]
+                && (0..3).all(|c| {
+                    let (a, b) = (gpu_shaded[k][c], cpu_shaded[k][c]);
+                    let d = (a - b).abs() / b.abs().max(1e-3);
+                    worst = worst.max(d);
+                    d <= 1e-3
+                })
+        })
+        .count();
+    assert!(
+        close as f64 >= 0.995 * n as f64,
+        "{close} of {n} pixels agree"
+    );
+    let mean = |a: &[[f32; 4]]| {
+        a.iter()
+            .map(|p| luminance([p[0], p[1], p[2]]) as f64 / p[3] as f64)
+            .sum::<f64>()
+    };
+    let (g, c) = (mean(gpu_accum), mean(cpu_accum));
+    assert!((g - c).abs() <= 1e-3 * c, "truth: {g} vs {c}");
+    (close, worst)
+}
+
 /// a · b.
 pub fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
