@@ -308,21 +308,33 @@ impl Viewer {
         lines
     }
 
-    /// The HUD's line on the sun: where it is, its share of the light, and whether it is
-    /// split out (with its shadow) or kept in the IBL.
+    /// The HUD's line on the lights: the first (a sun, or an area light and its width),
+    /// where it is, its share of the light, how many more there are, and whether they are
+    /// split out (the first with its shadow, soft for an area light) or kept in the IBL.
     fn sun_line(&self) -> String {
         let Some(sun) = self.light.found.first() else {
             return "sun: none found (no compact dominant light)".into();
         };
+        let (what, shadow) = match sun.shape {
+            Some(_) => (
+                format!("area light {:.0}°", 2.0 * sun.angular_radius_deg),
+                "soft shadow",
+            ),
+            None => ("sun".to_string(), "shadow"),
+        };
+        let more = match self.light.found.len() - 1 {
+            0 => String::new(),
+            n => format!(" · {n} more light{}", if n == 1 { "" } else { "s" }),
+        };
         let place = format!(
-            "sun az {:.1}° el {:.1}° · {:.1} % of the light",
+            "{what} az {:.1}° el {:.1}° · {:.1} % of the light{more}",
             sun.azimuth_deg(),
             sun.elevation_deg(),
             100.0 * sun.share
         );
         match self.light.sun_mode {
             SunMode::Split => format!(
-                "{place} · split, shadow {}",
+                "{place} · split, {shadow} {}",
                 if self.state.shadow { "on" } else { "off" }
             ),
             SunMode::Keep => format!("{place} · kept in the IBL"),
