@@ -14,6 +14,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::environment::sun::grid::{cross, luminance, tangent_frame};
+use crate::environment::sun::source::rect_solid_angle;
 use crate::environment::sun::{SourceShape, Sun};
 
 /// An area light as the rectangle an engine draws (see the module's doc).
@@ -54,7 +55,7 @@ impl RectLight {
             }
         };
         let height = cross(d, width);
-        let omega = (4.0 * (alpha.sin() * beta.sin()).asin()).max(f64::MIN_POSITIVE);
+        let omega = rect_solid_angle(alpha, beta).max(f64::MIN_POSITIVE);
         let radiance = irradiance.map(|e| (f64::from(e) / omega) as f32);
         RectLight {
             half_width_deg: alpha.to_degrees() as f32,
@@ -68,11 +69,10 @@ impl RectLight {
 
     /// The solid angle the rectangle subtends from the origin, 4 asin(sin α sin β).
     pub fn solid_angle_sr(&self) -> f64 {
-        let (a, b) = (
+        rect_solid_angle(
             f64::from(self.half_width_deg).to_radians(),
             f64::from(self.half_height_deg).to_radians(),
-        );
-        4.0 * (a.sin() * b.sin()).asin()
+        )
     }
 
     /// This rectangle with its axes mapped by `map` (a target's frame), as its light's

@@ -90,13 +90,10 @@ impl SourceShape {
                 half_width_deg,
                 half_height_deg,
                 ..
-            } => {
-                let (a, b) = (
-                    f64::from(half_width_deg).to_radians(),
-                    f64::from(half_height_deg).to_radians(),
-                );
-                4.0 * (a.sin() * b.sin()).asin()
-            }
+            } => rect_solid_angle(
+                f64::from(half_width_deg).to_radians(),
+                f64::from(half_height_deg).to_radians(),
+            ),
         }
     }
 
@@ -126,6 +123,13 @@ impl SourceShape {
             .acos()
             .to_degrees()
     }
+}
+
+/// The solid angle of the gnomonic rectangle of angular half-sides `alpha`, `beta`
+/// (radians) about a direction, 4 asin(sin α sin β): the rectangle seen from a point on
+/// its axis.
+pub(crate) fn rect_solid_angle(alpha: f64, beta: f64) -> f64 {
+    4.0 * (alpha.sin() * beta.sin()).asin()
 }
 
 /// A compact bright source of an environment, as an area light.
