@@ -122,13 +122,45 @@ fn directional(px: &PixelView, l: Vec3, e: Vec3) -> Vec3 {
     spec + diff * px.m.albedo
 }
 
+/// The area lights of a frame, decoded once from `sun_texels` for every pixel: the LTC
+/// table they are shaded from and each split-out light's polygon (empty for a directional
+/// light), by light.
+struct AreaLights {
+    table: Option<std::sync::Arc<LtcTable>>,
+    polygons: Vec<Vec<Vec3>>,
+}
+
+impl AreaLights {
+    /// The area lights of `light` (none without one).
+    fn of(light: &ViewLight) -> AreaLights {
+        let texels = &light.sun_texels;
+        let polygons = (0..light.sun_count() as usize)
+            .map(|i| {
+                let a = texels[SPLIT_RECORD * i + 2];
+                let first = a[0] as usize;
+                texels[first..first + a[1] as usize]
+                    .iter()
+                    .map(|v| Vec3::from_slice(&v[..3]))
+                    .collect()
+            })
+            .collect();
+        AreaLights {
+            table: light
+                .has_area_lights()
+                .then(|| shared_table(LightBrdf::GENERIC)),
+            polygons,
+        }
+    }
+}
+
 /// The `count` lights split out shading the surface a pixel sees, light 0 through the
 /// sun's visibility in `shadow` (the map's texels): a directional light of E⊥, or an area
-/// light from `ltc` (the table `texels` holds; `split_lights_shade` in view_sun.wgsl).
+/// light from `area`'s table (`split_lights_shade` in view_sun.wgsl, which reads the
+/// polygon and the table from `texels`).
 fn split_lights_shade(
     frame: &FrameUniform,
     texels: &[[f32; 4]],
-    ltc: Option<&LtcTable>,
+    area: &AreaLights,
     shadow: &[f32],
     px: &PixelView,
     count: u32,
@@ -136,17 +168,13 @@ fn split_lights_shade(
     let visibility = lights_visibility(frame, shadow, px, count);
     (0..count as usize)
         .map(|i| {
-            let [t, r, a] = [0, 1, 2].map(|k| texels[SPLIT_RECORD * i + k]);
+            let [t, r] = [0, 1].map(|k| texels[SPLIT_RECORD * i + k]);
             let radiance = Vec3::from_slice(&r[..3]);
-            let c = match ltc {
-                Some(table) if a[1] > 0.0 => {
-                    let first = a[0] as usize;
-                    let polygon: Vec<Vec3> = texels[first..first + a[1] as usize]
-                        .iter()
-                        .map(|v| Vec3::from_slice(&v[..3]))
-                        .collect();
+            let polygon = &area.polygons[i];
+            let c = match &area.table {
+                Some(table) if !polygon.is_empty() => {
                     let (spec, diff) =
-                        shade_polygon(table, px.n, px.v, px.n_dot_v, &px.m, &polygon, radiance);
+                        shade_polygon(table, px.n, px.v, px.n_dot_v, &px.m, polygon, radiance);
                     spec + diff * px.m.albedo
                 }
                 _ => directional(px, Vec3::from_slice(&t[..3]), radiance * t[3]),
@@ -188,16 +216,6 @@ fn truth_texels_shade(
         .sum()
 }
 
-/// The LTC table the light's area lights are shaded from, when it has one (the table
-/// `sun_texel_table` packed).
-fn area_table(light: &ViewLight) -> Option<std::sync::Arc<LtcTable>> {
-    light
-        .split_lights()
-        .iter()
-        .any(|l| l.shape.is_some())
-        .then(|| shared_table(LightBrdf::GENERIC))
-}
-
 /// The split-sum pass: per pixel (radiance, surface id), the background's and the
 /// surfaces' as `background_radiance` and `surface_radiance` in view_shade.wgsl; `shadow`
 /// holds the sun's shadow map's texels (read when `frame.sun` says so).
@@ -210,7 +228,7 @@ pub fn shade_split_sum(
 ) -> Vec<[f32; 4]> {
     let camera = frame.camera();
     let split = light.split_sum();
-    let ltc = area_table(light);
+    let area = AreaLights::of(light);
     (0..g.position.len())
         .into_par_iter()
         .map(|k| {
@@ -220,14 +238,7 @@ pub fn shade_split_sum(
             } else {
                 split_sum_shade(&split, px.n, px.v, px.n_dot_v, &px.m)
                     + direct_lights(frame, lights, &px)
-                    + split_lights_shade(
-                        frame,
-                        &light.sun_texels,
-                        ltc.as_deref(),
-                        shadow,
-                        &px,
-                        frame.sun[0],
-                    )
+                    + split_lights_shade(frame, &light.sun_texels, &area, shadow, &px, frame.sun[0])
             };
             c.extend(px.surface as u32 as f32).into()
         })

@@ -243,6 +243,12 @@ impl ViewLight {
         self.sun_mode.split_out(&self.found)
     }
 
+    /// Whether a light split out is an area light (shaded from the LTC table that
+    /// `sun_texels` then holds, light 0's shadow soft).
+    pub fn has_area_lights(&self) -> bool {
+        self.split_lights().iter().any(|l| l.shape.is_some())
+    }
+
     /// How many lights the split-sum view shades (the first part of `sun_texels`).
     pub fn sun_count(&self) -> u32 {
         self.split_lights().len() as u32

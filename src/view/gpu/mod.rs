@@ -154,34 +154,31 @@ fn gpu_error(stage: &str, message: impl Into<String>) -> Error {
     }
 }
 
-/// The truth kernel, compiled with or without area lights (`AREA_LIGHTS`: the soft
-/// shadow of light 0).
-fn truth_kernel(device: &wgpu::Device, area_lights: u32) -> Result<ComputeKernel> {
+/// A shading kernel of the viewer (`label`, `source`), compiled with or without area
+/// lights (`AREA_LIGHTS`: their LTC shading and light 0's soft shadow).
+fn shading_kernel(
+    device: &wgpu::Device,
+    (label, source): (&'static str, &str),
+    area_lights: u32,
+) -> Result<ComputeKernel> {
     ComputeKernel::with_constants(
         device,
-        "view_truth",
-        shaders::VIEW_TRUTH,
+        label,
+        source,
         WORKGROUP,
         &[("AREA_LIGHTS", area_lights as f64)],
     )
 }
 
-/// The deferred split-sum kernel, compiled with or without area lights (`AREA_LIGHTS`).
-fn split_sum_kernel(device: &wgpu::Device, area_lights: u32) -> Result<ComputeKernel> {
-    ComputeKernel::with_constants(
-        device,
-        "view_split_sum",
-        shaders::VIEW_SPLIT_SUM,
-        WORKGROUP,
-        &[("AREA_LIGHTS", area_lights as f64)],
-    )
-}
+/// The deferred split-sum kernel and the truth kernel.
+const SPLIT_SUM_KERNEL: (&str, &str) = ("view_split_sum", shaders::VIEW_SPLIT_SUM);
+const TRUTH_KERNEL: (&str, &str) = ("view_truth", shaders::VIEW_TRUTH);
 
 impl GpuRenderer {
     /// Compiles the passes on `device`.
     pub fn new(device: wgpu::Device, queue: wgpu::Queue) -> Result<GpuRenderer> {
-        let split_sum = split_sum_kernel(&device, 0)?;
-        let truth = truth_kernel(&device, 0)?;
+        let split_sum = shading_kernel(&device, SPLIT_SUM_KERNEL, 0)?;
+        let truth = shading_kernel(&device, TRUTH_KERNEL, 0)?;
         let (mesh_pipeline, sphere_pipeline, present_module, forward_module) =
             with_error_scope(&device, "viewer pipelines", || {
                 let gbuffer = device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -392,10 +389,10 @@ impl GpuRenderer {
             }
         })?;
         self.light = Some(textures);
-        let area_lights = u32::from(light.split_lights().iter().any(|l| l.shape.is_some()));
+        let area_lights = u32::from(light.has_area_lights());
         if area_lights != self.area_lights {
-            self.split_sum = split_sum_kernel(&self.device, area_lights)?;
-            self.truth = truth_kernel(&self.device, area_lights)?;
+            self.split_sum = shading_kernel(&self.device, SPLIT_SUM_KERNEL, area_lights)?;
+            self.truth = shading_kernel(&self.device, TRUTH_KERNEL, area_lights)?;
             self.area_lights = area_lights;
         }
         Ok(())
