@@ -302,43 +302,52 @@ fn check(engine: &Engine) {
     assert!(failures.is_empty(), "{}: {failures:?}", shading.name);
 }
 
+/// three.js: its check's folder and how it reads `--target three` bakes.
+const THREE_ENGINE: Engine = Engine {
+    out: "target/engines/three",
+    bakes: "bakes",
+    target: &THREE,
+    shading: THREE_SHADING,
+    read: read_three,
+    geometry_roughness: true,
+};
+
+/// The glTF Sample Viewer.
+const GLTF_ENGINE: Engine = Engine {
+    out: "target/engines/gltf",
+    bakes: "splitsum",
+    target: &GLTF,
+    shading: GLTF_SHADING,
+    read: read_gltf,
+    geometry_roughness: false,
+};
+
+/// Babylon.js.
+const BABYLON_ENGINE: Engine = Engine {
+    out: "target/engines/babylon",
+    bakes: "splitsum",
+    target: &BABYLON,
+    shading: BABYLON_SHADING,
+    read: read_babylon,
+    geometry_roughness: false,
+};
+
 #[test]
 #[ignore]
 fn three_spheres_match_the_preview_three_mode() {
-    check(&Engine {
-        out: "target/engines/three",
-        bakes: "bakes",
-        target: &THREE,
-        shading: THREE_SHADING,
-        read: read_three,
-        geometry_roughness: true,
-    });
+    check(&THREE_ENGINE);
 }
 
 #[test]
 #[ignore]
 fn gltf_viewer_spheres_match_the_preview_gltf_mode() {
-    check(&Engine {
-        out: "target/engines/gltf",
-        bakes: "splitsum",
-        target: &GLTF,
-        shading: GLTF_SHADING,
-        read: read_gltf,
-        geometry_roughness: false,
-    });
+    check(&GLTF_ENGINE);
 }
 
 #[test]
 #[ignore]
 fn babylon_spheres_match_the_preview_babylon_mode() {
-    check(&Engine {
-        out: "target/engines/babylon",
-        bakes: "splitsum",
-        target: &BABYLON,
-        shading: BABYLON_SHADING,
-        read: read_babylon,
-        geometry_roughness: false,
-    });
+    check(&BABYLON_ENGINE);
 }
 
 /// How far an engine's render of studio_small_03 with its lamps as the engine's own area
@@ -502,25 +511,11 @@ fn studio_against_truth(engine: &Engine) {
 #[test]
 #[ignore]
 fn three_studio_area_lights_against_truth() {
-    studio_against_truth(&Engine {
-        out: "target/engines/three",
-        bakes: "studio_split",
-        target: &THREE,
-        shading: THREE_SHADING,
-        read: read_three,
-        geometry_roughness: true,
-    });
+    studio_against_truth(&THREE_ENGINE);
 }
 
 #[test]
 #[ignore]
 fn babylon_studio_area_lights_against_truth() {
-    studio_against_truth(&Engine {
-        out: "target/engines/babylon",
-        bakes: "studio_split",
-        target: &BABYLON,
-        shading: BABYLON_SHADING,
-        read: read_babylon,
-        geometry_roughness: false,
-    });
+    studio_against_truth(&BABYLON_ENGINE);
 }
