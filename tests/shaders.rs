@@ -420,4 +420,13 @@ fn view_area_light_constants_match_rust() {
     ] {
         assert_eq!(wgsl_u32_constant(&module, name), rust, "{name}");
     }
+    let fit = splitsum::math::ltc::EDGE_FIT;
+    for (k, rust) in fit.iter().enumerate() {
+        let name = format!("EDGE_FIT_C{k}");
+        assert_eq!(wgsl_f32_constant(&module, &name), *rust, "{name}");
+    }
+    assert_eq!(
+        wgsl_f32_constant(&module, "MIN_SIN_SQUARED"),
+        splitsum::math::ltc::MIN_SIN_SQUARED
+    );
 }

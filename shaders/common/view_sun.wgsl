@@ -3,10 +3,11 @@
 // BRDF, as the preview shades them), or an area light (a studio's lamp) shaded from the
 // LTC table (common/ltc.wgsl, as the preview shades it), the sun (light 0) seen through its
 // shadow map. The including shader declares `frame` (FrameParams), `sun_texels` (storage,
-// src/view/frame.rs, `sun_texel_table`: per light split out (direction, 1), (E⊥, or an
-// area light's radiance, light index), (first vertex entry, vertex count, LTC table
-// entry, LTC table size); then the truth's texels, (direction, solid angle), (radiance,
-// light index) each; then the area lights' vertices and the LTC table, two entries a cell)
+// src/view/frame.rs, `sun_texel_table`: per light split out (direction, 1), (E⊥, light
+// index), (0, 0, LTC table entry, LTC table size), a zero entry, or for an area light (centre, solid angle), (radiance, light
+// index), (first corner entry, 4, LTC table entry, LTC table size), (vector form factor,
+// 0); then the truth's texels, (direction, solid angle), (radiance, light index) each;
+// then the area lights' corners and the LTC table, two entries a cell)
 // and `shadow_map` (r32float: distance along the sun's rays to the object). Mirror of
 // src/view/shadow.rs (`visibility`) and `split_lights_shade`, `truth_texels_shade` in
 // src/view/cpu.rs.
@@ -100,7 +101,7 @@ fn sun_visibility(p: vec3<f32>, n: vec3<f32>) -> f32 {
 }
 
 // Entries of a split-out light's record in `sun_texels`.
-const SPLIT_RECORD: u32 = 3u;
+const SPLIT_RECORD: u32 = 4u;
 
 // 1 when an area light is split out (its LTC shading and the soft shadow are compiled in),
 // else 0: a constant of the pipeline (src/view/gpu, `area_lights`), since lavapipe's code
@@ -147,16 +148,23 @@ fn ltc_table_lookup(base: u32, size: u32, n_dot_v: f32, roughness: f32) -> LtcCe
     return c;
 }
 
-// The area lights' polygon vertices, for common/ltc.wgsl.
+// The area lights' corners, for common/ltc.wgsl.
 fn ltc_vertex(i: u32) -> vec3<f32> {
     return sun_texels[i].xyz;
 }
 
-// An area light of `radiance` whose record's third entry is `a` shading the surface a
-// pixel sees (specular plus diffuse times the albedo).
-fn area_light_shade(px: PixelView, a: vec4<f32>, radiance: vec3<f32>) -> vec3<f32> {
+// The shaded point of a pixel as its area lights share it, from the table whose first
+// light's record has third entry `a` (every area light reads the one table).
+fn area_light_point(px: PixelView, a: vec4<f32>) -> LtcPoint {
     let cell = ltc_table_lookup(u32(a.z), u32(a.w), px.n_dot_v, px.m.roughness);
-    let s = ltc_shade_polygon(cell, px.s.n, px.v, px.n_dot_v, px.m.f0, px.m.metallic, px.m.roughness, u32(a.x), u32(a.y), radiance, generic_light_brdf());
+    return ltc_point(cell, px.s.n, px.v, px.m.f0, px.m.roughness);
+}
+
+// An area light whose record's entries are `t`, `r`, `a`, `f` (its centre and solid
+// angle, radiance, corners and table, vector form factor) shading the surface a pixel sees
+// at `q` (specular plus diffuse times the albedo).
+fn area_light_shade(px: PixelView, q: LtcPoint, t: vec4<f32>, r: vec4<f32>, a: vec4<f32>, f: vec4<f32>) -> vec3<f32> {
+    let s = ltc_shade_quad(q, px.s.n, px.v, px.n_dot_v, px.m.f0, px.m.metallic, u32(a.x), t.xyz, t.w, f.xyz, r.rgb, generic_light_brdf());
     return s.spec + s.diff * px.m.albedo;
 }
 
@@ -167,6 +175,12 @@ fn area_light_shade(px: PixelView, a: vec4<f32>, radiance: vec3<f32>) -> vec3<f3
 fn split_lights_shade(px: PixelView, count: u32) -> vec3<f32> {
     let visibility = lights_visibility(px, count);
     let alpha = alpha_from_roughness(px.m.roughness);
+    // The point's LTC, once for every area light, in a loop that runs once or not at all;
+    // every record's third entry names the table, light 0's too.
+    var q: LtcPoint;
+    for (var k = 0u; k < min(min(count, 1u), AREA_LIGHTS); k++) {
+        q = area_light_point(px, sun_texels[2u]);
+    }
     var sum = vec3<f32>(0.0);
     for (var i = 0u; i < count; i++) {
         let t = sun_texels[SPLIT_RECORD * i];
@@ -179,7 +193,7 @@ fn split_lights_shade(px: PixelView, count: u32) -> vec3<f32> {
             c = s.spec + s.diff * px.m.albedo;
         }
         for (var k = 0u; k < area; k++) {
-            c = area_light_shade(px, a, r.rgb);
+            c = area_light_shade(px, q, t, r, a, sun_texels[SPLIT_RECORD * i + 3u]);
         }
         if (r.w < 0.5) {
             c *= visibility;

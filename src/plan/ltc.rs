@@ -33,6 +33,14 @@
 //! than the lobe, 0 for a mirror, whose image of the light the LTC alone draws.
 //! The diffuse is Lambert's exact L ∫_P (n·l)/π (the LTC with M = I), weighted as the
 //! BRDF's diffuse at c.
+//!
+//! [`LtcPoint::shade_quad`] is the same shading in real-time form, what the viewer draws
+//! (shaders/common/ltc.wgsl is its twin): the light is the quadrilateral an engine's rect
+//! light draws ([`QuadLight`]); its edges' integrals come from a rational fit of θ / sin θ
+//! and the horizon clips the polygon's vector form factor as a sphere
+//! ([`crate::math::ltc::horizon_form_factor`]) instead of edge by edge; the light's
+//! centre, solid angle and world-space vector form factor (the diffuse's) are computed
+//! once a frame.
 
 use std::sync::{Arc, Mutex};
 
@@ -42,7 +50,10 @@ use glam::{Mat3, Vec3};
 use rayon::prelude::*;
 
 use crate::math::brdf::d_ggx;
-use crate::math::ltc::{polygon_form_factor, polygon_solid_angle, Ltc};
+use crate::math::ltc::{
+    edge_vector_form_factor, horizon_form_factor, inverse_density, polygon_form_factor, polygon_solid_angle,
+    polygon_vector_form_factor, Ltc,
+};
 use crate::plan::material::{diffuse_weight, directional_light, light_masking, ShadeMaterial};
 use crate::plan::lut::LutModel;
 use crate::plan::shading::{DiffuseLobe, LightBrdf, Masking};
@@ -367,6 +378,122 @@ impl LtcTable {
             mix(at(i0, j0 + 1.0), at(i0 + 1.0, j0 + 1.0), fu),
             fw,
         )
+    }
+}
+
+/// An area light as the viewer shades it: the quadrilateral of unit corners an engine's
+/// rect light draws, wound counter-clockwise seen from the origin, with what
+/// [`LtcPoint::shade_quad`] reads of it that does not depend on the shaded point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct QuadLight {
+    /// The corners, counter-clockwise seen from the origin (its vector form factor points
+    /// toward it).
+    pub corners: [Vec3; 4],
+    /// The unit direction of the corners' sum, where the control variate is taken.
+    pub centre: Vec3,
+    /// Its solid angle, steradians.
+    pub solid_angle: f32,
+    /// Its vector form factor in the frame of the corners (the diffuse's, about any normal).
+    pub vector_form_factor: Vec3,
+}
+
+impl QuadLight {
+    /// The light of corners `corners` (in order around it, either winding).
+    pub fn new(corners: [Vec3; 4]) -> QuadLight {
+        let centre = corners.iter().copied().sum::<Vec3>().normalize();
+        let mut corners = corners;
+        if polygon_vector_form_factor(&corners).dot(centre) < 0.0 {
+            corners.reverse();
+        }
+        QuadLight {
+            corners,
+            centre,
+            solid_angle: polygon_solid_angle(&corners),
+            vector_form_factor: polygon_vector_form_factor(&corners),
+        }
+    }
+}
+
+/// What a shaded point's area lights share in [`LtcPoint::shade_quad`] (`LtcPoint` in
+/// shaders/common/ltc.wgsl): its LTC cell, the world-to-shading frame, world to the LTC's
+/// cosine space, whether the LTC reflects (−1) or not (1), its α and the lobe's scale
+/// F0 (A + B − B) + B.
+#[derive(Clone, Copy, Debug)]
+pub struct LtcPoint {
+    cell: LtcCell,
+    to_local: Mat3,
+    to_cosine: Mat3,
+    orientation: f32,
+    alpha: f32,
+    scale: Vec3,
+    brdf: LightBrdf,
+}
+
+impl LtcPoint {
+    /// The point of normal `n` seen from `v` (n·v = `n_dot_v`, clamped away from 0 by
+    /// the caller) of material `m`, its cell looked up in `table`.
+    pub fn new(table: &LtcTable, n: Vec3, v: Vec3, n_dot_v: f32, m: &ShadeMaterial) -> LtcPoint {
+        let t1 = (v - n * n.dot(v))
+            .try_normalize()
+            .unwrap_or_else(|| Vec3::from(crate::math::sampling::tangent_frame(n.into()).0));
+        let t2 = n.cross(t1);
+        let cell = table.lookup(n_dot_v, m.roughness);
+        let to_local = Mat3::from_cols(t1, t2, n).transpose();
+        let inverse = cell.inverse_matrix();
+        LtcPoint {
+            cell,
+            to_local,
+            to_cosine: inverse * to_local,
+            orientation: inverse.determinant().signum(),
+            alpha: crate::math::brdf::alpha_from_roughness(m.roughness),
+            scale: m.f0 * (cell.norm - cell.fresnel) + Vec3::splat(cell.fresnel),
+            brdf: table.brdf,
+        }
+    }
+
+    /// [`shade_polygon`] in real-time form (the module's doc): what the quadrilateral
+    /// light `light` of uniform radiance `radiance` sends towards `v` off this point (normal
+    /// `n`, material `m`), as (specular, diffuse per unit albedo). Mirror of
+    /// `ltc_shade_quad` in shaders/common/ltc.wgsl, in the same f32 steps.
+    pub fn shade_quad(
+        &self,
+        n: Vec3,
+        v: Vec3,
+        n_dot_v: f32,
+        m: &ShadeMaterial,
+        light: &QuadLight,
+        radiance: Vec3,
+    ) -> (Vec3, Vec3) {
+        // The corners in the LTC's cosine space; a reflection reverses the winding.
+        let p = light.corners.map(|c| (self.to_cosine * c).normalize());
+        let f: Vec3 = (0..4)
+            .map(|i| edge_vector_form_factor(p[(i + 3) % 4], p[i]))
+            .sum::<Vec3>();
+        let above = p.iter().all(|c| c.z >= 0.0);
+        let omega = light.solid_angle;
+        let polygon_lobe = radiance * self.scale * horizon_form_factor(f * self.orientation, above);
+        let (point, _) = directional_light(n, v, n_dot_v, self.alpha, m.f0, 1.0, light.centre, radiance * omega, self.brdf);
+        let density = inverse_density(self.cell.inverse_matrix(), self.to_local * light.centre);
+        let point_ltc = radiance * self.scale * (omega * density);
+        let lobe = 4.0 * std::f32::consts::PI * self.alpha * self.alpha;
+        let beta = lobe / (lobe + omega);
+        let spec = (polygon_lobe + beta * (point - point_ltc)).max(Vec3::ZERO);
+        let mut diff = Vec3::ZERO;
+        if m.metallic < 1.0 {
+            let h = (light.centre + v).normalize();
+            let weight = diffuse_weight(
+                self.brdf,
+                m.f0,
+                n.dot(light.centre).max(0.0),
+                n_dot_v,
+                v.dot(h).max(0.0),
+                self.alpha,
+            );
+            let above = light.corners.iter().all(|c| c.dot(n) >= 0.0);
+            let form_factor = horizon_form_factor(self.to_local * light.vector_form_factor, above);
+            diff = radiance * weight * ((1.0 - m.metallic) * form_factor);
+        }
+        (spec, diff)
     }
 }
 

@@ -15,7 +15,7 @@ use crate::cpu::preview_truth::{pixel_shift, truth_shade};
 use crate::environment::sample::sample_cube_lod;
 use crate::math::brdf::alpha_from_roughness;
 use crate::math::color::linear_to_srgb;
-use crate::plan::ltc::{shade_polygon, shared_table, LtcTable};
+use crate::plan::ltc::{shared_table, LtcPoint, LtcTable, QuadLight};
 use crate::plan::material::{directional_light, point_light, ShadeMaterial};
 use crate::plan::shading::LightBrdf;
 use crate::stages::preview::picture::{luminance, pbr_neutral, HEAT_BACKGROUND};
@@ -123,32 +123,35 @@ fn directional(px: &PixelView, l: Vec3, e: Vec3) -> Vec3 {
 }
 
 /// The area lights of a frame, decoded once from `sun_texels` for every pixel: the LTC
-/// table they are shaded from and each split-out light's polygon (empty for a directional
-/// light), by light.
+/// table they are shaded from and each split-out light's quadrilateral (None for a
+/// directional light), by light.
 struct AreaLights {
     table: Option<std::sync::Arc<LtcTable>>,
-    polygons: Vec<Vec<Vec3>>,
+    quads: Vec<Option<QuadLight>>,
 }
 
 impl AreaLights {
     /// The area lights of `light` (none without one).
     fn of(light: &ViewLight) -> AreaLights {
         let texels = &light.sun_texels;
-        let polygons = (0..light.sun_count() as usize)
+        let entry = |e: [f32; 4]| Vec3::from_slice(&e[..3]);
+        let quads = (0..light.sun_count() as usize)
             .map(|i| {
-                let a = texels[SPLIT_RECORD * i + 2];
+                let [t, _, a, f] = [0, 1, 2, 3].map(|k| texels[SPLIT_RECORD * i + k]);
                 let first = a[0] as usize;
-                texels[first..first + a[1] as usize]
-                    .iter()
-                    .map(|v| Vec3::from_slice(&v[..3]))
-                    .collect()
+                (a[1] > 0.0).then(|| QuadLight {
+                    corners: std::array::from_fn(|k| entry(texels[first + k])),
+                    centre: entry(t),
+                    solid_angle: t[3],
+                    vector_form_factor: entry(f),
+                })
             })
             .collect();
         AreaLights {
             table: light
                 .has_area_lights()
                 .then(|| shared_table(LightBrdf::GENERIC)),
-            polygons,
+            quads,
         }
     }
 }
@@ -156,7 +159,7 @@ impl AreaLights {
 /// The `count` lights split out shading the surface a pixel sees, light 0 through the
 /// sun's visibility in `shadow` (the map's texels): a directional light of E⊥, or an area
 /// light from `area`'s table (`split_lights_shade` in view_sun.wgsl, which reads the
-/// polygon and the table from `texels`).
+/// quadrilateral and the table from `texels`).
 fn split_lights_shade(
     frame: &FrameUniform,
     texels: &[[f32; 4]],
@@ -166,15 +169,19 @@ fn split_lights_shade(
     count: u32,
 ) -> Vec3 {
     let visibility = lights_visibility(frame, shadow, px, count);
+    // The point's LTC, once for every area light.
+    let point = area
+        .table
+        .as_ref()
+        .map(|table| LtcPoint::new(table, px.n, px.v, px.n_dot_v, &px.m));
     (0..count as usize)
         .map(|i| {
             let [t, r] = [0, 1].map(|k| texels[SPLIT_RECORD * i + k]);
             let radiance = Vec3::from_slice(&r[..3]);
-            let polygon = &area.polygons[i];
-            let c = match &area.table {
-                Some(table) if !polygon.is_empty() => {
+            let c = match (&point, &area.quads[i]) {
+                (Some(point), Some(quad)) => {
                     let (spec, diff) =
-                        shade_polygon(table, px.n, px.v, px.n_dot_v, &px.m, polygon, radiance);
+                        point.shade_quad(px.n, px.v, px.n_dot_v, &px.m, quad, radiance);
                     spec + diff * px.m.albedo
                 }
                 _ => directional(px, Vec3::from_slice(&t[..3]), radiance * t[3]),

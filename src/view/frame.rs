@@ -14,14 +14,14 @@ use crate::environment::sun::{Sun, SunMode};
 use crate::environment::texels::SourceTexel;
 use crate::environment::Cubemap;
 use crate::math::lookup::SpecularLookup;
+use crate::math::ltc::rect_polygon;
 use crate::plan::chain::SpecularChain;
-use crate::plan::ltc::shared_table;
+use crate::plan::ltc::{shared_table, QuadLight};
 use crate::plan::lut::BrdfLut;
 use crate::plan::material::{ShadeMaterial, MIN_DIRECT_ALPHA};
 use crate::plan::scene::{SplitSumLight, TruthLight, MIN_N_DOT_V};
 use crate::plan::shading::{LightBrdf, ShadingTerms};
 use crate::stages::light::BakedEnvironment;
-use crate::stages::preview::lights::area_polygon;
 use crate::stages::preview::picture::{auto_exposure, luminance, HEAT_LOG10_RANGE};
 use crate::stages::preview::truth_environment;
 use crate::view::camera::CameraFrame;
@@ -126,21 +126,37 @@ pub struct ViewLight {
 
 /// Entries of a split-out light's record in [`ViewLight::sun_texels`] (`SPLIT_RECORD` in
 /// view_sun.wgsl).
-pub const SPLIT_RECORD: usize = 3;
+pub const SPLIT_RECORD: usize = 4;
+
+/// The quadrilateral the viewer shades a split-out area light as: the rectangle an
+/// engine's rect light draws for it ([`crate::environment::sun::RectLight`], a disc as the
+/// square of its solid angle), with that rectangle's uniform radiance.
+pub fn view_quad(light: &Sun) -> Option<(QuadLight, Vec3)> {
+    let rect = light.rect_light()?;
+    let corners = rect_polygon(
+        Vec3::from(light.direction),
+        Vec3::from(rect.width_axis),
+        rect.half_width_deg.to_radians(),
+        rect.half_height_deg.to_radians(),
+    );
+    Some((QuadLight::new(corners), Vec3::from(rect.radiance)))
+}
 
 /// The entries of [`ViewLight::sun_texels`] (vec4s), the sun being light 0 (the one with a
 /// shadow):
 ///
 /// 1. per light, [`SPLIT_RECORD`] entries, what the split-sum view shades (as the preview
-///    does): (unit direction, 1), (its irradiance E⊥ from that direction, or for an area
-///    light the uniform radiance of its polygon, light index), (first vertex entry, vertex
-///    count, LTC table entry, LTC table size) with a vertex count of 0 for a directional
-///    light;
+///    does): for a directional light (unit direction, 1), (its irradiance E⊥ from that
+///    direction, light index), (0, 0, LTC table entry, LTC table size) and a zero entry
+///    (every record names the table, which the area lights share); for an area light, shaded as
+///    [`view_quad`]'s quadrilateral ([`QuadLight`]), (its unit centre, solid angle), (its
+///    uniform radiance, light index), (first corner entry, 4, LTC table entry, LTC table
+///    size), (its vector form factor, 0);
 /// 2. the truth's hot texels of the environment as read (`hot`) that lie within a light's
 ///    region ([`Sun::region_radius_deg`]), moved out of `hot`, two entries each: (unit
 ///    direction, solid angle), (radiance, light index): the truth integrates the light as
 ///    the environment holds it, the sun's part through the same shadow as the split-sum's;
-/// 3. the area lights' polygons (`stages::preview::lights::area_polygon`), a unit vertex an
+/// 3. the area lights' corners, counter-clockwise seen from the origin, a unit vector an
 ///    entry;
 /// 4. when there is an area light, the LTC table of the viewer's light BRDF
 ///    (`plan::ltc::shared_table`), two entries a cell: M⁻¹'s four numbers, (A + B, B, 0, 0).
@@ -163,35 +179,30 @@ pub fn sun_texel_table(lights: &[Sun], hot: &mut Vec<SourceTexel>) -> (Vec<[f32;
         }
         None => true,
     });
-    let polygons: Vec<Option<(Vec<Vec3>, Vec3)>> = lights
-        .iter()
-        .map(|l| l.shape.map(|shape| area_polygon(l, shape)))
-        .collect();
-    let table = polygons
+    let quads: Vec<Option<(QuadLight, Vec3)>> = lights.iter().map(view_quad).collect();
+    let table = quads
         .iter()
         .any(Option::is_some)
         .then(|| shared_table(LightBrdf::GENERIC));
-    let mut vertex = SPLIT_RECORD * lights.len() + cells.len();
-    let vertices: usize = polygons.iter().flatten().map(|(p, _)| p.len()).sum();
-    let ltc_entry = vertex + vertices;
+    let mut corner = SPLIT_RECORD * lights.len() + cells.len();
+    let corners = 4 * quads.iter().flatten().count();
+    let ltc_entry = corner + corners;
     let ltc_size = table.as_ref().map_or(0, |t| t.size);
     let mut out = Vec::new();
-    for (i, (sun, polygon)) in lights.iter().zip(&polygons).enumerate() {
-        out.push([sun.direction[0], sun.direction[1], sun.direction[2], 1.0]);
-        match polygon {
-            Some((p, radiance)) => {
+    for (i, (sun, quad)) in lights.iter().zip(&quads).enumerate() {
+        match quad {
+            Some((q, radiance)) => {
+                out.push(q.centre.extend(q.solid_angle).to_array());
                 out.push([radiance.x, radiance.y, radiance.z, i as f32]);
-                out.push([
-                    vertex as f32,
-                    p.len() as f32,
-                    ltc_entry as f32,
-                    ltc_size as f32,
-                ]);
-                vertex += p.len();
+                out.push([corner as f32, 4.0, ltc_entry as f32, ltc_size as f32]);
+                out.push(q.vector_form_factor.extend(0.0).to_array());
+                corner += 4;
             }
             None => {
                 let e = sun.irradiance;
+                out.push([sun.direction[0], sun.direction[1], sun.direction[2], 1.0]);
                 out.push([e[0], e[1], e[2], i as f32]);
+                out.push([0.0, 0.0, ltc_entry as f32, ltc_size as f32]);
                 out.push([0.0; 4]);
             }
         }
@@ -199,10 +210,10 @@ pub fn sun_texel_table(lights: &[Sun], hot: &mut Vec<SourceTexel>) -> (Vec<[f32;
     let count = (cells.len() / 2) as u32;
     out.extend(cells);
     out.extend(
-        polygons
+        quads
             .iter()
             .flatten()
-            .flat_map(|(p, _)| p.iter().map(|v| v.extend(0.0).to_array())),
+            .flat_map(|(q, _)| q.corners.map(|v| v.extend(0.0).to_array())),
     );
     if let Some(t) = table {
         out.extend(
