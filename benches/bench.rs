@@ -562,8 +562,8 @@ fn preview_benchmarks() {
     use splitsum::environment::Environment;
     use splitsum::stages::preview::{render_preview, PreviewOptions};
     println!("\n## Preview of venice_sunset_1k.hdr (default bake, 64-pixel cells)\n");
-    println!("| backend | truth points | split-sum wall s | truth wall s | whole preview CPU s |");
-    println!("|---|---|---|---|---|");
+    println!("| backend | lookup | truth points | split-sum wall s | truth wall s | whole preview CPU s |");
+    println!("|---|---|---|---|---|---|");
     let loaded = splitsum::io::input::load_input(
         std::path::Path::new("tests/data/venice_sunset_1k.hdr"),
         &Default::default(),
@@ -584,9 +584,17 @@ fn preview_benchmarks() {
     let lut = cpu.brdf_lut(512, 512).unwrap();
     let backends = cpu_and_gpu_backends();
     for (label, backend) in &backends {
-        for truth_samples in [512, 2048] {
+        // The real-time lookup with both truths, and the quality lookup (the split-sum's
+        // cost: its truth is the same).
+        let cases = [
+            (splitsum::SpecularLookup::GENERIC, 512),
+            (splitsum::SpecularLookup::GENERIC, 2048),
+            (splitsum::SpecularLookup::Filtered, 512),
+        ];
+        for (lookup, truth_samples) in cases {
             let opts = PreviewOptions {
                 truth_samples,
+                shading: splitsum::Shading::GENERIC.with_lookup(lookup),
                 ..PreviewOptions::default()
             };
             let mut p = None;
@@ -606,8 +614,10 @@ fn preview_benchmarks() {
             });
             let p = p.unwrap();
             println!(
-                "| {label} | {truth_samples} | {:.3} | {:.2} | {cpu_s:.2} |",
-                p.split_sum_seconds, p.truth_seconds
+                "| {label} | {} | {truth_samples} | {:.3} | {:.2} | {cpu_s:.2} |",
+                lookup.id(),
+                p.split_sum_seconds,
+                p.truth_seconds
             );
         }
     }

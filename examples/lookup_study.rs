@@ -171,6 +171,7 @@ fn figures_with(
                 radiance_blend: blend,
                 ..ShadingTerms::GENERIC
             },
+            filtered: None,
         },
         spheres,
         materials: &materials,

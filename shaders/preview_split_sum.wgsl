@@ -1,5 +1,6 @@
 // The preview's split-sum render: each sphere pixel shaded by `split_sum_shade`
-// (common/split_sum.wgsl) with its row's material and its column's roughness; background
+// (common/split_sum.wgsl, with the quality lookup of common/filtered.wgsl where the light
+// asks for it) with its row's material and its column's roughness; background
 // pixels read the chain's level 0. CPU mirror: src/cpu/preview_split_sum.rs.
 
 @group(0) @binding(0) var<uniform> scene: SceneParams;
@@ -22,7 +23,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     var c: vec3<f32>;
     if (g.sphere) {
         let n_dot_v = max(dot(g.dir, g.v), scene.min_n_dot_v);
-        c = split_sum_shade(g.dir, g.v, n_dot_v, preview_material(g.material, g.column));
+        let m = preview_material(g.material, g.column);
+        let filtered = filtered_lookup(g.dir, g.v, n_dot_v, m);
+        c = split_sum_shade_with(g.dir, bent_reflection(g.dir, g.v, m.bend), n_dot_v, m, filtered);
     } else {
         c = sample_cube_lod(specular, light.specular_size, light.specular_levels, g.dir, 0.0);
     }

@@ -222,6 +222,7 @@ fn check(engine: &Engine) {
             irradiance: &irradiance,
             lut: &lut,
             terms: shading.terms,
+            filtered: None,
         };
         let camera_json = &results["results"][hdri]["sphereCamera"];
         // The camera from the engine's world into the generic frame (Babylon's swaps x and

@@ -206,6 +206,7 @@ fn readme_wgsl_shades_as_the_preview() {
         irradiance: &baked.irradiance,
         lut: &lut,
         terms: ShadingTerms::GENERIC,
+        filtered: None,
     };
     for (k, n) in directions(96).into_iter().enumerate() {
         let tangent = n.any_orthonormal_vector();

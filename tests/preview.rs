@@ -22,7 +22,7 @@ use splitsum::targets::gltf::GLTF_SHADING;
 use splitsum::targets::three::THREE_SHADING;
 use splitsum::BakedEnvironment;
 use splitsum::BrdfLut;
-use splitsum::{DiffuseLobe, IblTerms, LutModel, Shading};
+use splitsum::{DiffuseLobe, IblTerms, LutModel, Shading, SpecularLookup};
 
 /// A bake of `env` with `specular_size`, in memory.
 fn baked(backend: &dyn Backend, env: Environment, specular_size: u32) -> BakedEnvironment {
@@ -377,6 +377,7 @@ fn gpu_renders_match_cpu() {
     // backends read the same table; its diffuse light read from the same bake).
     for shading in [
         Shading::GENERIC,
+        Shading::GENERIC.with_lookup(SpecularLookup::Filtered),
         THREE_SHADING,
         FILAMENT_SHADING,
         GLTF_SHADING,

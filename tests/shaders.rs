@@ -124,6 +124,41 @@ fn split_sum_constants_match_rust() {
     }
 }
 
+/// The quality lookup's constants (`plan::filtered`) and the chain's mappings
+/// (`plan::chain::MipRoughness`) are the same on both sides.
+#[test]
+fn filtered_lookup_constants_match_rust() {
+    use splitsum::plan::chain::{MipRoughness, BABYLON_LOD_SCALE, BABYLON_MINIMUM_VARIANCE};
+    use splitsum::plan::filtered::{
+        FILTERED_LOD_BIAS, FILTERED_N_DOT_V, FILTERED_ROUGHNESS, FILTERED_TAPS, MIN_FILTERED_ALPHA,
+    };
+    let module = parse(
+        "preview_split_sum",
+        splitsum::gpu::shaders::PREVIEW_SPLIT_SUM,
+    );
+    for (name, rust) in [
+        ("FILTERED_N_DOT_V_LO", FILTERED_N_DOT_V[0]),
+        ("FILTERED_N_DOT_V_HI", FILTERED_N_DOT_V[1]),
+        ("FILTERED_ROUGHNESS_LO", FILTERED_ROUGHNESS[0]),
+        ("FILTERED_ROUGHNESS_HI", FILTERED_ROUGHNESS[1]),
+        ("FILTERED_LOD_BIAS", FILTERED_LOD_BIAS),
+        ("MIN_FILTERED_ALPHA", MIN_FILTERED_ALPHA),
+        ("BABYLON_LOD_SCALE", BABYLON_LOD_SCALE),
+        ("BABYLON_MINIMUM_VARIANCE", BABYLON_MINIMUM_VARIANCE),
+    ] {
+        assert_eq!(wgsl_f32_constant(&module, name), rust, "{name}");
+    }
+    for (name, rust) in [
+        ("FILTERED_TAPS", FILTERED_TAPS),
+        ("MIP_ROUGHNESS_LINEAR", MipRoughness::Linear.code()),
+        ("MIP_ROUGHNESS_QUADRATIC", MipRoughness::Quadratic.code()),
+    ] {
+        assert_eq!(wgsl_u32_constant(&module, name), rust, "{name}");
+    }
+    // The third mapping is the kernels' fall-through.
+    assert_eq!(MipRoughness::Babylon.code(), 2);
+}
+
 /// The shading models' codes (`plan::shading`'s enums as u32) and the Fresnel mean are
 /// the same on both sides.
 #[test]
@@ -295,7 +330,10 @@ fn preview_uniforms_match_rust() {
             lut_height,
             ibl_terms,
             roughness_fresnel,
-            radiance_blend
+            radiance_blend,
+            filtered,
+            mip_roughness,
+            pad
         ]
     );
     assert_layout!(

@@ -22,6 +22,9 @@ struct SplitSumParams {
     ibl_terms: u32,          // IBL_TERMS_* (plan::shading::IblTerms)
     roughness_fresnel: u32,  // 1: kS is the roughness-aware Fresnel
     radiance_blend: u32,     // RADIANCE_BLEND_* (plan::shading::RadianceBlend)
+    filtered: u32,           // 1: the quality lookup (common/filtered.wgsl)
+    mip_roughness: u32,      // MIP_ROUGHNESS_*: how the chain's levels map to roughness
+    pad: vec2<u32>,
 }
 
 // plan::shading::IblTerms: how the prefiltered radiance, (A, B) and E/pi combine.
@@ -119,10 +122,16 @@ fn radiance_blend_weight(r: f32) -> f32 {
 // The split-sum radiance towards v of a point with normal n; n_dot_v is n.v clamped
 // away from 0 by the caller (silhouette normals are perpendicular to v).
 fn split_sum_shade(n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, m: ShadeMaterial) -> vec3<f32> {
-    let dir = bent_reflection(n, v, m.bend);
+    return split_sum_shade_with(n, bent_reflection(n, v, m.bend), n_dot_v, m, vec4<f32>(0.0));
+}
+
+// The split-sum radiance with the chain read along dir, its prefiltered radiance leaning
+// toward `filtered`'s rgb by its w (the quality lookup, common/filtered.wgsl; w = 0 reads
+// the chain alone). Mirror of cpu::preview_split_sum::split_sum_shade_with.
+fn split_sum_shade_with(n: vec3<f32>, dir: vec3<f32>, n_dot_v: f32, m: ShadeMaterial, filtered: vec4<f32>) -> vec3<f32> {
     let prefiltered = stretched_prefiltered(n, dir, n_dot_v, m);
     let ab = sample_lut(n_dot_v, m.roughness);
     let e = sample_cube_lod(irradiance, light.irradiance_size, 1u, n, 0.0);
-    let s = mix(prefiltered, e, radiance_blend_weight(m.roughness));
+    let s = mix(mix(prefiltered, e, radiance_blend_weight(m.roughness)), filtered.rgb, filtered.w);
     return ibl_terms(s, e, ab, n_dot_v, m);
 }

@@ -48,6 +48,7 @@ pub(super) fn lookup_parser() -> impl TypedValueParser<Value = SpecularLookup> {
     PossibleValuesParser::new(
         SpecularLookup::ALL
             .iter()
+            .chain(&[SpecularLookup::Filtered])
             .map(|l| PossibleValue::new(l.id()).help(l.description())),
     )
     .map(|id| SpecularLookup::by_id(&id).unwrap_or(SpecularLookup::GENERIC))

@@ -30,7 +30,17 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use crate::environment::sample::sample_cube_lod;
-use crate::math::brdf::{diffuse_fresnel_weight, fresnel_schlick_weight};
+use crate::environment::Cubemap;
+use crate::math::brdf::{
+    alpha_from_roughness, d_ggx, diffuse_fresnel_weight, fresnel_schlick_weight, g1_schlick_ggx,
+    g1_smith_ggx, k_ibl,
+};
+use crate::math::sampling::{sample_ggx_vndf, tangent_frame};
+use crate::plan::chain::MipRoughness;
+use crate::plan::filtered::{
+    filtered_point, filtered_share, sample_lod, FILTERED_TAPS, MIN_FILTERED_ALPHA,
+};
+use crate::plan::material::fresnel3;
 use crate::math::lookup::{bent_reflection, stretched_taps};
 use crate::plan::lut::BrdfLut;
 use crate::plan::material::ShadeMaterial;
@@ -64,14 +74,35 @@ pub fn sample_lut(lut: &BrdfLut, n_dot_v: f32, roughness: f32) -> [f32; 2] {
 }
 
 /// The split-sum radiance towards `v` of a point with normal `n`; `n_dot_v` is n·v clamped
-/// away from 0 by the caller (silhouette normals are perpendicular to v).
+/// away from 0 by the caller (silhouette normals are perpendicular to v). With the quality
+/// lookup (`light.filtered`) the prefiltered radiance leans toward [`filtered_prefiltered`]
+/// by `plan::filtered::filtered_share`.
 pub fn split_sum_shade(light: &SplitSumLight, n: Vec3, v: Vec3, n_dot_v: f32, m: &ShadeMaterial) -> Vec3 {
-    split_sum_shade_along(light, n, bent_reflection(n, v, m.bend), n_dot_v, m)
+    let filtered = filtered_lookup(light, n, v, n_dot_v, m);
+    split_sum_shade_with(light, n, bent_reflection(n, v, m.bend), n_dot_v, m, filtered)
+}
+
+/// The quality lookup's radiance at a point and its share there (`plan::filtered`), where
+/// `light` has it and the share is above 0.
+pub fn filtered_lookup(
+    light: &SplitSumLight,
+    n: Vec3,
+    v: Vec3,
+    n_dot_v: f32,
+    m: &ShadeMaterial,
+) -> Option<(Vec3, f32)> {
+    let mapping = light.filtered?;
+    let share = filtered_share(n_dot_v, m.roughness);
+    if share <= 0.0 {
+        return None;
+    }
+    filtered_prefiltered(light.specular, mapping, n, v, n_dot_v, m).map(|f| (f, share))
 }
 
 /// The split-sum radiance with the chain read along `dir` (the material's bent reflection
 /// for [`split_sum_shade`]; a lookup that depends on more than r in the lookup study), as
 /// the material's stretch says.
+#[cfg_attr(not(feature = "internals"), allow(dead_code))]
 pub fn split_sum_shade_along(
     light: &SplitSumLight,
     n: Vec3,
@@ -79,14 +110,74 @@ pub fn split_sum_shade_along(
     n_dot_v: f32,
     m: &ShadeMaterial,
 ) -> Vec3 {
+    split_sum_shade_with(light, n, dir, n_dot_v, m, None)
+}
+
+/// [`split_sum_shade_along`], its prefiltered radiance leaning toward `filtered`'s
+/// radiance by its share where there is one.
+pub fn split_sum_shade_with(
+    light: &SplitSumLight,
+    n: Vec3,
+    dir: Vec3,
+    n_dot_v: f32,
+    m: &ShadeMaterial,
+    filtered: Option<(Vec3, f32)>,
+) -> Vec3 {
     let (a, b, lod) = stretched_taps(n, dir, n_dot_v, m.roughness, m.lod, m.stretch);
     let prefiltered = 0.5
         * (Vec3::from(sample_cube_lod(light.specular, a.into(), lod))
             + Vec3::from(sample_cube_lod(light.specular, b.into(), lod)));
     let ab = sample_lut(light.lut, n_dot_v, m.roughness);
     let irradiance = Vec3::from(sample_cube_lod(light.irradiance, n.into(), 0.0));
-    let s = prefiltered.lerp(irradiance, light.terms.radiance_blend.weight(m.roughness));
+    let mut s = prefiltered.lerp(irradiance, light.terms.radiance_blend.weight(m.roughness));
+    if let Some((f, share)) = filtered {
+        s = s.lerp(f, share);
+    }
     ibl_terms(light.terms, s, irradiance, ab, n_dot_v, m)
+}
+
+/// The quality lookup's prefiltered radiance at a point of normal `n` seen from `v`
+/// (`plan::filtered`): [`FILTERED_TAPS`] samples of the GGX lobe's visible normals, each
+/// l = reflect(−v, h) above the horizon read from `chain` at the level of its share of the
+/// sphere (`mapping` its levels' roughness), their sum weighted by F G(l) G(v) / G1(v),
+/// normalised per channel; None where no sample is above the horizon. Mirror of
+/// `filtered_prefiltered` in shaders/common/filtered.wgsl (which draws the disc's points
+/// with the GPU's sin and cos, within 1e-6 of these on lavapipe).
+pub fn filtered_prefiltered(
+    chain: &Cubemap,
+    mapping: MipRoughness,
+    n: Vec3,
+    v: Vec3,
+    n_dot_v: f32,
+    m: &ShadeMaterial,
+) -> Option<Vec3> {
+    let alpha = alpha_from_roughness(m.roughness).max(MIN_FILTERED_ALPHA);
+    let (t1, t2) = tangent_frame(n.into());
+    let (t1, t2) = (Vec3::from(t1), Vec3::from(t2));
+    let v_local = [v.dot(t1), v.dot(t2), n_dot_v];
+    let k = k_ibl(m.roughness);
+    let masking_v = g1_schlick_ggx(n_dot_v, k) / g1_smith_ggx(n_dot_v, alpha * alpha);
+    let levels = chain.levels.len() as u32;
+    let (mut sum, mut weight) = (Vec3::ZERO, Vec3::ZERO);
+    for i in 0..FILTERED_TAPS {
+        let xi = filtered_point(i);
+        let r = xi[0].sqrt();
+        let phi = 2.0 * std::f32::consts::PI * xi[1];
+        let h = sample_ggx_vndf(v_local, alpha, [r * phi.cos(), r * phi.sin()]);
+        let h = t1 * h[0] + t2 * h[1] + n * h[2];
+        let v_dot_h = v.dot(h);
+        let l = 2.0 * v_dot_h * h - v;
+        let n_dot_l = n.dot(l);
+        if n_dot_l <= 0.0 || v_dot_h <= 0.0 {
+            continue;
+        }
+        let pdf = g1_smith_ggx(n_dot_v, alpha * alpha) * d_ggx(n.dot(h).max(0.0), alpha) / (4.0 * n_dot_v);
+        let lod = sample_lod(mapping, levels, pdf, FILTERED_TAPS);
+        let w = fresnel3(m.f0, v_dot_h) * (g1_schlick_ggx(n_dot_l, k) * masking_v);
+        sum += w * Vec3::from(sample_cube_lod(chain, l.into(), lod));
+        weight += w;
+    }
+    (weight.min_element() > 0.0).then(|| sum / weight)
 }
 
 /// The light towards v from the prefiltered radiance `s`, the LUT's `ab` = (A, B) and the

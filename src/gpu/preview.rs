@@ -36,6 +36,13 @@ pub struct SplitSumUniform {
     pub roughness_fresnel: u32,
     /// How far S leans toward E/π (`RadianceBlend` as u32).
     pub radiance_blend: u32,
+    /// 1 for the recipe's quality lookup (`plan::filtered`).
+    pub filtered: u32,
+    /// How the chain's levels map to roughness (`MipRoughness::code`), for the quality
+    /// lookup's levels.
+    pub mip_roughness: u32,
+    /// Padding to 16 bytes.
+    pub pad: [u32; 2],
 }
 
 impl SplitSumUniform {
@@ -50,6 +57,9 @@ impl SplitSumUniform {
             ibl_terms: light.terms.ibl as u32,
             roughness_fresnel: light.terms.roughness_fresnel as u32,
             radiance_blend: light.terms.radiance_blend as u32,
+            filtered: light.filtered.is_some() as u32,
+            mip_roughness: light.filtered.map_or(0, |m| m.code()),
+            pad: [0; 2],
         }
     }
 }

@@ -59,6 +59,7 @@ pub const PREVIEW_SPLIT_SUM: &str = kernel_source!(
     "preview_split_sum.wgsl",
     [
         "brdf.wgsl",
+        "sampling.wgsl",
         "cubemap.wgsl",
         "cube_fetch.wgsl",
         "cube_bilinear.wgsl",
@@ -66,6 +67,7 @@ pub const PREVIEW_SPLIT_SUM: &str = kernel_source!(
         "material.wgsl",
         "lut.wgsl",
         "split_sum.wgsl",
+        "filtered.wgsl",
         "preview_scene.wgsl"
     ]
 );

@@ -46,6 +46,11 @@ pub enum SpecularLookup {
     /// incidence toward grazing views, from a sharper level (`math::lookup::stretched_taps`):
     /// splitsum's own, the README's recipe.
     Stretched,
+    /// [`SpecularLookup::Stretched`] blended at grazing views of glossy points into
+    /// filtered importance sampling of the chain (`plan::filtered`: 16 samples of the GGX
+    /// lobe, each read at the level of its share of the sphere): the recipe's quality mode,
+    /// for offline and still renders.
+    Filtered,
 }
 
 impl SpecularLookup {
@@ -74,12 +79,22 @@ impl SpecularLookup {
             SpecularLookup::AlphaSquared => "alpha2",
             SpecularLookup::Frostbite => "frostbite",
             SpecularLookup::Stretched => "stretched",
+            SpecularLookup::Filtered => "filtered",
         }
     }
 
-    /// The lookup called `id` ([`SpecularLookup::id`]).
+    /// The lookup called `id` ([`SpecularLookup::id`]): one of [`SpecularLookup::ALL`] or
+    /// the quality mode.
     pub fn by_id(id: &str) -> Option<SpecularLookup> {
-        SpecularLookup::ALL.into_iter().find(|l| l.id() == id)
+        SpecularLookup::ALL
+            .into_iter()
+            .chain([SpecularLookup::Filtered])
+            .find(|l| l.id() == id)
+    }
+
+    /// Whether it samples the chain's lobe at grazing views (`plan::filtered`).
+    pub fn filtered(self) -> bool {
+        self == SpecularLookup::Filtered
     }
 
     /// What it is, in a line (`preview --help`).
@@ -94,6 +109,9 @@ impl SpecularLookup {
             SpecularLookup::Stretched => {
                 "Frostbite's direction (its bend faded in below r = 0.5, less for a low F0) as two taps stretched along the plane of incidence toward grazing views (the README's recipe)"
             }
+            SpecularLookup::Filtered => {
+                "the recipe's, blended at grazing views (n.v < 0.6, r < 0.9) into 16 samples of the GGX lobe each read from the chain at its own level (a quality mode)"
+            }
         }
     }
 
@@ -105,6 +123,7 @@ impl SpecularLookup {
             SpecularLookup::AlphaSquared => "mix(R, n, α²) (three.js, Filament)",
             SpecularLookup::Frostbite => "Frostbite's dominant direction",
             SpecularLookup::Stretched => "Frostbite's, stretched (two taps)",
+            SpecularLookup::Filtered => "stretched, 16 filtered taps at grazing views",
         }
     }
 
@@ -119,7 +138,7 @@ impl SpecularLookup {
             SpecularLookup::RSquared => roughness * roughness,
             SpecularLookup::AlphaSquared => alpha * alpha,
             SpecularLookup::Frostbite => frostbite_bend(alpha),
-            SpecularLookup::Stretched => {
+            SpecularLookup::Stretched | SpecularLookup::Filtered => {
                 frostbite_bend(alpha)
                     * (roughness / BEND_FADE_ROUGHNESS).powi(2).min(1.0)
                     * fresnel_bend_scale(roughness, f0)
@@ -131,7 +150,7 @@ impl SpecularLookup {
     /// [`SpecularLookup::Stretched`], 0 (one tap at the chain's lod) for the others.
     pub fn stretch(self) -> f32 {
         match self {
-            SpecularLookup::Stretched => 1.0,
+            SpecularLookup::Stretched | SpecularLookup::Filtered => 1.0,
             _ => 0.0,
         }
     }

@@ -71,6 +71,15 @@ impl MipRoughness {
         }
     }
 
+    /// The mapping as the kernels take it (`MIP_ROUGHNESS_*` in common/filtered.wgsl).
+    pub fn code(self) -> u32 {
+        match self {
+            MipRoughness::Linear => 0,
+            MipRoughness::Quadratic => 1,
+            MipRoughness::Babylon => 2,
+        }
+    }
+
     /// The mapping as written in manifests.
     pub fn formula(self) -> &'static str {
         match self {

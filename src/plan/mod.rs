@@ -5,12 +5,13 @@
 //! bilinear lookups ([`fit`]), the conversion's parameters ([`convert`]), the LUT models
 //! and their quadrature ([`lut`]), the BC6H encoder's settings ([`bc6h`]), the shading
 //! functions' material ([`material`]), how a shader combines a bake's files ([`shading`]:
-//! the recipe's and each engine's), the preview's scene ([`scene`]) and the LTC table of
-//! area lights ([`ltc`]).
+//! the recipe's and each engine's), the recipe's quality lookup ([`filtered`]), the
+//! preview's scene ([`scene`]) and the LTC table of area lights ([`ltc`]).
 
 pub mod bc6h;
 pub mod chain;
 pub mod convert;
+pub mod filtered;
 pub mod fit;
 pub mod ltc;
 pub mod lut;

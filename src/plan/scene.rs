@@ -274,6 +274,9 @@ pub struct SplitSumLight<'a> {
     pub lut: &'a BrdfLut,
     /// How the shading combines the reads (the recipe's, or an engine's).
     pub terms: ShadingTerms,
+    /// The recipe's quality lookup (`plan::filtered`), reading the chain's levels as this
+    /// mapping says; None for the real-time lookup.
+    pub filtered: Option<crate::plan::chain::MipRoughness>,
 }
 
 /// What the truth render reads: the environment and the kernels' tables.

@@ -228,7 +228,7 @@ impl Shading {
     /// not Babylon.js's blended one).
     pub const fn with_lookup(self, lookup: SpecularLookup) -> Shading {
         let radiance_blend = match lookup {
-            SpecularLookup::Stretched => RadianceBlend::AlphaSquared,
+            SpecularLookup::Stretched | SpecularLookup::Filtered => RadianceBlend::AlphaSquared,
             _ => RadianceBlend::None,
         };
         Shading {

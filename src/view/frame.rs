@@ -322,8 +322,9 @@ impl ViewLight {
             specular: &self.specular,
             irradiance: &self.irradiance,
             lut: &self.lut,
-            // The viewer shades as the README's recipe.
+            // The viewer shades as the README's recipe, in real time.
             terms: ShadingTerms::GENERIC,
+            filtered: None,
         }
     }
 

@@ -369,6 +369,10 @@ pub fn render_preview(
                 irradiance: light.irradiance,
                 lut: light.lut,
                 terms: shading.terms,
+                filtered: shading
+                    .lookup
+                    .filtered()
+                    .then_some(light.chain.roughness),
             },
             spheres: &spheres,
             materials: &materials,
