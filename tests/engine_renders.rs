@@ -148,6 +148,25 @@ struct Engine {
     geometry_roughness: bool,
 }
 
+/// The checks' white sphere of `metalness` (1: a metal of F0 = 1, 0: a dielectric of F0 =
+/// 0.04 and albedo 1) at `roughness`, read along R at lod 0 (the light's shading and the
+/// truth read no more).
+fn white_material(metalness: u32, roughness: f32) -> ShadeMaterial {
+    let (f0, metallic) = match metalness {
+        1 => (Vec3::ONE, 1.0),
+        _ => (Vec3::splat(0.04), 0.0),
+    };
+    ShadeMaterial {
+        f0,
+        metallic,
+        albedo: Vec3::ONE,
+        roughness,
+        lod: 0.0,
+        bend: 0.0,
+        stretch: 0.0,
+    }
+}
+
 /// three.js: `specular.ktx2` (x mirrored), E/π from its last level, three's own 16² DFG
 /// (`lut_accuracy`'s three_dfg_against_splitsum holds it to the `smith-correlated` model at
 /// that size), as the preview computes it.
@@ -253,22 +272,15 @@ fn check(engine: &Engine) {
                 // The exposure of an 8-bit read-back (the glTF Sample Viewer's), if any.
                 let exposure =
                     camera_json["exposures"][format!("sphere_m{metalness}_r{r}")].as_f64();
-                // A white material, as the checks' spheres.
-                let (f0, metallic) = match metalness {
-                    1 => (Vec3::ONE, 1.0),
-                    _ => (Vec3::splat(0.04), 0.0),
-                };
                 let (mut diff, mut total) = (0.0f64, 0.0f64);
                 for px_at in &pixels {
                     let rough = (shading.roughness(r) + px_at.geometry).min(1.0);
+                    let white = white_material(metalness, rough);
                     let m = ShadeMaterial {
-                        f0,
-                        metallic,
-                        albedo: Vec3::ONE,
-                        roughness: rough,
                         lod: engine.target.roughness.lod(rough, levels),
-                        bend: shading.lookup.bend(rough, f0),
+                        bend: shading.lookup.bend(rough, white.f0),
                         stretch: shading.lookup.stretch(),
+                        ..white
                     };
                     let (nc, vc) = (to_cube(px_at.n), to_cube(-px_at.d));
                     let c = split_sum_shade(&light, nc, vc, nc.dot(vc).max(MIN_N_DOT_V), &m);
@@ -437,30 +449,18 @@ fn studio_against_truth(engine: &Engine) {
             .filter_map(|(label, file)| read(file).map(|px| (label, px)))
             .collect();
             assert_eq!(renders[0].0, "area lights", "{HDRI}_{sphere} not written");
-            let (f0, metallic) = match metalness {
-                1 => (Vec3::ONE, 1.0),
-                _ => (Vec3::splat(0.04), 0.0),
-            };
             let mut diff = vec![0.0f64; renders.len()];
             let mut sum = vec![0.0f64; renders.len()];
             let mut total = 0.0f64;
             for px_at in &pixels {
                 let rough = (shading.roughness(r) + px_at.geometry).min(1.0);
-                let m = ShadeMaterial {
-                    f0,
-                    metallic,
-                    albedo: Vec3::ONE,
-                    roughness: rough,
-                    lod: 0.0,
-                    bend: 0.0,
-                    stretch: 0.0,
-                };
+                let m = white_material(metalness, rough);
                 let (nrm, v) = (px_at.n, -px_at.d);
                 let n_dot_v = nrm.dot(v).max(MIN_N_DOT_V);
                 let (mut spec, diffuse) =
                     truth_shade_parts(&truth, nrm, v, n_dot_v, &m, pixel_shift(px_at.k as u32));
                 if shading.light.compensated {
-                    spec *= specular_compensation(sample_lut(&lut, n_dot_v, rough), f0);
+                    spec *= specular_compensation(sample_lut(&lut, n_dot_v, rough), m.f0);
                 }
                 let want = common::luminance((spec + diffuse).to_array().map(f64::from));
                 let k = 4 * px_at.k;

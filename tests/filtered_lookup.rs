@@ -10,15 +10,7 @@ mod common;
 use splitsum::backend::{Backend, CpuBackend};
 use splitsum::bake::{bake_environment, BakeOptions};
 use splitsum::stages::preview::{render_preview, BakedLight, PreviewOptions};
-use splitsum::{Environment, Shading, SpecularLookup, SunMode};
-
-/// The backend the figures are rendered on: the GPU where there is one.
-fn backend() -> Box<dyn Backend> {
-    match common::gpu() {
-        Some(ctx) => Box::new(splitsum::backend::GpuBackend { ctx }),
-        None => Box::new(CpuBackend),
-    }
-}
+use splitsum::{Environment, Shading, SpecularLookup};
 
 /// In a white furnace (L = 1 everywhere) the quality lookup's normalised sum is 1 whatever
 /// its samples, so the spheres are the real-time lookup's, which the preview's furnace
@@ -68,7 +60,7 @@ fn a_white_furnace_is_unchanged() {
 /// (32-pixel cells, 1024 truth points; docs/accuracy.md has the default preview's figures).
 #[test]
 fn the_residual_within_five_per_cent() {
-    let backend = backend();
+    let backend = common::preferred_backend();
     let lut = CpuBackend.brdf_lut(512, 512).unwrap();
     // Each HDRI, and whether the real-time lookup leaves a sphere above 5 % on it.
     for (name, residual) in [
@@ -77,17 +69,7 @@ fn the_residual_within_five_per_cent() {
         ("studio_small_03_1k.hdr", false),
         ("quarry_01_1k.hdr", false),
     ] {
-        let path = std::path::Path::new("tests/data").join(name);
-        let env = splitsum::io::input::load_input(&path, &Default::default())
-            .unwrap()
-            .env;
-        let opts = BakeOptions {
-            sun: SunMode::Split,
-            ground_truth: true,
-            ..BakeOptions::default()
-        };
-        let baked =
-            bake_environment(&CpuBackend, env, &opts, &mut |_| {}, &mut Vec::new()).unwrap();
+        let baked = common::bake_split(name);
         let worst = |lookup| {
             let preview = PreviewOptions {
                 cell: 32,

@@ -279,26 +279,11 @@ fn a_mirror_shows_the_light() {
 #[test]
 fn studios_within_five_per_cent_with_their_lights_split() {
     use splitsum::backend::{Backend, CpuBackend};
-    use splitsum::bake::{bake_environment, BakeOptions};
     use splitsum::stages::preview::{render_preview, BakedLight, PreviewOptions};
-    use splitsum::{Environment, SunMode};
-    let backend: Box<dyn Backend> = match common::gpu() {
-        Some(ctx) => Box::new(splitsum::backend::GpuBackend { ctx }),
-        None => Box::new(CpuBackend),
-    };
+    let backend = common::preferred_backend();
     let lut = CpuBackend.brdf_lut(512, 512).unwrap();
     for name in ["studio_small_03_1k.hdr", "blender_studiolight_studio.exr"] {
-        let path = std::path::Path::new("tests/data").join(name);
-        let env: Environment = splitsum::io::input::load_input(&path, &Default::default())
-            .unwrap()
-            .env;
-        let opts = BakeOptions {
-            sun: SunMode::Split,
-            ground_truth: true,
-            ..BakeOptions::default()
-        };
-        let baked =
-            bake_environment(&CpuBackend, env, &opts, &mut |_| {}, &mut Vec::new()).unwrap();
+        let baked = common::bake_split(name);
         assert!(
             baked.split_lights().iter().any(|l| l.shape.is_some()),
             "{name}: no area light"

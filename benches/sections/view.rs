@@ -101,36 +101,30 @@ pub fn benchmarks() {
                 );
             }
         }
-        // The sun split out of quarry_01 and shaded with its shadow map.
-        let sunny = load_light(
-            &LightSource::File("tests/data/quarry_01_1k.hdr".into()),
-            BackendChoice::Auto,
-            splitsum::SunMode::Split,
-            &mut |_| {},
-        )
-        .unwrap();
-        let moving = turning(&mut gpu_viewer(&sunny, true));
-        row(
-            &name,
-            "camera turning (forward), quarry_01's sun split with its shadow",
-            moving,
-            None,
-        );
-        // A studio's lamps split out as area lights (the LTC), the first with its shadow.
-        let studio = load_light(
-            &LightSource::File("tests/data/studio_small_03_1k.hdr".into()),
-            BackendChoice::Auto,
-            splitsum::SunMode::Split,
-            &mut |_| {},
-        )
-        .unwrap();
-        let moving = turning(&mut gpu_viewer(&studio, true));
-        row(
-            &name,
-            "camera turning (forward), studio_small_03's lamps as area lights, the first with its shadow",
-            moving,
-            None,
-        );
+        // The sun split out of quarry_01 and shaded with its shadow map; a studio's lamps
+        // split out as area lights (the LTC), the first with its shadow.
+        for (file, lights) in [
+            ("quarry_01_1k.hdr", "quarry_01's sun split with its shadow"),
+            (
+                "studio_small_03_1k.hdr",
+                "studio_small_03's lamps as area lights, the first with its shadow",
+            ),
+        ] {
+            let split = load_light(
+                &LightSource::File(format!("tests/data/{file}").into()),
+                BackendChoice::Auto,
+                splitsum::SunMode::Split,
+                &mut |_| {},
+            )
+            .unwrap();
+            let moving = turning(&mut gpu_viewer(&split, true));
+            row(
+                &name,
+                &format!("camera turning (forward), {lights}"),
+                moving,
+                None,
+            );
+        }
     }
     let mut v = Viewer::new(light, models, Renderer::Cpu(CpuFrame::default()), "cpu").unwrap();
     let moving = time(FRAMES / 4, |i| {

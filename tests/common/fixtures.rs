@@ -85,6 +85,37 @@ pub fn backends() -> Vec<Box<dyn splitsum::backend::Backend>> {
     v
 }
 
+/// The backend a test's figures are rendered on: the GPU where there is one (see [`gpu`]),
+/// else the CPU.
+pub fn preferred_backend() -> Box<dyn splitsum::backend::Backend> {
+    match gpu() {
+        Some(ctx) => Box::new(splitsum::backend::GpuBackend { ctx }),
+        None => Box::new(splitsum::backend::CpuBackend),
+    }
+}
+
+/// The bundled HDRI `tests/data/<name>` baked on the CPU with its lights split, keeping the
+/// truth's environment (what the preview's figures read).
+pub fn bake_split(name: &str) -> splitsum::BakedEnvironment {
+    let path = std::path::Path::new("tests/data").join(name);
+    let env = splitsum::io::input::load_input(&path, &Default::default())
+        .unwrap()
+        .env;
+    let opts = splitsum::BakeOptions {
+        sun: splitsum::SunMode::Split,
+        ground_truth: true,
+        ..splitsum::BakeOptions::default()
+    };
+    splitsum::bake::bake_environment(
+        &splitsum::backend::CpuBackend,
+        env,
+        &opts,
+        &mut |_| {},
+        &mut Vec::new(),
+    )
+    .unwrap()
+}
+
 /// Every bundled HDRI in `tests/data` (all equirects).
 pub const BUNDLED_HDRIS: [&str; 7] = [
     "quarry_01_1k.hdr",
