@@ -61,7 +61,9 @@ fn filtered_prefiltered(n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, m: ShadeMateri
     let t2 = frame[1];
     let v_local = vec3<f32>(dot(v, t1), dot(v, t2), n_dot_v);
     let k = k_ibl(m.roughness);
-    let masking_v = g1_schlick_ggx(n_dot_v, k) / g1_smith_ggx(n_dot_v, alpha * alpha);
+    // The sampler's exact masking of v, which every sample's pdf and weight divide by.
+    let g1_v = g1_smith_ggx(n_dot_v, alpha * alpha);
+    let masking_v = g1_schlick_ggx(n_dot_v, k) / g1_v;
     var sum = vec3<f32>(0.0);
     var weight = vec3<f32>(0.0);
     for (var i = 0u; i < FILTERED_TAPS; i++) {
@@ -76,7 +78,7 @@ fn filtered_prefiltered(n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, m: ShadeMateri
         if (n_dot_l <= 0.0 || v_dot_h <= 0.0) {
             continue;
         }
-        let pdf = g1_smith_ggx(n_dot_v, alpha * alpha) * d_ggx(max(dot(n, h), 0.0), alpha) / (4.0 * n_dot_v);
+        let pdf = g1_v * d_ggx(max(dot(n, h), 0.0), alpha) / (4.0 * n_dot_v);
         let lod = sample_lod(light.specular_levels, pdf, FILTERED_TAPS);
         let w = fresnel3(m.f0, v_dot_h) * (g1_schlick_ggx(n_dot_l, k) * masking_v);
         sum += w * sample_cube_lod(specular, light.specular_size, light.specular_levels, l, lod);

@@ -58,11 +58,11 @@ fn ltc_density(inverse: mat3x3<f32>, l: vec3<f32>) -> f32 {
     return max(o.z / len, 0.0) / PI * abs(determinant(inverse)) / (len * len * len);
 }
 
-// What a shaded point's area lights share (`LtcPoint` in src/plan/ltc.rs): its LTC cell,
-// the world-to-shading frame, world to the LTC's cosine space, whether the LTC reflects
+// What a shaded point's area lights share (`LtcPoint` in src/plan/ltc.rs): its LTC's
+// inverse matrix, the world-to-shading frame, world to the LTC's cosine space, whether the LTC reflects
 // (-1) or not (1), its alpha and the lobe's scale F0 (A + B - B) + B.
 struct LtcPoint {
-    cell: LtcCell,
+    inverse: mat3x3<f32>,
     to_local: mat3x3<f32>,
     to_cosine: mat3x3<f32>,
     orientation: f32,
@@ -81,12 +81,11 @@ fn ltc_point(cell: LtcCell, n: vec3<f32>, v: vec3<f32>, f0: vec3<f32>, roughness
     }
     let t2 = cross(n, t1);
     var out: LtcPoint;
-    out.cell = cell;
+    out.inverse = ltc_inverse_matrix(cell);
     // World to the shading frame (rows t1, t2, n).
     out.to_local = transpose(mat3x3<f32>(t1, t2, n));
-    let inverse = ltc_inverse_matrix(cell);
-    out.to_cosine = inverse * out.to_local;
-    out.orientation = sign(determinant(inverse));
+    out.to_cosine = out.inverse * out.to_local;
+    out.orientation = sign(determinant(out.inverse));
     out.alpha = alpha_from_roughness(roughness);
     out.scale = f0 * (cell.norm - cell.fresnel) + vec3<f32>(cell.fresnel);
     return out;
@@ -112,7 +111,7 @@ fn ltc_shade_quad(q: LtcPoint, n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, f0: vec
     }
     let polygon_lobe = radiance * q.scale * ltc_horizon_form_factor(f * q.orientation, above);
     let point = directional_light(n, v, n_dot_v, q.alpha, f0, 1.0, centre, radiance * omega, brdf).spec;
-    let point_ltc = radiance * q.scale * (omega * ltc_density(ltc_inverse_matrix(q.cell), q.to_local * centre));
+    let point_ltc = radiance * q.scale * (omega * ltc_density(q.inverse, q.to_local * centre));
     let lobe = 4.0 * PI * q.alpha * q.alpha;
     let beta = lobe / (lobe + omega);
     var out: LightShade;

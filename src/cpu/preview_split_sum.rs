@@ -156,7 +156,9 @@ pub fn filtered_prefiltered(
     let (t1, t2) = (Vec3::from(t1), Vec3::from(t2));
     let v_local = [v.dot(t1), v.dot(t2), n_dot_v];
     let k = k_ibl(m.roughness);
-    let masking_v = g1_schlick_ggx(n_dot_v, k) / g1_smith_ggx(n_dot_v, alpha * alpha);
+    // The sampler's exact masking of v, which every sample's pdf and weight divide by.
+    let g1_v = g1_smith_ggx(n_dot_v, alpha * alpha);
+    let masking_v = g1_schlick_ggx(n_dot_v, k) / g1_v;
     let levels = chain.levels.len() as u32;
     let (mut sum, mut weight) = (Vec3::ZERO, Vec3::ZERO);
     for i in 0..FILTERED_TAPS {
@@ -171,7 +173,7 @@ pub fn filtered_prefiltered(
         if n_dot_l <= 0.0 || v_dot_h <= 0.0 {
             continue;
         }
-        let pdf = g1_smith_ggx(n_dot_v, alpha * alpha) * d_ggx(n.dot(h).max(0.0), alpha) / (4.0 * n_dot_v);
+        let pdf = g1_v * d_ggx(n.dot(h).max(0.0), alpha) / (4.0 * n_dot_v);
         let lod = sample_lod(mapping, levels, pdf, FILTERED_TAPS);
         let w = fresnel3(m.f0, v_dot_h) * (g1_schlick_ggx(n_dot_l, k) * masking_v);
         sum += w * Vec3::from(sample_cube_lod(chain, l.into(), lod));

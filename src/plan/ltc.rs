@@ -415,12 +415,12 @@ impl QuadLight {
 }
 
 /// What a shaded point's area lights share in [`LtcPoint::shade_quad`] (`LtcPoint` in
-/// shaders/common/ltc.wgsl): its LTC cell, the world-to-shading frame, world to the LTC's
+/// shaders/common/ltc.wgsl): its LTC's inverse matrix, the world-to-shading frame, world to the LTC's
 /// cosine space, whether the LTC reflects (−1) or not (1), its α and the lobe's scale
 /// F0 (A + B − B) + B.
 #[derive(Clone, Copy, Debug)]
 pub struct LtcPoint {
-    cell: LtcCell,
+    inverse: Mat3,
     to_local: Mat3,
     to_cosine: Mat3,
     orientation: f32,
@@ -441,7 +441,7 @@ impl LtcPoint {
         let to_local = Mat3::from_cols(t1, t2, n).transpose();
         let inverse = cell.inverse_matrix();
         LtcPoint {
-            cell,
+            inverse,
             to_local,
             to_cosine: inverse * to_local,
             orientation: inverse.determinant().signum(),
@@ -473,7 +473,7 @@ impl LtcPoint {
         let omega = light.solid_angle;
         let polygon_lobe = radiance * self.scale * horizon_form_factor(f * self.orientation, above);
         let (point, _) = directional_light(n, v, n_dot_v, self.alpha, m.f0, 1.0, light.centre, radiance * omega, self.brdf);
-        let density = inverse_density(self.cell.inverse_matrix(), self.to_local * light.centre);
+        let density = inverse_density(self.inverse, self.to_local * light.centre);
         let point_ltc = radiance * self.scale * (omega * density);
         let lobe = 4.0 * std::f32::consts::PI * self.alpha * self.alpha;
         let beta = lobe / (lobe + omega);
