@@ -1,6 +1,7 @@
 //! Readers and writers, one file per format. Every writer goes through
 //! [`atomic::write_atomic`], so an output is either complete or absent.
 
+pub mod astc;
 pub mod atomic;
 pub mod bc6h;
 pub mod cubemap;
