@@ -1,11 +1,13 @@
 //! `cargo bench`: peak memory, bake and cubemap timings, and the BRDF LUT's timings and
 //! accuracy on both backends, printed as tables. `cargo bench --bench bench -- memory`
-//! (or bake, cubemap, specular, lut, preview, bc6h, view) runs only those sections.
+//! (or bake, cubemap, specular, lut, preview, bc6h, astc, view) runs only those sections.
 //!
 //! CPU seconds come from /proc/self/stat (user + system, all threads), wall seconds from a
 //! monotonic clock. GPU times are measured around the whole kernel call (upload, dispatch,
 //! readback) after one warm-up call that also pays the driver's shader compilation.
 
+#[path = "sections/astc.rs"]
+mod astc;
 #[path = "sections/bc6h.rs"]
 mod bc6h;
 #[path = "../tests/common/mod.rs"]
@@ -471,6 +473,9 @@ fn main() {
     }
     if run("bc6h") {
         bc6h::benchmarks();
+    }
+    if run("astc") {
+        astc::benchmarks();
     }
     if run("view") {
         view::benchmarks();

@@ -41,6 +41,15 @@ pub enum Error {
         message: String,
     },
 
+    /// A block encoder reported a failure (astc-encoder returns a status for every call).
+    #[error("{encoder} failed: {message}")]
+    Encoder {
+        /// The encoder.
+        encoder: &'static str,
+        /// Its message.
+        message: String,
+    },
+
     /// An input file could not be decoded: truncated, corrupt, or not the format its
     /// extension says.
     #[error("{path}: not a valid {format} file: {message}")]

@@ -117,6 +117,7 @@ pub use io::lut::{check_lut_path, png_clip_warning, write_lut, LutWriteOptions};
 pub use io::staging::OutputRecord;
 pub use io::PixelFormat;
 pub use math::lookup::SpecularLookup;
+pub use plan::astc::AstcQuality;
 pub use plan::bc6h::Bc6hQuality;
 pub use plan::chain::{MipRoughness, SpecularChain};
 pub use plan::ltc::{fit_ltc, LtcCell, LtcTable};

@@ -218,7 +218,7 @@ fn dds_cubemaps_load_with_ddsfile() {
         let dds = ddsfile::Dds::read(std::fs::File::open(&path).unwrap()).unwrap();
         assert_eq!(
             dds.get_dxgi_format().map(|f| f as u32),
-            Some(format.dxgi_format())
+            format.dxgi_format()
         );
         assert_eq!((dds.get_width(), dds.get_height()), (16, 16));
         assert_eq!(dds.get_num_mipmap_levels(), 5);

@@ -13,6 +13,7 @@ use crate::environment::Cubemap;
 use crate::io::staging::OutputRecord;
 use crate::io::to_json;
 use crate::math::brdf::alpha_from_roughness;
+use crate::plan::astc;
 use crate::plan::bc6h::{ENCODER, ENCODER_VERSION};
 use crate::plan::chain::SpecularChain;
 use crate::plan::lut::BrdfLut;
@@ -162,6 +163,29 @@ pub struct EncoderRecord {
     pub ran_on: String,
 }
 
+impl EncoderRecord {
+    /// The encoder of `opts`'s pixel format, when it is a block format: BC6H on
+    /// `bc6h_ran_on`, ASTC with astc-encoder on the CPU.
+    fn of(opts: &BakeOptions, bc6h_ran_on: &str) -> Option<EncoderRecord> {
+        let format = opts.pixel_format();
+        if format.is_astc() {
+            Some(EncoderRecord {
+                name: astc::ENCODER.into(),
+                version: astc::ENCODER_VERSION.into(),
+                preset: opts.astc_quality.name().into(),
+                ran_on: "cpu".into(),
+            })
+        } else {
+            format.is_block().then(|| EncoderRecord {
+                name: ENCODER.into(),
+                version: ENCODER_VERSION.into(),
+                preset: opts.bc6h_quality.name().into(),
+                ran_on: bc6h_ran_on.into(),
+            })
+        }
+    }
+}
+
 /// How preview.png was made and what it measured.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PreviewRecord {
@@ -278,12 +302,7 @@ impl Manifest {
                 irradiance: "E / pi".into(),
                 container: opts.container_name().into(),
                 pixel_format: opts.pixel_format().name().into(),
-                encoder: opts.pixel_format().is_block().then(|| EncoderRecord {
-                    name: ENCODER.into(),
-                    version: ENCODER_VERSION.into(),
-                    preset: opts.bc6h_quality.name().into(),
-                    ran_on: bc6h_ran_on.into(),
-                }),
+                encoder: EncoderRecord::of(opts, bc6h_ran_on),
                 zstd: opts.zstd,
                 samples: opts.samples,
                 rotate_degrees: opts.rotate_degrees,

@@ -147,6 +147,7 @@ pub fn bake(
             blocks: BlockEncoder {
                 backend,
                 quality: opts.bc6h_quality,
+                astc_quality: opts.astc_quality,
             },
         },
     };

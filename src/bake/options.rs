@@ -6,6 +6,7 @@ use crate::environment::sun::SunMode;
 use crate::io::cubemap::Container;
 use crate::io::input::InputOptions;
 use crate::io::PixelFormat;
+use crate::plan::astc::AstcQuality;
 use crate::plan::bc6h::Bc6hQuality;
 use crate::plan::chain::{chain_levels, SpecularChain, DEFAULT_SAMPLES};
 use crate::stages::convert::validate_cube_size;
@@ -47,6 +48,8 @@ pub struct BakeOptions {
     pub zstd: Option<i32>,
     /// How hard the BC6H encoder searches, for the BC6H pixel format.
     pub bc6h_quality: Bc6hQuality,
+    /// How hard astc-encoder searches, for the ASTC pixel formats.
+    pub astc_quality: AstcQuality,
     /// GGX samples per texel for importance-sampled levels (1 to 65536).
     pub samples: u32,
     /// Rotation about +Y in degrees.
@@ -83,6 +86,7 @@ impl BakeOptions {
             pixel_format: None,
             zstd: target.zstd,
             bc6h_quality: Bc6hQuality::default(),
+            astc_quality: AstcQuality::default(),
             samples: DEFAULT_SAMPLES,
             rotate_degrees: 0.0,
             exposure_ev: 0.0,
@@ -209,6 +213,15 @@ impl BakeOptions {
             );
         }
         target.check_format(self.pixel_format())?;
+        if self.container == Container::Dds && self.pixel_format().dxgi_format().is_none() {
+            return invalid(
+                "pixel_format",
+                format!(
+                    "{} cannot be written as DDS (DXGI has no such format; Direct3D does not sample ASTC): write it as ktx2",
+                    self.pixel_format().name()
+                ),
+            );
+        }
         if files.cube_container == Container::Ktx1 && !crate::io::ktx1::holds(self.pixel_format()) {
             return invalid(
                 "pixel_format",

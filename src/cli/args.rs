@@ -5,11 +5,12 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
-use splitsum::{Bc6hQuality, LutModel, PixelFormat, Target};
+use splitsum::{AstcQuality, Bc6hQuality, LutModel, PixelFormat, Target};
 
 use super::values::{
-    bc6h_parser, lookup_parser, lut_help, lut_model_parser, min_mip_size_help, pixel_format_help,
-    pixel_format_parser, sh_help, sun_mode_parser, target_help, target_parser, zstd_help,
+    astc_parser, bc6h_parser, lookup_parser, lut_help, lut_model_parser, min_mip_size_help,
+    pixel_format_help, pixel_format_parser, sh_help, sun_mode_parser, target_help, target_parser,
+    zstd_help,
 };
 pub use super::values::{BackendArg, ContainerArg, LayoutArg};
 
@@ -223,7 +224,7 @@ pub struct BakeArgs {
     pub zstd: ZstdArgs,
 
     #[command(flatten)]
-    pub bc6h: Bc6hArgs,
+    pub blocks: BlockArgs,
 
     #[arg(long, conflicts_with = "no_lut", help = lut_help())]
     pub lut: bool,
@@ -472,7 +473,7 @@ pub struct CubemapArgs {
     pub zstd: ZstdArgs,
 
     #[command(flatten)]
-    pub bc6h: Bc6hArgs,
+    pub blocks: BlockArgs,
 
     /// Layout of .exr/.hdr outputs.
     #[arg(long, value_enum, default_value_t = LayoutArg::Faces)]
@@ -488,13 +489,18 @@ pub struct CubemapArgs {
     pub common: CommonArgs,
 }
 
-/// The BC6H encoder's preset.
+/// The block encoders' presets.
 #[derive(Debug, Args)]
-pub struct Bc6hArgs {
+pub struct BlockArgs {
     /// With --pixel-format bc6h: how hard the encoder searches (fast, basic, slow; see
     /// docs/accuracy.md, "BC6H").
     #[arg(long, value_name = "PRESET", default_value = "fast", value_parser = bc6h_parser())]
     pub bc6h_quality: Bc6hQuality,
+
+    /// With --pixel-format astc-4x4-hdr or astc-6x6-hdr: astc-encoder's preset (fast,
+    /// medium, thorough; see docs/astc.md).
+    #[arg(long, value_name = "PRESET", default_value = "medium", value_parser = astc_parser())]
+    pub astc_quality: AstcQuality,
 }
 
 /// KTX2 supercompression, defaulting to the target's.

@@ -30,7 +30,8 @@ pub fn bake(args: BakeArgs) -> anyhow::Result<()> {
         container: args.container.into(),
         pixel_format: args.pixel_format,
         zstd: args.zstd.level(target),
-        bc6h_quality: args.bc6h.bc6h_quality,
+        bc6h_quality: args.blocks.bc6h_quality,
+        astc_quality: args.blocks.astc_quality,
         samples: args.samples,
         rotate_degrees: args.input_opts.rotate,
         exposure_ev: args.input_opts.exposure,
@@ -208,7 +209,8 @@ pub fn cubemap(args: CubemapArgs) -> anyhow::Result<()> {
                 format,
                 zstd: args.zstd.level(target),
                 layout: args.layout.into(),
-                bc6h_quality: args.bc6h.bc6h_quality,
+                bc6h_quality: args.blocks.bc6h_quality,
+                astc_quality: args.blocks.astc_quality,
             },
         )
         .map_err(|e| for_user("cubemap", e))?;

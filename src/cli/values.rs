@@ -5,7 +5,8 @@
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::ValueEnum;
 use splitsum::{
-    Bc6hQuality, LutModel, PixelFormat, SpecularLookup, Target, CUBE_PIXEL_FORMATS, TARGETS,
+    AstcQuality, Bc6hQuality, LutModel, PixelFormat, SpecularLookup, Target, CUBE_PIXEL_FORMATS,
+    TARGETS,
 };
 
 /// `--target`'s values: the names of [`TARGETS`], each with its summary.
@@ -170,6 +171,12 @@ pub(super) fn bc6h_parser() -> impl TypedValueParser<Value = Bc6hQuality> {
     PossibleValuesParser::new(Bc6hQuality::ALL.map(|q| q.name()))
         .map(|name| Bc6hQuality::by_name(&name).unwrap_or_default())
 }
+/// `--astc-quality`'s values.
+pub(super) fn astc_parser() -> impl TypedValueParser<Value = AstcQuality> {
+    PossibleValuesParser::new(AstcQuality::ALL.map(|q| q.name()))
+        .map(|name| AstcQuality::by_name(&name).unwrap_or_default())
+}
+
 /// `--layout` values.
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum LayoutArg {

@@ -13,6 +13,7 @@ use super::{dds, exr, extension_of, hdr, ktx1, ktx2};
 use crate::stages::resample::sample_cube;
 use crate::backend::{Backend, CpuBackend};
 use crate::environment::Cubemap;
+use crate::plan::astc::AstcQuality;
 use crate::plan::bc6h::Bc6hQuality;
 use crate::math::cubemap::{equirect_direction, FACES};
 use crate::{Error, Result};
@@ -95,6 +96,8 @@ pub struct CubeWriteOptions {
     pub layout: CubeLayout,
     /// The BC6H preset, for `format` BC6H.
     pub bc6h_quality: Bc6hQuality,
+    /// The ASTC preset, for the ASTC formats.
+    pub astc_quality: AstcQuality,
 }
 
 impl Default for CubeWriteOptions {
@@ -104,6 +107,7 @@ impl Default for CubeWriteOptions {
             zstd: None,
             layout: CubeLayout::Faces,
             bc6h_quality: Bc6hQuality::default(),
+            astc_quality: AstcQuality::default(),
         }
     }
 }
@@ -158,13 +162,16 @@ pub fn output_paths(path: &Path, layout: CubeLayout) -> Vec<PathBuf> {
     }
 }
 
-/// What encodes block formats (BC6H): a backend's kernel, at a preset.
+/// What encodes block formats: BC6H on a backend's kernel, ASTC with astc-encoder on the
+/// CPU (`backend::cpu::astc`), each at a preset.
 #[derive(Clone, Copy)]
 pub struct BlockEncoder<'a> {
-    /// The backend that runs the encoder.
+    /// The backend that runs the BC6H encoder.
     pub backend: &'a dyn Backend,
     /// The BC6H preset.
     pub quality: Bc6hQuality,
+    /// The ASTC preset.
+    pub astc_quality: AstcQuality,
 }
 
 impl std::fmt::Debug for BlockEncoder<'_> {
@@ -172,6 +179,7 @@ impl std::fmt::Debug for BlockEncoder<'_> {
         f.debug_struct("BlockEncoder")
             .field("backend", &self.backend.identity())
             .field("quality", &self.quality)
+            .field("astc_quality", &self.astc_quality)
             .finish()
     }
 }
@@ -182,12 +190,13 @@ impl Default for BlockEncoder<'static> {
         BlockEncoder {
             backend: &CpuBackend,
             quality: Bc6hQuality::default(),
+            astc_quality: AstcQuality::default(),
         }
     }
 }
 
 /// The warning for storing `cube` in `format` when its level 0 holds values above the
-/// largest the format holds (rgba16f and BC6H 65504, rg11b10f 65024, rgb9e5 65408), which
+/// largest the format holds (rgba16f, BC6H and ASTC HDR 65504, rg11b10f 65024, rgb9e5 65408), which
 /// are clipped to it.
 pub fn clip_warning(cube: &Cubemap, format: PixelFormat) -> Option<String> {
     let max = format.max_value();
@@ -211,10 +220,12 @@ pub fn encode_texture(
     format: PixelFormat,
     blocks: &BlockEncoder,
 ) -> Result<EncodedTexture> {
-    let levels = if format.is_block() {
-        blocks.backend.encode_bc6h(cube, blocks.quality)?
-    } else {
-        cube.levels.iter().map(|l| format.encode(l)).collect()
+    let levels = match format.block_footprint() {
+        Some(footprint) if format.is_astc() => {
+            crate::backend::cpu::astc::encode_astc(cube, footprint, blocks.astc_quality)?
+        }
+        Some(_) => blocks.backend.encode_bc6h(cube, blocks.quality)?,
+        None => cube.levels.iter().map(|l| format.encode(l)).collect(),
     };
     Ok(EncodedTexture {
         format,
@@ -278,7 +289,10 @@ pub fn encode_cube(
             ktx2::encode(&texture()?, enc.zstd)
                 .map_err(|e| enc_err(path, "KTX2", e.to_string()))?,
         )],
-        Container::Dds => vec![(path.to_path_buf(), dds::encode(&texture()?))],
+        Container::Dds => vec![(
+            path.to_path_buf(),
+            dds::encode(&texture()?).map_err(|e| enc_err(path, "DDS", e))?,
+        )],
         Container::Ktx1 => vec![(
             path.to_path_buf(),
             ktx1::encode(&texture()?, &[]).map_err(|e| enc_err(path, "KTX 1", e))?,
@@ -341,7 +355,7 @@ fn encode_images(
 }
 
 /// Encodes `cube` as `path` (its extension names the container; an image container holds
-/// level 0) and writes the files atomically, together; BC6H is encoded on the CPU. Returns
+/// level 0) and writes the files atomically, together; BC6H and ASTC are encoded on the CPU. Returns
 /// the paths written.
 pub fn write_cubemap(path: &Path, cube: &Cubemap, opts: &CubeWriteOptions) -> Result<Vec<PathBuf>> {
     write_cubemap_with(path, cube, opts, &CpuBackend)
@@ -364,6 +378,7 @@ pub fn write_cubemap_with(
         blocks: BlockEncoder {
             backend,
             quality: opts.bc6h_quality,
+            astc_quality: opts.astc_quality,
         },
     };
     let files = encode_cube(path, cube, &enc)?;

@@ -27,8 +27,15 @@ const DDSCAPS2_CUBEMAP_ALL_FACES: u32 = 0x200 | 0xFC00;
 const D3D10_RESOURCE_DIMENSION_TEXTURE2D: u32 = 3;
 const DDS_RESOURCE_MISC_TEXTURECUBE: u32 = 0x4;
 
-/// Serialises `tex` as a DDS file with a DX10 header.
-pub fn encode(tex: &EncodedTexture) -> Vec<u8> {
+/// Serialises `tex` as a DDS file with a DX10 header; a format with no `DXGI_FORMAT`
+/// (ASTC) is an error naming it.
+pub fn encode(tex: &EncodedTexture) -> std::result::Result<Vec<u8>, String> {
+    let dxgi = tex.format.dxgi_format().ok_or_else(|| {
+        format!(
+            "DDS holds DXGI formats, and {} has none (Direct3D does not sample ASTC); write it as KTX2",
+            tex.format.name()
+        )
+    })?;
     let levels = tex.levels.len() as u32;
     let cube = tex.faces == 6;
     // Uncompressed formats give a row's pitch; block formats the size of level 0's face
@@ -71,7 +78,7 @@ pub fn encode(tex: &EncodedTexture) -> Vec<u8> {
     ]);
     // DDS_HEADER_DXT10
     words.extend([
-        tex.format.dxgi_format(),
+        dxgi,
         D3D10_RESOURCE_DIMENSION_TEXTURE2D,
         if cube {
             DDS_RESOURCE_MISC_TEXTURECUBE
@@ -89,7 +96,7 @@ pub fn encode(tex: &EncodedTexture) -> Vec<u8> {
             out.extend_from_slice(&level[face * face_len..(face + 1) * face_len]);
         }
     }
-    out
+    Ok(out)
 }
 
 /// Reads level 0 of a DX10 DDS cubemap in one of splitsum's formats.

@@ -21,6 +21,11 @@ pub enum PixelFormat {
     /// BC6H unsigned float (BPTC): 4×4 texels in 16 bytes, half-float endpoints; encoded
     /// by a backend (`plan::bc6h`), decoded here.
     Bc6h,
+    /// ASTC HDR at 4×4 texels a 16-byte block (8 bits a texel): half-float results, encoded
+    /// by astc-encoder (`plan::astc`), decoded by splitsum's own decoder (`io::astc`).
+    Astc4x4Hdr,
+    /// ASTC HDR at 6×6 texels a 16-byte block (3.56 bits a texel).
+    Astc6x6Hdr,
 }
 
 /// The pixel formats a cubemap can be written in, by their command-line names.
@@ -30,6 +35,8 @@ pub const CUBE_PIXEL_FORMATS: &[(&str, PixelFormat)] = &[
     ("rgb9e5", PixelFormat::Rgb9e5),
     ("rg11b10f", PixelFormat::Rg11b10f),
     ("bc6h", PixelFormat::Bc6h),
+    ("astc-4x4-hdr", PixelFormat::Astc4x4Hdr),
+    ("astc-6x6-hdr", PixelFormat::Astc6x6Hdr),
 ];
 
 impl PixelFormat {
@@ -37,6 +44,8 @@ impl PixelFormat {
     pub fn description(self) -> &'static str {
         match self {
             PixelFormat::Bc6h => "BC6H unsigned float, 1 byte a texel in the file and in video memory (BC6H_UFLOAT_BLOCK)",
+            PixelFormat::Astc4x4Hdr => "ASTC HDR 4×4, 1 byte a texel in the file and in video memory, for phones and Apple GPUs (ASTC_4x4_SFLOAT_BLOCK)",
+            PixelFormat::Astc6x6Hdr => "ASTC HDR 6×6, 0.44 bytes a texel in the file and in video memory, for phones and Apple GPUs (ASTC_6x6_SFLOAT_BLOCK)",
             PixelFormat::Rg16f => "2 × 16-bit float (R16G16_SFLOAT)",
             PixelFormat::Rg32f => "2 × 32-bit float (R32G32_SFLOAT)",
             PixelFormat::Rgba16f => "4 × 16-bit float (R16G16B16A16_SFLOAT)",
@@ -46,26 +55,45 @@ impl PixelFormat {
         }
     }
 
-    /// Bytes per texel, or per 4×4 block for a block format ([`PixelFormat::is_block`]).
+    /// Bytes per texel, or per block for a block format ([`PixelFormat::is_block`]).
     pub fn texel_bytes(self) -> u32 {
         match self {
             PixelFormat::Rg16f | PixelFormat::Rgb9e5 | PixelFormat::Rg11b10f => 4,
             PixelFormat::Rg32f | PixelFormat::Rgba16f => 8,
-            PixelFormat::Rgba32f | PixelFormat::Bc6h => 16,
+            PixelFormat::Rgba32f
+            | PixelFormat::Bc6h
+            | PixelFormat::Astc4x4Hdr
+            | PixelFormat::Astc6x6Hdr => 16,
         }
     }
 
-    /// Whether texels are stored in 4×4 blocks (BC6H).
+    /// The texels a block holds, wide and high, for a block format (BC6H and ASTC 4×4,
+    /// ASTC 6×6); `None` for a texel format.
+    pub fn block_footprint(self) -> Option<(u32, u32)> {
+        match self {
+            PixelFormat::Bc6h | PixelFormat::Astc4x4Hdr => Some((4, 4)),
+            PixelFormat::Astc6x6Hdr => Some((6, 6)),
+            _ => None,
+        }
+    }
+
+    /// Whether texels are stored in blocks (BC6H, ASTC).
     pub fn is_block(self) -> bool {
-        self == PixelFormat::Bc6h
+        self.block_footprint().is_some()
+    }
+
+    /// Whether it is one of the ASTC HDR formats.
+    pub fn is_astc(self) -> bool {
+        matches!(self, PixelFormat::Astc4x4Hdr | PixelFormat::Astc6x6Hdr)
     }
 
     /// Bytes of one `width`×`height` image.
     pub fn image_bytes(self, width: u32, height: u32) -> usize {
-        if self.is_block() {
-            (width.div_ceil(4) * height.div_ceil(4)) as usize * self.texel_bytes() as usize
-        } else {
-            (width * height) as usize * self.texel_bytes() as usize
+        match self.block_footprint() {
+            Some((bw, bh)) => {
+                (width.div_ceil(bw) * height.div_ceil(bh)) as usize * self.texel_bytes() as usize
+            }
+            None => (width * height) as usize * self.texel_bytes() as usize,
         }
     }
 
@@ -73,7 +101,11 @@ impl PixelFormat {
     pub fn max_value(self) -> f32 {
         match self {
             PixelFormat::Rg32f | PixelFormat::Rgba32f => f32::MAX,
-            PixelFormat::Rg16f | PixelFormat::Rgba16f | PixelFormat::Bc6h => f16::MAX.to_f32(),
+            PixelFormat::Rg16f
+            | PixelFormat::Rgba16f
+            | PixelFormat::Bc6h
+            | PixelFormat::Astc4x4Hdr
+            | PixelFormat::Astc6x6Hdr => f16::MAX.to_f32(),
             PixelFormat::Rgb9e5 => rgb9e5_max(),
             PixelFormat::Rg11b10f => ufloat_to_f32(0x7BF, 6).min(ufloat_to_f32(0x3DF, 5)),
         }
@@ -84,7 +116,7 @@ impl PixelFormat {
     pub fn type_size(self) -> u32 {
         match self {
             PixelFormat::Rg16f | PixelFormat::Rgba16f => 2,
-            PixelFormat::Bc6h => 1,
+            PixelFormat::Bc6h | PixelFormat::Astc4x4Hdr | PixelFormat::Astc6x6Hdr => 1,
             _ => 4,
         }
     }
@@ -99,12 +131,16 @@ impl PixelFormat {
             PixelFormat::Rgb9e5 => 123,   // VK_FORMAT_E5B9G9R9_UFLOAT_PACK32
             PixelFormat::Rg11b10f => 122, // VK_FORMAT_B10G11R11_UFLOAT_PACK32
             PixelFormat::Bc6h => 143,     // VK_FORMAT_BC6H_UFLOAT_BLOCK
+            // VK_EXT_texture_compression_astc_hdr, core in Vulkan 1.3
+            PixelFormat::Astc4x4Hdr => 1_000_066_000, // VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK
+            PixelFormat::Astc6x6Hdr => 1_000_066_004, // VK_FORMAT_ASTC_6x6_SFLOAT_BLOCK
         }
     }
 
-    /// The `DXGI_FORMAT` number (DXGI_FORMAT enumeration).
-    pub fn dxgi_format(self) -> u32 {
-        match self {
+    /// The `DXGI_FORMAT` number (DXGI_FORMAT enumeration); `None` for ASTC, which Direct3D
+    /// does not sample and DXGI has no HDR number for.
+    pub fn dxgi_format(self) -> Option<u32> {
+        Some(match self {
             PixelFormat::Rg16f => 34,    // DXGI_FORMAT_R16G16_FLOAT
             PixelFormat::Rg32f => 16,    // DXGI_FORMAT_R32G32_FLOAT
             PixelFormat::Rgba16f => 10,  // DXGI_FORMAT_R16G16B16A16_FLOAT
@@ -112,7 +148,8 @@ impl PixelFormat {
             PixelFormat::Rgb9e5 => 67,   // DXGI_FORMAT_R9G9B9E5_SHAREDEXP
             PixelFormat::Rg11b10f => 26, // DXGI_FORMAT_R11G11B10_FLOAT
             PixelFormat::Bc6h => 95,     // DXGI_FORMAT_BC6H_UF16
-        }
+            PixelFormat::Astc4x4Hdr | PixelFormat::Astc6x6Hdr => return None,
+        })
     }
 
     /// The format with this `VkFormat` number, if splitsum writes it.
@@ -122,7 +159,7 @@ impl PixelFormat {
 
     /// The format with this `DXGI_FORMAT` number, if splitsum writes it.
     pub fn from_dxgi_format(dxgi: u32) -> Option<Self> {
-        ALL.into_iter().find(|f| f.dxgi_format() == dxgi)
+        ALL.into_iter().find(|f| f.dxgi_format() == Some(dxgi))
     }
 
     /// Short name used on the command line, in messages and manifests.
@@ -135,6 +172,8 @@ impl PixelFormat {
             PixelFormat::Rgb9e5 => "rgb9e5",
             PixelFormat::Rg11b10f => "rg11b10f",
             PixelFormat::Bc6h => "bc6h",
+            PixelFormat::Astc4x4Hdr => "astc-4x4-hdr",
+            PixelFormat::Astc6x6Hdr => "astc-6x6-hdr",
         }
     }
 
@@ -157,7 +196,9 @@ impl PixelFormat {
                 PixelFormat::Rg11b10f => {
                     out.extend(pack_rg11b10f([t[0], t[1], t[2]]).to_le_bytes())
                 }
-                PixelFormat::Bc6h => return Vec::new(),
+                PixelFormat::Bc6h | PixelFormat::Astc4x4Hdr | PixelFormat::Astc6x6Hdr => {
+                    return Vec::new()
+                }
             }
         }
         out
@@ -167,14 +208,17 @@ impl PixelFormat {
     /// back to RGBA texels: [`PixelFormat::decode`] for a texel format, each face's blocks
     /// for a block format (`bytes` must hold [`PixelFormat::image_bytes`] per face).
     pub fn decode_faces(self, bytes: &[u8], n: u32, faces: u32) -> Vec<[f32; 4]> {
-        if !self.is_block() {
+        let Some((bw, bh)) = self.block_footprint() else {
             return self.decode(bytes);
-        }
+        };
         let face = self.image_bytes(n, n);
         bytes
             .chunks_exact(face)
             .take(faces as usize)
-            .flat_map(|b| super::bc6h::decode_face(b, n))
+            .flat_map(|b| match self {
+                PixelFormat::Bc6h => super::bc6h::decode_face(b, n),
+                _ => super::astc::decode_image(b, n, n, bw, bh),
+            })
             .collect()
     }
 
@@ -200,13 +244,15 @@ impl PixelFormat {
                     [r, g, b, 1.0]
                 }
                 // Only through decode_faces, which knows the image's size.
-                PixelFormat::Bc6h => [0.0, 0.0, 0.0, 1.0],
+                PixelFormat::Bc6h | PixelFormat::Astc4x4Hdr | PixelFormat::Astc6x6Hdr => {
+                    [0.0, 0.0, 0.0, 1.0]
+                }
             })
             .collect()
     }
 }
 
-const ALL: [PixelFormat; 7] = [
+const ALL: [PixelFormat; 9] = [
     PixelFormat::Rg16f,
     PixelFormat::Rg32f,
     PixelFormat::Rgba16f,
@@ -214,6 +260,8 @@ const ALL: [PixelFormat; 7] = [
     PixelFormat::Rgb9e5,
     PixelFormat::Rg11b10f,
     PixelFormat::Bc6h,
+    PixelFormat::Astc4x4Hdr,
+    PixelFormat::Astc6x6Hdr,
 ];
 
 const RGB9E5_MANTISSA_BITS: i32 = 9;

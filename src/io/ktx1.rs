@@ -61,7 +61,9 @@ pub fn holds(format: PixelFormat) -> bool {
 
 /// The KTX 1 description of `format`; `None` for formats Filament cannot load from KTX 1
 /// (RGB9_E5: its reader has no pixel type for `GL_UNSIGNED_INT_5_9_9_9_REV`) and for the
-/// two-channel LUT formats. BC6H is a compressed format: `glType`, `glTypeSize` 1 and
+/// two-channel LUT formats, and for ASTC HDR, which splitsum writes only as KTX2 (GL
+/// names ASTC's LDR and HDR data by the same internal formats, and no Filament check here
+/// can render ASTC). BC6H is a compressed format: `glType`, `glTypeSize` 1 and
 /// `glFormat` 0 as the specification wants, which Filament's reader maps to
 /// `RGB_BPTC_UNSIGNED_FLOAT` (desktop GL and WebGL with `EXT_texture_compression_bptc`).
 pub fn gl_format(format: PixelFormat) -> Option<GlFormat> {
@@ -94,7 +96,11 @@ pub fn gl_format(format: PixelFormat) -> Option<GlFormat> {
             internal_format: GL_RGBA32F,
             base_internal_format: GL_RGBA,
         }),
-        PixelFormat::Rgb9e5 | PixelFormat::Rg16f | PixelFormat::Rg32f => None,
+        PixelFormat::Rgb9e5
+        | PixelFormat::Rg16f
+        | PixelFormat::Rg32f
+        | PixelFormat::Astc4x4Hdr
+        | PixelFormat::Astc6x6Hdr => None,
     }
 }
 

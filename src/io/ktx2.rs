@@ -22,6 +22,9 @@ const KHR_DF_MODEL_RGBSDA: u32 = 1;
 const KHR_DF_MODEL_BC6H: u32 = 133;
 /// The one channel of a BC6H block (KDF 1.3, "BC6H").
 const KHR_DF_CHANNEL_BC6H_COLOR: u32 = 0;
+const KHR_DF_MODEL_ASTC: u32 = 162;
+/// The one channel of an ASTC block (KDF 1.3, "ASTC").
+const KHR_DF_CHANNEL_ASTC_DATA: u32 = 0;
 const KHR_DF_PRIMARIES_BT709: u32 = 1;
 const KHR_DF_TRANSFER_LINEAR: u32 = 1;
 const KHR_DF_VERSION: u32 = 2;
@@ -107,18 +110,31 @@ fn samples(format: PixelFormat) -> Vec<Sample> {
             0,
             FLOAT_ONE,
         )],
+        // One sample for the whole block; the HDR (SFLOAT) formats qualify it float and
+        // signed with the limits −1.0 and 1.0, as the KTX 2.0 specification's ASTC
+        // descriptors and KTX-Software's createDFDCompressed write them.
+        PixelFormat::Astc4x4Hdr | PixelFormat::Astc6x6Hdr => vec![(
+            0,
+            128,
+            KHR_DF_CHANNEL_ASTC_DATA | float_signed,
+            FLOAT_MINUS_ONE,
+            FLOAT_ONE,
+        )],
     }
 }
 
 /// The Data Format Descriptor for `format`, including its leading total-size word.
 pub fn data_format_descriptor(format: PixelFormat) -> Vec<u8> {
     let samples = samples(format);
-    // 1×1×1×1 texels, or a 4×4×1×1 block.
-    let (model, block) = if format.is_block() {
-        (KHR_DF_MODEL_BC6H, 3 | (3 << 8))
-    } else {
-        (KHR_DF_MODEL_RGBSDA, 0)
+    // 1×1×1×1 texels, or a block's footprint (each dimension stored minus one).
+    let model = match format {
+        PixelFormat::Bc6h => KHR_DF_MODEL_BC6H,
+        PixelFormat::Astc4x4Hdr | PixelFormat::Astc6x6Hdr => KHR_DF_MODEL_ASTC,
+        _ => KHR_DF_MODEL_RGBSDA,
     };
+    let block = format
+        .block_footprint()
+        .map_or(0, |(w, h)| (w - 1) | ((h - 1) << 8));
     let mut words: Vec<u32> = vec![
         0, // vendorId = Khronos, descriptorType = basic
         KHR_DF_VERSION | ((24 + 16 * samples.len() as u32) << 16),
@@ -318,7 +334,7 @@ fn decode_ktx2_levels(path: &Path, bytes: &[u8], max_levels: u32) -> Result<Cube
         .filter(|f| f.texel_bytes() >= 4 && !matches!(f, PixelFormat::Rg16f | PixelFormat::Rg32f))
         .ok_or_else(|| {
             unsupported(format!(
-                "KTX2 format {:?} is not one splitsum reads (rgba16f, rgba32f, rgb9e5, rg11b10f, bc6h)",
+                "KTX2 format {:?} is not one splitsum reads (rgba16f, rgba32f, rgb9e5, rg11b10f, bc6h, astc-4x4-hdr, astc-6x6-hdr)",
                 h.format
             ))
         })?;

@@ -71,7 +71,7 @@ pub fn encode_lut(path: &Path, lut: &BrdfLut, opts: LutWriteOptions) -> Result<V
         }
         "exr" => exr::encode_rg32(lut.width, lut.height, &lut.data).map_err(encode_err("OpenEXR")),
         "ktx2" => ktx2::encode(&texture(), None).map_err(|e| encode_err("KTX2")(e.to_string())),
-        "dds" => Ok(dds::encode(&texture())),
+        "dds" => dds::encode(&texture()).map_err(encode_err("DDS")),
         _ => check_lut_path(path).map(|_| Vec::new()),
     }
 }

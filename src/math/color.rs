@@ -1,5 +1,10 @@
 //! The sRGB transfer functions (IEC 61966-2-1): the decoding of 8- and 16-bit inputs, and
-//! the encoding of the preview's pictures and Babylon's RGBD texels.
+//! the encoding of the preview's pictures and Babylon's RGBD texels; and the Rec. 709
+//! luminance weights.
+
+/// Rec. 709 luminance weights of linear RGB (ITU-R BT.709, the Y row of its RGB to XYZ
+/// matrix).
+pub const LUMINANCE: [f32; 3] = [0.2126, 0.7152, 0.0722];
 
 /// Largest linear value on the sRGB curve's linear segment.
 pub const SRGB_LINEAR_MAX: f32 = 0.003_130_8;

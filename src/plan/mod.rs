@@ -3,11 +3,13 @@
 //! method per level ([`chain`]), the prepared sources of the prefilter ([`sources`]), the
 //! sheen chain's plan and driver ([`sheen`]), the least-squares fit of a level for
 //! bilinear lookups ([`fit`]), the conversion's parameters ([`convert`]), the LUT models
-//! and their quadrature ([`lut`]), the BC6H encoder's settings ([`bc6h`]), the shading
+//! and their quadrature ([`lut`]), the BC6H and ASTC encoders' settings ([`bc6h`],
+//! [`astc`]), the shading
 //! functions' material ([`material`]), how a shader combines a bake's files ([`shading`]:
 //! the recipe's and each engine's), the recipe's quality lookup ([`filtered`]), the
 //! preview's scene ([`scene`]) and the LTC table of area lights ([`ltc`]).
 
+pub mod astc;
 pub mod bc6h;
 pub mod chain;
 pub mod convert;

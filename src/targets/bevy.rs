@@ -32,10 +32,14 @@ pub const BEVY: Target = Target {
     lut: false,
     luts: BRDF_LUT_PNG,
     files: STANDARD,
-    format_warnings: &[(
-        PixelFormat::Rgba32f,
-        "rgba32f is not filterable under WebGPU's limits: Bevy fails to bind it without the native FLOAT32_FILTERABLE feature; rgba16f or rgb9e5 render everywhere",
-    )],
+    format_warnings: &[
+        (
+            PixelFormat::Rgba32f,
+            "rgba32f is not filterable under WebGPU's limits: Bevy fails to bind it without the native FLOAT32_FILTERABLE feature; rgba16f or rgb9e5 render everywhere",
+        ),
+        (PixelFormat::Astc4x4Hdr, super::ASTC_HDR_WHERE),
+        (PixelFormat::Astc6x6Hdr, super::ASTC_HDR_WHERE),
+    ],
     format_refusals: &[],
     notes: &[
         "EnvironmentMapLight { diffuse_map: irradiance.ktx2, specular_map: specular.ktx2, intensity }",

@@ -49,7 +49,10 @@ pub const GENERIC: Target = Target {
     lut: true,
     luts: BRDF_LUT_PNG,
     files: STANDARD,
-    format_warnings: &[],
+    format_warnings: &[
+        (PixelFormat::Astc4x4Hdr, super::ASTC_HDR_WHERE),
+        (PixelFormat::Astc6x6Hdr, super::ASTC_HDR_WHERE),
+    ],
     format_refusals: &[],
     notes: &[
         "sample specular at lod = clamp(0.8 * (levels - 1 + log2(roughness^2 + 0.0005)), 0, levels - 1), seamless trilinear; blend it toward the irradiance by roughness^4 (the README's recipe)",

@@ -19,6 +19,10 @@ use crate::plan::shading::{
     ShadingTerms,
 };
 
+/// Why the glTF target refuses block formats.
+const GLTF_UNCOMPRESSED: &str =
+    "the glTF Sample Viewer reads its environment cubes as uncompressed KTX2 (rgba16f, rgba32f)";
+
 /// The glTF Sample Viewer (npm `@khronosgroup/gltf-viewer` 1.1), with glTF-IBL-Sampler's
 /// file set and its own chain layout.
 pub const GLTF: Target = Target {
@@ -56,10 +60,11 @@ pub const GLTF: Target = Target {
     format_warnings: &[],
     // The viewer's KTX2 path (libktx in the page) uploads uncompressed cubes; a BC6H cube
     // would need its transcoder's BC6H output, which the viewer does not ask for.
-    format_refusals: &[(
-        PixelFormat::Bc6h,
-        "the glTF Sample Viewer reads its environment cubes as uncompressed KTX2 (rgba16f, rgba32f)",
-    )],
+    format_refusals: &[
+        (PixelFormat::Bc6h, GLTF_UNCOMPRESSED),
+        (PixelFormat::Astc4x4Hdr, GLTF_UNCOMPRESSED),
+        (PixelFormat::Astc6x6Hdr, GLTF_UNCOMPRESSED),
+    ],
     notes: &[
         "lambertian/diffuse.ktx2 (E / pi), ggx/specular.ktx2 and charlie/sheen.ktx2 as the environment's u_LambertianEnvSampler, u_GGXEnvSampler and u_CharlieEnvSampler, u_MipCount = the specular levels",
         "the viewer samples lod = roughness * (u_MipCount - 1), GGX and sheen alike, at u_EnvRotation * direction",

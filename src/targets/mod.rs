@@ -125,6 +125,9 @@ impl LutSpec {
     }
 }
 
+/// The warning of the targets that take ASTC HDR: where a GPU samples it.
+pub(crate) const ASTC_HDR_WHERE: &str = "ASTC HDR is sampled by phones and Apple GPUs (Vulkan's textureCompressionASTC_HDR, Metal on Apple GPUs, WebGL's WEBGL_compressed_texture_astc where getSupportedProfiles() lists \"hdr\"), not by desktop GPUs: bake bc6h for those";
+
 /// `brdf_lut.png`: the default model, 16-bit RGB (B = 0).
 pub const BRDF_LUT_PNG: &[LutSpec] = &[LutSpec {
     file: "brdf_lut.png",

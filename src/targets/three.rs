@@ -47,7 +47,10 @@ pub const THREE: Target = Target {
         PixelFormat::Rgba32f,
         "rgba32f cubes are filtered only where WebGL has OES_texture_float_linear; rgba16f is filterable everywhere",
     )],
-    format_refusals: &[],
+    format_refusals: &[
+        (PixelFormat::Astc4x4Hdr, THREE_NO_ASTC),
+        (PixelFormat::Astc6x6Hdr, THREE_NO_ASTC),
+    ],
     notes: &[
         "load with js/splitsum-three.js: a cube with isPMREMTexture = true, used by MeshStandardMaterial as it is (no run-time PMREM)",
         "three samples lod = maxLod * r * (2 - r) (roughnessToMip), mips down to 8x8 as r187's PMREMGenerator (LOD_MIN = 3)",
@@ -56,6 +59,9 @@ pub const THREE: Target = Target {
     ],
     shading: THREE_SHADING,
 };
+
+/// Why the three target refuses ASTC HDR.
+const THREE_NO_ASTC: &str = "js/splitsum-three.js loads rgba16f, rgba32f, rgb9e5, rg11b10f and bc6h cubes, not ASTC HDR; bake ASTC HDR for the generic or bevy target";
 
 /// How three.js r187's `MeshStandardMaterial` shades (`lights_physical_fragment`,
 /// `lights_fragment_begin`, `lights_physical_pars_fragment`,

@@ -189,29 +189,25 @@ pub fn skip_peer(why: &str) {
     eprintln!("{why}; skipping");
 }
 
-/// `chain` stored in `format` (BC6H encoded at `quality` by the CPU encoder) and read
-/// back: the texels an engine samples from the file.
+/// `chain` stored in `format` (BC6H encoded at `quality` by the CPU encoder, ASTC by
+/// astc-encoder at its default preset) and read back: the texels an engine samples from
+/// the file.
 pub fn stored(
     chain: &splitsum::Cubemap,
     format: splitsum::io::PixelFormat,
     quality: splitsum::plan::bc6h::Bc6hQuality,
 ) -> splitsum::Cubemap {
-    use splitsum::backend::Backend;
-    let levels = if format.is_block() {
-        splitsum::backend::CpuBackend
-            .encode_bc6h(chain, quality)
-            .unwrap()
-            .iter()
-            .enumerate()
-            .map(|(m, b)| format.decode_faces(b, chain.level_size(m), 6))
-            .collect()
-    } else {
-        chain
-            .levels
-            .iter()
-            .map(|l| format.decode(&format.encode(l)))
-            .collect()
+    let blocks = splitsum::io::cubemap::BlockEncoder {
+        quality,
+        ..Default::default()
     };
+    let texture = splitsum::io::cubemap::encode_texture(chain, format, &blocks).unwrap();
+    let levels = texture
+        .levels
+        .iter()
+        .enumerate()
+        .map(|(m, b)| format.decode_faces(b, chain.level_size(m), 6))
+        .collect();
     splitsum::Cubemap {
         size: chain.size,
         levels,

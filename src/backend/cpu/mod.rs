@@ -3,6 +3,7 @@
 //! sums, runs for the irradiance, interpolation where the LUT is smooth), each checked
 //! against the texel-by-texel twin in its tests.
 
+pub mod astc;
 pub mod bc6h;
 pub mod irradiance;
 pub mod lanes;

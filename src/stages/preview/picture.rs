@@ -35,7 +35,7 @@ pub const KEY_VALUE: f32 = 0.18;
 pub const HEAT_LOG10_RANGE: [f32; 2] = [-3.0, 0.0];
 
 /// Rec. 709 luminance weights of linear RGB.
-pub const LUMINANCE: [f32; 3] = [0.2126, 0.7152, 0.0722];
+pub const LUMINANCE: [f32; 3] = crate::math::color::LUMINANCE;
 
 /// Rec. 709 luminance of linear RGB.
 pub fn luminance(c: [f32; 3]) -> f32 {
