@@ -5,11 +5,9 @@
 //! crate describes the format), and the targets and containers that refuse it.
 mod common;
 
-use std::path::Path;
-
-use common::{output_dir, splitsum, Lcg};
+use common::{hdr_chain, log_rmse, output_dir, small_bake as bake, splitsum, Lcg};
 use splitsum::environment::Cubemap;
-use splitsum::io::cubemap::{encode_texture, BlockEncoder};
+use splitsum::io::cubemap::BlockEncoder;
 use splitsum::io::PixelFormat;
 use splitsum::plan::astc::AstcQuality;
 use splitsum_astcenc::{Context, Preset};
@@ -26,48 +24,7 @@ fn round_trip(
         astc_quality: quality,
         ..Default::default()
     };
-    let texture = encode_texture(cube, format, &blocks).unwrap();
-    let levels = texture
-        .levels
-        .iter()
-        .enumerate()
-        .map(|(m, b)| format.decode_faces(b, cube.level_size(m), 6))
-        .collect();
-    (
-        texture.levels,
-        Cubemap {
-            size: cube.size,
-            levels,
-        },
-    )
-}
-
-/// Log-space RMSE over every channel of every texel of level `m` (as for BC6H,
-/// tests/bc6h.rs): √(mean((ln(1 + a) − ln(1 + b))²)).
-fn log_rmse(a: &Cubemap, b: &Cubemap, m: usize) -> f64 {
-    let (mut sum, mut count) = (0.0f64, 0usize);
-    for (ta, tb) in a.levels[m].iter().zip(&b.levels[m]) {
-        for c in 0..3 {
-            let d = (ta[c].max(0.0) as f64).ln_1p() - (tb[c].max(0.0) as f64).ln_1p();
-            sum += d * d;
-            count += 1;
-        }
-    }
-    (sum / count as f64).sqrt()
-}
-
-/// quarry_01 (a sun of ~40 000 at this size beside a sky of ~1) as a 32² cube with every
-/// level down to 1², so faces smaller than a 4×4 and a 6×6 block.
-fn hdr_chain() -> Cubemap {
-    let e = common::test_equirect("quarry_01_1k.hdr");
-    splitsum::stages::convert::environment_to_cube(
-        &splitsum::backend::CpuBackend,
-        &splitsum::Environment::Equirect(e),
-        32,
-        true,
-        0.0,
-    )
-    .unwrap()
+    common::stored_with(cube, format, &blocks)
 }
 
 /// Whether two decoded texels are the same half floats (NaN, the error colour, equal to
@@ -209,31 +166,6 @@ fn constant_faces_come_back_to_the_endpoint_precision() {
             }
         }
     }
-}
-
-/// A 32² CPU bake of venice_sunset into `dir` with `args`, the full chain.
-fn bake(dir: &Path, args: &[&str]) -> std::process::Output {
-    splitsum()
-        .args([
-            "bake",
-            "tests/data/venice_sunset_1k.hdr",
-            "--backend",
-            "cpu",
-            "-q",
-        ])
-        .args([
-            "--specular-size",
-            "32",
-            "--irradiance-size",
-            "8",
-            "--min-mip-size",
-            "1",
-        ])
-        .args(args)
-        .arg("-o")
-        .arg(dir)
-        .output()
-        .unwrap()
 }
 
 /// KTX2 with and without zstd, for the generic and bevy targets: the vkFormat of each

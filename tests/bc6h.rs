@@ -4,9 +4,7 @@
 //! by an independent decoder, KTX 1 for Filament), and the targets that refuse it.
 mod common;
 
-use std::path::Path;
-
-use common::{output_dir, splitsum};
+use common::{hdr_chain, log_rmse, output_dir, small_bake as bake};
 use splitsum::backend::{Backend, CpuBackend};
 use splitsum::environment::Cubemap;
 use splitsum::io::PixelFormat;
@@ -31,34 +29,6 @@ fn round_trip(
             levels,
         },
     )
-}
-
-/// Log-space RMSE over every channel of every texel of level `m`, as GPURealTimeBC6H and
-/// ISPC report BC6H's error: √(mean((ln(1 + a) − ln(1 + b))²)).
-fn log_rmse(a: &Cubemap, b: &Cubemap, m: usize) -> f64 {
-    let (mut sum, mut count) = (0.0f64, 0usize);
-    for (ta, tb) in a.levels[m].iter().zip(&b.levels[m]) {
-        for c in 0..3 {
-            let d = (ta[c].max(0.0) as f64).ln_1p() - (tb[c].max(0.0) as f64).ln_1p();
-            sum += d * d;
-            count += 1;
-        }
-    }
-    (sum / count as f64).sqrt()
-}
-
-/// quarry_01 (a sun of ~40 000 at this size beside a sky of ~1) as a 32² cube with every
-/// level down to 1², so faces of 2² and 1², smaller than a block.
-fn hdr_chain() -> Cubemap {
-    let e = common::test_equirect("quarry_01_1k.hdr");
-    splitsum::stages::convert::environment_to_cube(
-        &CpuBackend,
-        &splitsum::Environment::Equirect(e),
-        32,
-        true,
-        0.0,
-    )
-    .unwrap()
 }
 
 /// The encoder against the decoder and the source, every level and preset: within
@@ -132,31 +102,6 @@ fn gpu_encoding_matches_cpu() {
         assert!(apart <= 0.02, "level {m}: {apart}");
     }
     assert!(same * 10 >= total * 9, "{same} of {total} blocks identical");
-}
-
-/// A 32² CPU bake of venice_sunset into `dir` with `args` (the full chain unless `args`
-/// sets another minimum).
-fn bake(dir: &Path, args: &[&str]) -> std::process::Output {
-    let min = if args.contains(&"--min-mip-size") {
-        &[][..]
-    } else {
-        &["--min-mip-size", "1"][..]
-    };
-    splitsum()
-        .args([
-            "bake",
-            "tests/data/venice_sunset_1k.hdr",
-            "--backend",
-            "cpu",
-            "-q",
-        ])
-        .args(["--specular-size", "32", "--irradiance-size", "8"])
-        .args(min)
-        .args(args)
-        .arg("-o")
-        .arg(dir)
-        .output()
-        .unwrap()
 }
 
 /// KTX2 with and without zstd: the `ktx2` crate reads BC6H_UFLOAT_BLOCK with the data

@@ -53,19 +53,20 @@ fn texel_errors() {
         ] {
             columns.push(crate::common::stored(&b.specular, f, Bc6hQuality::default()).levels);
         }
-        for m in 0..b.specular.levels.len() {
-            let cells: Vec<String> = columns
-                .iter()
-                .map(|c| format!("{:.4}", log_rmse(&c[m], &b.specular.levels[m])))
-                .collect();
-            println!(
-                "| {m} | {} | {} |",
-                b.specular.level_size(m),
-                cells.join(" | ")
-            );
-        }
-        println!();
+        level_rows(&b.specular, &columns);
     }
+}
+
+/// One row per level of `chain`: its index, edge and each column's log RMSE against it.
+pub fn level_rows(chain: &Cubemap, columns: &[Vec<Vec<[f32; 4]>>]) {
+    for m in 0..chain.levels.len() {
+        let cells: Vec<String> = columns
+            .iter()
+            .map(|c| format!("{:.4}", log_rmse(&c[m], &chain.levels[m])))
+            .collect();
+        println!("| {m} | {} | {} |", chain.level_size(m), cells.join(" | "));
+    }
+    println!();
 }
 
 /// Bytes in video memory of every level of a cube in `format`.
@@ -76,31 +77,33 @@ pub fn video_bytes(cube: &Cubemap, format: PixelFormat) -> usize {
 }
 
 fn sizes() {
+    sizes_table(
+        "bench-bc6h-sizes",
+        &[
+            ("rgb9e5", "--zstd"),
+            ("bc6h", "--zstd"),
+            ("bc6h", "--no-zstd"),
+            ("rgba16f", "--zstd"),
+        ],
+    );
+}
+
+/// The table of the default bake's `specular.ktx2` + `irradiance.ktx2` sizes
+/// (venice_sunset_1k), in the file and in video memory, for each (pixel format, zstd flag)
+/// of `rows`, against the first; the bakes go to `target/tmp/<out>`.
+pub fn sizes_table(out: &str, rows: &[(&str, &str)]) {
     println!(
         "\n## Sizes of the default bake's specular.ktx2 + irradiance.ktx2 (venice_sunset_1k)\n"
     );
-    let out = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench-bc6h-sizes");
+    let out = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(out);
     let b = baked("venice_sunset_1k.hdr");
-    println!("| format | files, bytes | / rgb9e5 + zstd | video memory, bytes | / rgb9e5 |");
+    println!("| format | files, bytes | / first | video memory, bytes | / first |");
     println!("|---|---|---|---|---|");
     let mut reference = None;
-    for (format, zstd) in [
-        ("rgb9e5", "--zstd"),
-        ("bc6h", "--zstd"),
-        ("bc6h", "--no-zstd"),
-        ("rgba16f", "--zstd"),
-    ] {
+    for &(format, zstd) in rows {
         let dir = out.join(format!("{format}{zstd}"));
-        let status = std::process::Command::new(env!("CARGO_BIN_EXE_splitsum"))
-            .args([
-                "bake",
-                "tests/data/venice_sunset_1k.hdr",
-                "--backend",
-                "cpu",
-                "-q",
-            ])
-            .args(["--pixel-format", format, zstd, "--no-lut", "--no-sh", "-o"])
-            .arg(&dir)
+        let status = bake_command(&dir, format)
+            .args([zstd, "--no-lut", "--no-sh"])
             .status()
             .unwrap();
         assert!(status.success());
@@ -125,44 +128,43 @@ fn sizes() {
     }
 }
 
+/// A default bake of venice_sunset_1k on the CPU backend in `format`, quiet, into `dir`.
+pub fn bake_command(dir: &std::path::Path, format: &str) -> std::process::Command {
+    let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_splitsum"));
+    c.args([
+        "bake",
+        "tests/data/venice_sunset_1k.hdr",
+        "--backend",
+        "cpu",
+        "-q",
+    ])
+    .args(["--pixel-format", format, "-o"])
+    .arg(dir);
+    c
+}
+
 fn bake_cpu_seconds() {
     println!(
         "\n## A default bake on the CPU backend, bc6h against rgb9e5 (whole processes, CPU s)\n"
     );
     let out = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench-bc6h-bake");
-    let bake = |format: &str| {
-        let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_splitsum"));
-        c.args([
-            "bake",
-            "tests/data/venice_sunset_1k.hdr",
-            "--backend",
-            "cpu",
-            "-q",
-        ])
-        .args(["--pixel-format", format, "-o"])
-        .arg(out.join(format));
-        c
-    };
     crate::compare_processes(
         &mut [
-            ("bake --pixel-format rgb9e5", &mut bake("rgb9e5")),
-            ("bake --pixel-format bc6h", &mut bake("bc6h")),
+            (
+                "bake --pixel-format rgb9e5",
+                &mut bake_command(&out.join("rgb9e5"), "rgb9e5"),
+            ),
+            (
+                "bake --pixel-format bc6h",
+                &mut bake_command(&out.join("bc6h"), "bc6h"),
+            ),
         ],
         0,
     );
 }
 
 fn throughput() {
-    let b = baked("venice_sunset_1k.hdr");
-    let levels = b.specular.levels.len();
-    println!(
-        "\n## The BC6H encoder alone on the default chain ({}² → {}², {levels} levels, 6 faces)\n",
-        b.specular.size,
-        b.specular.level_size(levels - 1)
-    );
-    let texels: usize = (0..b.specular.levels.len())
-        .map(|m| 6 * (b.specular.level_size(m) as usize).pow(2))
-        .sum();
+    let (b, texels) = default_chain("The BC6H encoder alone");
     println!("| backend | preset | first call wall s | wall s | CPU s | Mtexel/s (wall) |");
     println!("|---|---|---|---|---|---|");
     for (name, backend) in crate::cpu_and_gpu_backends() {
@@ -186,6 +188,22 @@ fn throughput() {
             );
         }
     }
+}
+
+/// The default bake of venice_sunset_1k and its specular chain's texel count, after a
+/// heading "`what` on the default chain (its edges, levels, 6 faces)".
+pub fn default_chain(what: &str) -> (splitsum::BakedEnvironment, usize) {
+    let b = baked("venice_sunset_1k.hdr");
+    let levels = b.specular.levels.len();
+    println!(
+        "\n## {what} on the default chain ({}² → {}², {levels} levels, 6 faces)\n",
+        b.specular.size,
+        b.specular.level_size(levels - 1)
+    );
+    let texels = (0..levels)
+        .map(|m| 6 * (b.specular.level_size(m) as usize).pow(2))
+        .sum();
+    (b, texels)
 }
 
 /// Every table of the section.

@@ -4,7 +4,7 @@
 //! and the peers (cmgen) some tests compare with.
 
 use std::f64::consts::PI;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The splitsum binary of this build.
 pub fn splitsum() -> std::process::Command {
@@ -201,17 +201,81 @@ pub fn stored(
         quality,
         ..Default::default()
     };
-    let texture = splitsum::io::cubemap::encode_texture(chain, format, &blocks).unwrap();
+    stored_with(chain, format, &blocks).1
+}
+
+/// `chain` encoded in `format` by `blocks` (each level's bytes) and read back by
+/// splitsum's decoder.
+pub fn stored_with(
+    chain: &splitsum::Cubemap,
+    format: splitsum::io::PixelFormat,
+    blocks: &splitsum::io::cubemap::BlockEncoder,
+) -> (Vec<Vec<u8>>, splitsum::Cubemap) {
+    let texture = splitsum::io::cubemap::encode_texture(chain, format, blocks).unwrap();
     let levels = texture
         .levels
         .iter()
         .enumerate()
         .map(|(m, b)| format.decode_faces(b, chain.level_size(m), 6))
         .collect();
-    splitsum::Cubemap {
+    let cube = splitsum::Cubemap {
         size: chain.size,
         levels,
+    };
+    (texture.levels, cube)
+}
+
+/// Log-space RMSE over every channel of every texel of level `m`, as GPURealTimeBC6H and
+/// ISPC report a block format's error: √(mean((ln(1 + a) − ln(1 + b))²)).
+pub fn log_rmse(a: &splitsum::Cubemap, b: &splitsum::Cubemap, m: usize) -> f64 {
+    let (mut sum, mut count) = (0.0f64, 0usize);
+    for (ta, tb) in a.levels[m].iter().zip(&b.levels[m]) {
+        for c in 0..3 {
+            let d = (ta[c].max(0.0) as f64).ln_1p() - (tb[c].max(0.0) as f64).ln_1p();
+            sum += d * d;
+            count += 1;
+        }
     }
+    (sum / count as f64).sqrt()
+}
+
+/// quarry_01 (a sun of ~40 000 at this size beside a sky of ~1) as a 32² cube with every
+/// level down to 1², so faces smaller than a block of any block format.
+pub fn hdr_chain() -> splitsum::Cubemap {
+    let e = test_equirect("quarry_01_1k.hdr");
+    splitsum::stages::convert::environment_to_cube(
+        &splitsum::backend::CpuBackend,
+        &splitsum::Environment::Equirect(e),
+        32,
+        true,
+        0.0,
+    )
+    .unwrap()
+}
+
+/// A 32² CPU bake of venice_sunset into `dir` with `args` (the full chain unless `args`
+/// sets another minimum).
+pub fn small_bake(dir: &Path, args: &[&str]) -> std::process::Output {
+    let min = if args.contains(&"--min-mip-size") {
+        &[][..]
+    } else {
+        &["--min-mip-size", "1"][..]
+    };
+    splitsum()
+        .args([
+            "bake",
+            "tests/data/venice_sunset_1k.hdr",
+            "--backend",
+            "cpu",
+            "-q",
+        ])
+        .args(["--specular-size", "32", "--irradiance-size", "8"])
+        .args(min)
+        .args(args)
+        .arg("-o")
+        .arg(dir)
+        .output()
+        .unwrap()
 }
 
 /// Runs `cmd` and returns its output, failing the test with its stderr unless it succeeds.
