@@ -23,17 +23,23 @@
 // Formats: rgba16f and rgba32f are uploaded as they are (rgba32f needs
 // OES_texture_float_linear to be filtered); rgb9e5 and rg11b10f are decoded to rgba16f,
 // since three.js uploads uncompressed cube mips through the CompressedCubeTexture path
-// only for RGBA data. BC6H (`--pixel-format bc6h`), which KTX2Loader r187 has no entry
-// for, is read here (three's ktx-parse and zstddec) and uploaded compressed as
-// RGB_BPTC_UNSIGNED_Format: 1 byte a texel in video memory. It needs the WebGL extension
-// EXT_texture_compression_bptc (desktop GPUs; not most phones): without it the loader
-// throws an Error that says so, and a page can load an rgba16f or rgb9e5 bake instead.
+// only for RGBA data. The block formats are read here (three's ktx-parse and zstddec) and
+// uploaded compressed: BC6H (`--pixel-format bc6h`, which KTX2Loader r187 has no entry
+// for) as RGB_BPTC_UNSIGNED_Format, 1 byte a texel in video memory, where the WebGL
+// extension EXT_texture_compression_bptc is (desktop GPUs; not most phones); ASTC HDR
+// (`--pixel-format astc-4x4-hdr` or `astc-6x6-hdr`) as RGBA_ASTC_4x4_Format or
+// RGBA_ASTC_6x6_Format with half-float results, where WEBGL_compressed_texture_astc lists
+// the "hdr" profile (phones, Apple GPUs). Without its extension the loader throws an Error
+// that says so; `pickSplitsumBake` chooses, among bakes of one HDRI in several formats,
+// the first this renderer samples.
 
 import {
   CompressedCubeTexture,
   DataUtils,
   DirectionalLight,
   RGB_BPTC_UNSIGNED_Format,
+  RGBA_ASTC_4x4_Format,
+  RGBA_ASTC_6x6_Format,
   UnsignedByteType,
   FloatType,
   HalfFloatType,
@@ -56,6 +62,8 @@ import {
   read as readKtx2,
   KHR_SUPERCOMPRESSION_NONE,
   KHR_SUPERCOMPRESSION_ZSTD,
+  VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK_EXT,
+  VK_FORMAT_ASTC_6x6_SFLOAT_BLOCK_EXT,
   VK_FORMAT_BC6H_UFLOAT_BLOCK,
 } from 'three/addons/libs/ktx-parse.module.js';
 import { ZSTDDecoder } from 'three/addons/libs/zstddec.module.js';
@@ -69,12 +77,71 @@ export function supportsBc6h(renderer) {
   return renderer.extensions.has('EXT_texture_compression_bptc');
 }
 
-// A BC6H KTX2 cube (ktx-parse's container) as a CompressedCubeTexture of its blocks.
-async function bc6hCube(url, container, renderer) {
-  if (!supportsBc6h(renderer)) {
+/**
+ * Whether `renderer` can sample ASTC HDR textures (WEBGL_compressed_texture_astc with the
+ * "hdr" profile, as three's KTX2Loader tests it).
+ * @param {THREE.WebGLRenderer} renderer
+ * @returns {boolean}
+ */
+export function supportsAstcHdr(renderer) {
+  return (
+    renderer.extensions.has('WEBGL_compressed_texture_astc') &&
+    renderer.extensions.get('WEBGL_compressed_texture_astc').getSupportedProfiles().includes('hdr')
+  );
+}
+
+// The block formats splitsum writes: by KTX2 vkFormat, by its `--pixel-format` name, three's
+// format and type for them, what a renderer needs to sample them, and whether it has it.
+const BLOCK_FORMATS = [
+  {
+    vkFormat: VK_FORMAT_BC6H_UFLOAT_BLOCK,
+    name: 'bc6h',
+    format: RGB_BPTC_UNSIGNED_Format,
+    type: UnsignedByteType,
+    needs: 'the WebGL extension EXT_texture_compression_bptc',
+    supported: supportsBc6h,
+  },
+  ...[
+    [VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK_EXT, 'astc-4x4-hdr', RGBA_ASTC_4x4_Format],
+    [VK_FORMAT_ASTC_6x6_SFLOAT_BLOCK_EXT, 'astc-6x6-hdr', RGBA_ASTC_6x6_Format],
+  ].map(([vkFormat, name, format]) => ({
+    vkFormat,
+    name,
+    format,
+    type: HalfFloatType,
+    needs: 'the WebGL extension WEBGL_compressed_texture_astc with its "hdr" profile',
+    supported: supportsAstcHdr,
+  })),
+];
+
+/**
+ * Among bakes of one HDRI in several pixel formats, the first `renderer` can sample: list
+ * the smallest first (for example an astc-6x6-hdr bake, a bc6h one, then an rgb9e5 one
+ * that every WebGL 2 context samples) and each GPU gets the best it can use.
+ * @param {THREE.WebGLRenderer} renderer
+ * @param {Array<{url: string, pixelFormat: string}>} bakes - each bake's folder (or
+ *   file) and its `--pixel-format` (the manifest's `parameters.pixel_format`).
+ * @returns {string} the chosen bake's url.
+ */
+export function pickSplitsumBake(renderer, bakes) {
+  const usable = bakes.find(({ pixelFormat }) => {
+    const block = BLOCK_FORMATS.find((b) => b.name === pixelFormat);
+    return !block || block.supported(renderer);
+  });
+  if (!usable) {
     throw new Error(
-      `${url}: BC6H needs the WebGL extension EXT_texture_compression_bptc, which this GPU or browser does not have; ` +
-        'bake with --pixel-format rgba16f or rgb9e5 for it, or fall back to such a bake when this throws',
+      `none of the bakes (${bakes.map((b) => b.pixelFormat).join(', ')}) is in a format this GPU or browser samples; add an rgba16f or rgb9e5 bake`,
+    );
+  }
+  return usable.url;
+}
+
+// A block-format KTX2 cube (ktx-parse's container) as a CompressedCubeTexture of its blocks.
+async function blockCube(url, container, renderer, block) {
+  if (!block.supported(renderer)) {
+    throw new Error(
+      `${url}: ${block.name} needs ${block.needs}, which this GPU or browser does not have; ` +
+        'bake with --pixel-format rgba16f or rgb9e5 for it, or choose among bakes with pickSplitsumBake',
     );
   }
   let zstd = null;
@@ -95,8 +162,8 @@ async function bc6hCube(url, container, renderer) {
   });
   return new CompressedCubeTexture(
     faces.map((mipmaps) => ({ mipmaps, width: mipmaps[0].width, height: mipmaps[0].height })),
-    RGB_BPTC_UNSIGNED_Format,
-    UnsignedByteType,
+    block.format,
+    block.type,
   );
 }
 
@@ -147,10 +214,10 @@ function toRgbaHalf(packed, unpack) {
 export async function loadSplitsumCube(url, renderer, { pmrem = true } = {}) {
   const bytes = new Uint8Array(await (await fetch(url)).arrayBuffer());
   const container = readKtx2(bytes);
-  const cube =
-    container.vkFormat === VK_FORMAT_BC6H_UFLOAT_BLOCK
-      ? await bc6hCube(url, container, renderer)
-      : await uncompressedCube(url, bytes, renderer);
+  const block = BLOCK_FORMATS.find((b) => b.vkFormat === container.vkFormat);
+  const cube = block
+    ? await blockCube(url, container, renderer, block)
+    : await uncompressedCube(url, bytes, renderer);
   cube.minFilter = cube.image[0].mipmaps.length > 1 ? LinearMipmapLinearFilter : LinearFilter;
   cube.magFilter = LinearFilter;
   cube.generateMipmaps = false;

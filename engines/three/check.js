@@ -5,7 +5,14 @@
 // mapping), so the numbers are linear radiance.
 import * as THREE from 'three';
 import { HDRLoader } from 'three/addons/loaders/HDRLoader.js';
-import { compensateRectAreaLights, loadSplitsumBake, loadSplitsumCube, supportsBc6h } from '/js/splitsum-three.js';
+import {
+  compensateRectAreaLights,
+  loadSplitsumBake,
+  loadSplitsumCube,
+  pickSplitsumBake,
+  supportsAstcHdr,
+  supportsBc6h,
+} from '/js/splitsum-three.js';
 import * as measure from '/engines/measure.js';
 
 // Edge of the renders; the mirror sphere is rendered larger, since one pixel of it turns
@@ -76,12 +83,35 @@ function pixelRay(camera, [x, y]) {
 
 const degrees = (a, b) => THREE.MathUtils.radToDeg(a.angleTo(b));
 
-window.runCheck = async function ({ hdrUrl, bakeDir, cubeUrl, roughness, splitDir, studio }) {
+// What each block format needs, as the loader's error names it.
+const BLOCK_NEEDS = {
+  bc6h: { supported: supportsBc6h, needs: 'EXT_texture_compression_bptc' },
+  'astc-4x4-hdr': { supported: supportsAstcHdr, needs: 'WEBGL_compressed_texture_astc' },
+};
+
+window.runCheck = async function ({ hdrUrl, bakeDir, fallbackDir, cubeUrl, roughness, splitDir, studio }) {
   if (studio) return studioCase(studio, roughness);
   const manifest = await (await fetch(`${bakeDir}/manifest.json`)).json();
   const format = manifest.parameters.pixel_format;
-  if (format === 'bc6h' && !supportsBc6h(renderer)) {
-    return { out: { skipped: true, path: 'bc6h not rendered: this WebGL context has no EXT_texture_compression_bptc' }, images: {} };
+  const block = BLOCK_NEEDS[format];
+  if (block && !block.supported(renderer)) {
+    // What a page on this context gets: the loader's error, and the fallback chosen.
+    const refused = await loadSplitsumBake(bakeDir, renderer).then(
+      () => null,
+      (e) => e.message,
+    );
+    const picked = pickSplitsumBake(renderer, [
+      { url: bakeDir, pixelFormat: format },
+      { url: fallbackDir, pixelFormat: 'rgba16f' },
+    ]);
+    return {
+      out: {
+        skipped: true,
+        path: `${format} not rendered: this WebGL context has no ${block.needs}${format.startsWith('astc') ? ' with the "hdr" profile' : ''}`,
+        unsupported: { refused, picked, fallbackDir, needs: block.needs },
+      },
+      images: {},
+    };
   }
   const hdr = await new HDRLoader().setDataType(THREE.FloatType).loadAsync(hdrUrl);
   hdr.mapping = THREE.EquirectangularReflectionMapping;
@@ -94,7 +124,7 @@ window.runCheck = async function ({ hdrUrl, bakeDir, cubeUrl, roughness, splitDi
   const out = {
     sun: sun.toArray(),
     levels: bake.envMap.image[0].mipmaps.length,
-    path: format === 'bc6h' ? 'bc6h, uploaded compressed as RGB_BPTC_UNSIGNED_Format' : `${format} cube`,
+    path: block ? `${format}, uploaded compressed` : `${format} cube`,
   };
 
   // Background, looking at the sun: three's equirect path against the bake's cube.
@@ -187,7 +217,7 @@ window.runCheck = async function ({ hdrUrl, bakeDir, cubeUrl, roughness, splitDi
       });
       images[`sphere_m${metalness}_r${r}_three`] = toPng(want);
       images[`sphere_m${metalness}_r${r}_splitsum`] = toPng(got);
-      if (format !== 'bc6h') raw[`sphere_m${metalness}_r${r}.rgba32f`] = measure.base64(got);
+      if (!block) raw[`sphere_m${metalness}_r${r}.rgba32f`] = measure.base64(got);
     }
   }
 

@@ -1,5 +1,5 @@
 // The three.js engine check: bakes the bundled HDRIs with `splitsum bake --target three`
-// (rgba16f, and BC6H: the `_bc6h` cases), renders them in three.js r187 (npm three 0.187.0) in headless Chromium (SwiftShader
+// (rgba16f, BC6H: the `_bc6h` cases, ASTC HDR 4×4: the `_astc` cases), renders them in three.js r187 (npm three 0.187.0) in headless Chromium (SwiftShader
 // WebGL2) with js/splitsum-three.js and built-in materials, and compares against three's
 // own path for the same HDRI (HDRLoader as float, equirect background, run-time PMREM).
 //
@@ -7,7 +7,10 @@
 //
 // Environment: SPLITSUM (the binary; default ../../target/release/splitsum), CHROMIUM
 // (default /usr/bin/chromium). A BC6H case renders where the WebGL context exposes
-// EXT_texture_compression_bptc and is reported as not run otherwise. Writes renders and
+// EXT_texture_compression_bptc and is reported as not run otherwise; an ASTC case renders
+// where WEBGL_compressed_texture_astc lists the "hdr" profile, and otherwise checks what a
+// page gets there: the loader's error naming the extension, and pickSplitsumBake choosing
+// the rgba16f bake. Writes renders and
 // results.json to
 // ../../target/engines/three/. Exits 1 when a bar is missed or the console shows a WebGL
 // error or warning.
@@ -44,11 +47,15 @@ execFileSync(
   ['bake', ...HDRIS.map((h) => `tests/data/${h}.hdr`), '--target', 'three', '-q', '-o', 'target/engines/three/bakes'],
   { cwd: root, stdio: 'inherit' },
 );
-execFileSync(
-  splitsum,
-  ['bake', ...HDRIS.map((h) => `tests/data/${h}.hdr`), '--target', 'three', '--pixel-format', 'bc6h', '-q', '-o', 'target/engines/three/bakes_bc6h'],
-  { cwd: root, stdio: 'inherit' },
-);
+// The block formats, each into bakes_<suffix>.
+const BLOCK_CASES = { bc6h: 'bc6h', astc: 'astc-4x4-hdr' };
+for (const [suffix, format] of Object.entries(BLOCK_CASES)) {
+  execFileSync(
+    splitsum,
+    ['bake', ...HDRIS.map((h) => `tests/data/${h}.hdr`), '--target', 'three', '--pixel-format', format, '-q', '-o', `target/engines/three/bakes_${suffix}`],
+    { cwd: root, stdio: 'inherit' },
+  );
+}
 // A studio's lamps as area lights: studio_small_03 split (its lamps as RectAreaLights) and
 // kept, for tests/engine_renders.rs to hold against the truth.
 const STUDIO_HDRI = 'studio_small_03_1k';
@@ -122,7 +129,7 @@ await runEngineCheck({
   recipe,
   page: '/engines/three/check.html',
   out,
-  cases: [...HDRIS, ...HDRIS.map((h) => `${h}_bc6h`), STUDIO_HDRI],
+  cases: [...HDRIS, ...Object.keys(BLOCK_CASES).flatMap((suffix) => HDRIS.map((h) => `${h}_${suffix}`)), STUDIO_HDRI],
   bars: BARS,
   config: (name) => {
     if (name === STUDIO_HDRI) {
@@ -131,11 +138,13 @@ await runEngineCheck({
         studio: { splitDir: `/target/engines/three/studio_split/${name}`, keptDir: `/target/engines/three/studio_keep/${name}` },
       };
     }
-    const hdri = name.replace(/_bc6h$/, '');
-    const bakes = name.endsWith('_bc6h') ? 'bakes_bc6h' : 'bakes';
+    const suffix = Object.keys(BLOCK_CASES).find((k) => name.endsWith(`_${k}`));
+    const hdri = suffix ? name.slice(0, -suffix.length - 1) : name;
+    const bakes = suffix ? `bakes_${suffix}` : 'bakes';
     return {
       hdrUrl: `/tests/data/${hdri}.hdr`,
       bakeDir: `/target/engines/three/${bakes}/${hdri}`,
+      fallbackDir: `/target/engines/three/bakes/${hdri}`,
       cubeUrl: `/target/engines/three/bakes/${hdri}_cube.ktx2`,
       roughness: ROUGHNESS,
       splitDir: name === SUN_HDRI ? `/target/engines/three/bakes_split/${hdri}` : undefined,
@@ -143,6 +152,13 @@ await runEngineCheck({
   },
   judge: (r, { bad, note }) => {
     note(true, `path: ${r.path}`);
+    if (r.unsupported) {
+      // A block format this context cannot sample: the loader says which extension it needs,
+      // and pickSplitsumBake falls back to the rgba16f bake.
+      const u = r.unsupported;
+      bad(u.refused !== null && u.refused.includes(u.needs), `loadSplitsumBake refuses it: ${u.refused}`);
+      bad(u.picked === u.fallbackDir, `pickSplitsumBake chooses ${u.picked} (the rgba16f bake is ${u.fallbackDir})`);
+    }
     if (r.skipped) return;
     if (r.areaLights !== undefined) {
       // Held against the truth by tests/engine_renders.rs (studio_area_lights_against_truth).

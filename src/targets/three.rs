@@ -43,14 +43,13 @@ pub const THREE: Target = Target {
             PixelFormat::Bc6h,
             "three.js needs EXT_texture_compression_bptc for bc6h (desktop browsers; not most phones); js/splitsum-three.js throws a clear error without it",
         ),
+        (PixelFormat::Astc4x4Hdr, THREE_ASTC),
+        (PixelFormat::Astc6x6Hdr, THREE_ASTC),
         (
         PixelFormat::Rgba32f,
         "rgba32f cubes are filtered only where WebGL has OES_texture_float_linear; rgba16f is filterable everywhere",
     )],
-    format_refusals: &[
-        (PixelFormat::Astc4x4Hdr, THREE_NO_ASTC),
-        (PixelFormat::Astc6x6Hdr, THREE_NO_ASTC),
-    ],
+    format_refusals: &[],
     notes: &[
         "load with js/splitsum-three.js: a cube with isPMREMTexture = true, used by MeshStandardMaterial as it is (no run-time PMREM)",
         "three samples lod = maxLod * r * (2 - r) (roughnessToMip), mips down to 8x8 as r187's PMREMGenerator (LOD_MIN = 3)",
@@ -60,8 +59,8 @@ pub const THREE: Target = Target {
     shading: THREE_SHADING,
 };
 
-/// Why the three target refuses ASTC HDR.
-const THREE_NO_ASTC: &str = "js/splitsum-three.js loads rgba16f, rgba32f, rgb9e5, rg11b10f and bc6h cubes, not ASTC HDR; bake ASTC HDR for the generic or bevy target";
+/// The three target's warning for ASTC HDR: where three samples it.
+const THREE_ASTC: &str = "three.js samples ASTC HDR where WEBGL_compressed_texture_astc lists the \"hdr\" profile (phones, Apple GPUs; not desktop GPUs); js/splitsum-three.js throws a clear error elsewhere, and pickSplitsumBake chooses among bakes in several formats";
 
 /// How three.js r187's `MeshStandardMaterial` shades (`lights_physical_fragment`,
 /// `lights_fragment_begin`, `lights_physical_pars_fragment`,

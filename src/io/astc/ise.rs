@@ -35,11 +35,11 @@ const QUINTS_PER_BLOCK: u32 = 3;
 const QUINT_BLOCK_DIGIT_BITS: u32 = 7;
 
 /// How many bits of the packed digit field follow value `i` of a trit block (DFS
-/// "ASTC trit-based packing": T[1:0] after m0, T[3:2] after m1, T[4] after m2, T[6:5] after
-/// m3, T[7] after m4).
+/// "ASTC trit-based packing": `T[1:0]` after m0, `T[3:2]` after m1, `T[4]` after m2,
+/// `T[6:5]` after m3, `T[7]` after m4).
 const TRIT_BITS_AFTER: [u32; 5] = [2, 2, 1, 2, 1];
 /// How many bits of the packed digit field follow value `i` of a quint block (DFS
-/// "ASTC quint-based packing": Q[2:0] after m0, Q[4:3] after m1, Q[6:5] after m2).
+/// "ASTC quint-based packing": `Q[2:0]` after m0, `Q[4:3]` after m1, `Q[6:5]` after m2).
 const QUINT_BITS_AFTER: [u32; 3] = [3, 2, 2];
 
 impl Range {
