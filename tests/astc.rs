@@ -246,14 +246,15 @@ fn ktx2_holds_astc_hdr_for_its_targets() {
     }
 }
 
-/// DDS has no DXGI format for ASTC and is refused before the input is read; the targets
+/// DDS has no DXGI format for ASTC and is refused before the input is read (by `bake` and
+/// `cubemap`, as is Filament's KTX 1); the targets
 /// whose engine or recipe does not load ASTC HDR (gltf, filament's KTX 1, Babylon's RGBD
 /// .env) are refused with the reason, exit status 2 and nothing written.
 #[test]
 fn dds_and_targets_without_astc_are_refused() {
     let dir = output_dir("astc-refused");
     for (args, says) in [
-        (&["--container", "dds"][..], "cannot be written as DDS"),
+        (&["--container", "dds"][..], "cannot be written as dds"),
         (&["--target", "gltf"][..], "cannot use astc-4x4-hdr"),
         (&["--target", "filament"][..], "cannot be written as KTX 1"),
         (&["--target", "babylon"][..], "RGBD PNGs"),
@@ -264,5 +265,27 @@ fn dds_and_targets_without_astc_are_refused() {
         assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
         assert!(err.contains(says), "{args:?}: {err}");
         assert!(!out.exists(), "{args:?} wrote {out:?}");
+    }
+    // `cubemap` refuses a container that cannot hold the format before it reads the input.
+    for (ext, says) in [
+        ("dds", "DXGI has no such format"),
+        ("ktx", "Filament's KTX 1"),
+    ] {
+        let path = dir.join(format!("sky.{ext}"));
+        let o = splitsum()
+            .args([
+                "cubemap",
+                "tests/data/no-such-input.hdr",
+                "--pixel-format",
+                "astc-4x4-hdr",
+            ])
+            .arg("-o")
+            .arg(&path)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{ext}: {err}");
+        assert!(err.contains(says), "{ext}: {err}");
+        assert!(!path.exists());
     }
 }

@@ -213,15 +213,7 @@ impl BakeOptions {
             );
         }
         target.check_format(self.pixel_format())?;
-        if self.container == Container::Dds && self.pixel_format().dxgi_format().is_none() {
-            return invalid(
-                "pixel_format",
-                format!(
-                    "{} cannot be written as DDS (DXGI has no such format; Direct3D does not sample ASTC): write it as ktx2",
-                    self.pixel_format().name()
-                ),
-            );
-        }
+        self.container.check_format(self.pixel_format())?;
         if files.cube_container == Container::Ktx1 && !crate::io::ktx1::holds(self.pixel_format()) {
             return invalid(
                 "pixel_format",

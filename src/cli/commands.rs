@@ -140,6 +140,7 @@ pub fn cubemap(args: CubemapArgs) -> anyhow::Result<()> {
     let format = args.pixel_format.unwrap_or(target.pixel_format);
     target
         .check_format(format)
+        .and_then(|()| container.check_format(format))
         .map_err(|e| for_user("cubemap", e))?;
     if let Some(w) = target
         .format_warning(format)

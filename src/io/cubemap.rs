@@ -83,6 +83,29 @@ impl Container {
     pub fn is_texture(self) -> bool {
         matches!(self, Container::Ktx2 | Container::Dds | Container::Ktx1)
     }
+
+    /// Why it cannot hold `format`, if it cannot: DDS holds DXGI formats (none for ASTC),
+    /// KTX 1 the formats Filament's reader takes ([`ktx1::holds`]); KTX2 holds every pixel
+    /// format, and the image containers ignore it. Checked before any work is done.
+    pub fn check_format(self, format: PixelFormat) -> Result<()> {
+        let why = match self {
+            Container::Dds if format.dxgi_format().is_none() => {
+                "DXGI has no such format (Direct3D does not sample ASTC): write it as .ktx2"
+            }
+            Container::Ktx1 if !ktx1::holds(format) => {
+                "Filament's KTX 1 reader takes rg11b10f, rgba16f, rgba32f and bc6h"
+            }
+            _ => return Ok(()),
+        };
+        Err(Error::InvalidOption {
+            option: "pixel_format",
+            message: format!(
+                "{} cannot be written as {}: {why}",
+                format.name(),
+                self.extension()
+            ),
+        })
+    }
 }
 
 /// Options of a cubemap file (its container comes from its extension).
