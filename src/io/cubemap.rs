@@ -85,7 +85,7 @@ impl Container {
     }
 
     /// Why it cannot hold `format`, if it cannot: DDS holds DXGI formats (none for ASTC),
-    /// KTX 1 the formats Filament's reader takes ([`ktx1::holds`]); KTX2 holds every pixel
+    /// KTX 1 the formats Filament's reader takes (`ktx1::holds`); KTX2 holds every pixel
     /// format, and the image containers ignore it. Checked before any work is done.
     pub fn check_format(self, format: PixelFormat) -> Result<()> {
         let why = match self {
