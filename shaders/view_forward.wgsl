@@ -22,7 +22,7 @@
 @group(0) @binding(7) var lut: texture_2d<f32>;
 @group(0) @binding(8) var<storage, read> lights: array<vec4<f32>>;
 @group(0) @binding(9) var<storage, read> sun_texels: array<vec4<f32>>;
-@group(0) @binding(10) var shadow_map: texture_2d<f32>;
+@group(0) @binding(10) var shadow_map: texture_2d_array<f32>;
 
 // The frame's light counts (frame.light_count, frame.sun.x), constants of the pipeline
 // (src/view/gpu/mod.rs, `ForwardKey`): with them constant, the compiler unrolls the

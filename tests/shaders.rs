@@ -446,8 +446,8 @@ fn viewer_shaders_validate_and_match_rust() {
     }
 }
 
-/// The viewer's area lights and soft shadow: a split-out light's record and the soft
-/// shadow's grids are the same on both sides.
+/// The viewer's area lights and soft shadows: a split-out light's record, the soft
+/// shadow's grids and the number of shadow maps are the same on both sides.
 #[test]
 fn view_area_light_constants_match_rust() {
     let module = parse("view_split_sum", splitsum::gpu::shaders::VIEW_SPLIT_SUM);
@@ -455,6 +455,10 @@ fn view_area_light_constants_match_rust() {
         ("SPLIT_RECORD", splitsum::view::frame::SPLIT_RECORD as u32),
         ("BLOCKER_TAPS", splitsum::view::shadow::BLOCKER_TAPS),
         ("FILTER_TAPS", splitsum::view::shadow::FILTER_TAPS),
+        (
+            "MAX_SHADOW_MAPS",
+            splitsum::view::frame::MAX_SHADOW_MAPS as u32,
+        ),
     ] {
         assert_eq!(wgsl_u32_constant(&module, name), rust, "{name}");
     }

@@ -3,7 +3,8 @@
 //! camera turning every frame (the GPU renderer's forward pass, and its deferred passes:
 //! G-buffer, kernels, present, as the truth and heat views draw) and still (the present
 //! pass alone), the ground truth's samples per second, the forward pass with quarry_01's
-//! sun split out and its shadow, and the CPU renderer; the GPU renderer on the adapter
+//! sun split out and its shadow and with studio_small_03's lamps as area lights and their
+//! shadows (on and off), and the CPU renderer; the GPU renderer on the adapter
 //! wgpu finds.
 
 use splitsum::gpu::GpuContext;
@@ -102,12 +103,13 @@ pub fn benchmarks() {
             }
         }
         // The sun split out of quarry_01 and shaded with its shadow map; a studio's lamps
-        // split out as area lights (the LTC), the first with its shadow.
+        // split out as area lights (the LTC), each with its soft shadow, and with the
+        // shadows off (O), which gives what they cost.
         for (file, lights) in [
             ("quarry_01_1k.hdr", "quarry_01's sun split with its shadow"),
             (
                 "studio_small_03_1k.hdr",
-                "studio_small_03's lamps as area lights, the first with its shadow",
+                "studio_small_03's lamps as area lights, each with its shadow",
             ),
         ] {
             let split = load_light(
@@ -117,13 +119,24 @@ pub fn benchmarks() {
                 &mut |_| {},
             )
             .unwrap();
-            let moving = turning(&mut gpu_viewer(&split, true));
+            let mut v = gpu_viewer(&split, true);
+            let moving = turning(&mut v);
             row(
                 &name,
                 &format!("camera turning (forward), {lights}"),
                 moving,
                 None,
             );
+            if split.has_area_lights() {
+                v.state.shadow = false;
+                let moving = turning(&mut v);
+                row(
+                    &name,
+                    "camera turning (forward), the same with the shadows off",
+                    moving,
+                    None,
+                );
+            }
         }
     }
     let mut v = Viewer::new(light, models, Renderer::Cpu(CpuFrame::default()), "cpu").unwrap();

@@ -17,12 +17,17 @@ struct FrameParams {
     sphere: vec4<f32>,     // (centre, radius)
     floor_plane: vec4<f32>, // (height, half extent, smallest alpha of the point lights, 0)
     // The lights taken out of the environment: (split-sum entries, truth disc cells after
-    // them, 1 when the sun casts its shadow, the shadow map's edge in texels).
+    // them, how many cast a shadow (light k has map k), the shadow maps' edge in texels).
     sun: vec4<u32>,
-    // The sun's shadow map: (origin, half extent), (right, depth bias), (up, normal
-    // offset), (front, 0) (src/view/shadow.rs).
-    shadow: array<vec4<f32>, 4>,
+    // Each light's shadow map, four entries a light: (origin, half extent), (right, depth
+    // bias), (up, normal offset), (front, penumbra spread) (src/view/shadow.rs).
+    shadow: array<vec4<f32>, SHADOW_ENTRIES>,
 }
+
+// The most lights with a shadow map (src/view/frame.rs): their visibilities are a vec4.
+const MAX_SHADOW_MAPS: u32 = 4u;
+// Entries of `FrameParams.shadow`: four a map.
+const SHADOW_ENTRIES: u32 = 4u * MAX_SHADOW_MAPS;
 
 struct Ray {
     origin: vec3<f32>,

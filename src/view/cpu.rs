@@ -21,7 +21,8 @@ use crate::plan::shading::LightBrdf;
 use crate::stages::preview::picture::{luminance, pbr_neutral, HEAT_BACKGROUND};
 use crate::view::camera::CameraFrame;
 use crate::view::frame::{
-    unpack_material, FrameUniform, Mode, PresentUniform, Surface, ViewLight, SPLIT_RECORD,
+    unpack_material, FrameUniform, Mode, PresentUniform, Surface, ViewLight, MAX_SHADOW_MAPS,
+    SPLIT_RECORD,
 };
 use crate::view::raster::GBuffer;
 use crate::view::shadow;
@@ -95,14 +96,29 @@ fn direct_lights(frame: &FrameUniform, lights: &[[f32; 4]], px: &PixelView) -> V
         .sum()
 }
 
-/// The sun's visibility for the surface a pixel sees, 1 without a shadow or lights
-/// (`lights_visibility` in view_sun.wgsl).
-fn lights_visibility(frame: &FrameUniform, shadow: &[f32], px: &PixelView, count: u32) -> f32 {
-    if count == 0 || frame.sun[2] == 0 {
-        1.0
-    } else {
-        shadow::visibility(&frame.shadow, frame.sun[3], shadow, px.p, px.n)
+/// Each light's visibility for the surface a pixel sees, by light: from its shadow map
+/// for the first `count` lights that have one, 1 for the rest (`lights_visibility` in
+/// view_sun.wgsl).
+fn lights_visibility(
+    frame: &FrameUniform,
+    shadow: &[f32],
+    px: &PixelView,
+    count: u32,
+) -> [f32; MAX_SHADOW_MAPS] {
+    let mut visibility = [1.0; MAX_SHADOW_MAPS];
+    for (k, v) in visibility
+        .iter_mut()
+        .enumerate()
+        .take(count.min(frame.sun[2]) as usize)
+    {
+        *v = shadow::layer_visibility(&frame.shadow, frame.sun[3], shadow, k, px.p, px.n);
     }
+    visibility
+}
+
+/// Light `index`'s (a record's w) share of `visibility`: 1 past the maps.
+fn shadowed(visibility: &[f32; MAX_SHADOW_MAPS], index: f32) -> f32 {
+    visibility.get(index as usize).copied().unwrap_or(1.0)
 }
 
 /// A directional light of irradiance `e` from `l` shading the surface a pixel sees.
@@ -156,8 +172,8 @@ impl AreaLights {
     }
 }
 
-/// The `count` lights split out shading the surface a pixel sees, light 0 through the
-/// sun's visibility in `shadow` (the map's texels): a directional light of E⊥, or an area
+/// The `count` lights split out shading the surface a pixel sees, each through its
+/// visibility in `shadow` (the maps' texels): a directional light of E⊥, or an area
 /// light from `area`'s table (`split_lights_shade` in view_sun.wgsl, which reads the
 /// quadrilateral and the table from `texels`).
 fn split_lights_shade(
@@ -186,17 +202,13 @@ fn split_lights_shade(
                 }
                 _ => directional(px, Vec3::from_slice(&t[..3]), radiance * t[3]),
             };
-            if r[3] < 0.5 {
-                c * visibility
-            } else {
-                c
-            }
+            c * shadowed(&visibility, r[3])
         })
         .sum()
 }
 
 /// The truth's `count` texels of the lights' regions from entry `first` on, shading the
-/// surface a pixel sees, light 0's through the sun's visibility (`truth_texels_shade` in
+/// surface a pixel sees, each through its light's visibility (`truth_texels_shade` in
 /// view_sun.wgsl).
 fn truth_texels_shade(
     frame: &FrameUniform,
@@ -205,7 +217,9 @@ fn truth_texels_shade(
     px: &PixelView,
     (first, count): (usize, u32),
 ) -> Vec3 {
-    let visibility = lights_visibility(frame, shadow, px, count);
+    // The lights' visibilities, when there is a texel to shade.
+    let lights = if count > 0 { frame.sun[0] } else { 0 };
+    let visibility = lights_visibility(frame, shadow, px, lights);
     (0..count as usize)
         .map(|i| {
             let (t, r) = (texels[first + 2 * i], texels[first + 2 * i + 1]);
@@ -214,18 +228,14 @@ fn truth_texels_shade(
                 Vec3::from_slice(&t[..3]),
                 Vec3::from_slice(&r[..3]) * t[3],
             );
-            if r[3] < 0.5 {
-                c * visibility
-            } else {
-                c
-            }
+            c * shadowed(&visibility, r[3])
         })
         .sum()
 }
 
 /// The split-sum pass: per pixel (radiance, surface id), the background's and the
 /// surfaces' as `background_radiance` and `surface_radiance` in view_shade.wgsl; `shadow`
-/// holds the sun's shadow map's texels (read when `frame.sun` says so).
+/// holds the lights' shadow maps' texels, layer after layer (read as `frame.sun` says).
 pub fn shade_split_sum(
     frame: &FrameUniform,
     light: &ViewLight,

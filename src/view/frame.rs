@@ -10,7 +10,7 @@
 
 use glam::{Mat4, Vec3};
 
-use crate::environment::sun::{Sun, SunMode};
+use crate::environment::sun::{Sun, SunMode, MAX_LIGHTS};
 use crate::environment::texels::SourceTexel;
 use crate::environment::Cubemap;
 use crate::math::lookup::SpecularLookup;
@@ -142,8 +142,8 @@ pub fn view_quad(light: &Sun) -> Option<(QuadLight, Vec3)> {
     Some((QuadLight::new(corners), Vec3::from(rect.radiance)))
 }
 
-/// The entries of [`ViewLight::sun_texels`] (vec4s), the sun being light 0 (the one with a
-/// shadow):
+/// The entries of [`ViewLight::sun_texels`] (vec4s), the sun being light 0, light k's
+/// shadow map k:
 ///
 /// 1. per light, [`SPLIT_RECORD`] entries, what the split-sum view shades (as the preview
 ///    does): for a directional light (unit direction, 1), (its irradiance E⊥ from that
@@ -155,7 +155,7 @@ pub fn view_quad(light: &Sun) -> Option<(QuadLight, Vec3)> {
 /// 2. the truth's hot texels of the environment as read (`hot`) that lie within a light's
 ///    region ([`Sun::region_radius_deg`]), moved out of `hot`, two entries each: (unit
 ///    direction, solid angle), (radiance, light index): the truth integrates the light as
-///    the environment holds it, the sun's part through the same shadow as the split-sum's;
+///    the environment holds it, each light's part through the same shadow as the split-sum's;
 /// 3. the area lights' corners, counter-clockwise seen from the origin, a unit vector an
 ///    entry;
 /// 4. when there is an area light, the LTC table of the viewer's light BRDF
@@ -255,7 +255,7 @@ impl ViewLight {
     }
 
     /// Whether a light split out is an area light (shaded from the LTC table that
-    /// `sun_texels` then holds, light 0's shadow soft).
+    /// `sun_texels` then holds, its shadow soft).
     pub fn has_area_lights(&self) -> bool {
         self.split_lights().iter().any(|l| l.shape.is_some())
     }
@@ -371,12 +371,16 @@ pub struct FrameUniform {
     /// (floor height, half extent, smallest α of the point lights, 0).
     pub floor_plane: [f32; 4],
     /// The lights taken out of the environment: (entries the split-sum view shades, disc
-    /// cells the truth view integrates after them, 1 when the sun casts its shadow, the
-    /// shadow map's edge in texels).
+    /// cells the truth view integrates after them, how many cast a shadow (light k has
+    /// map k, 0 with shadows off), the shadow maps' edge in texels).
     pub sun: [u32; 4],
-    /// The sun's shadow map (`view::shadow::ShadowMap::uniform`).
-    pub shadow: [[f32; 4]; 4],
+    /// The lights' shadow maps, by light (`view::shadow::ShadowMap::uniform`).
+    pub shadow: [[[f32; 4]; 4]; MAX_SHADOW_MAPS],
 }
+
+/// The most lights with a shadow map: every light split out (`MAX_SHADOW_MAPS` in
+/// view_frame.wgsl, whose visibilities are a vec4).
+pub const MAX_SHADOW_MAPS: usize = MAX_LIGHTS;
 
 fn pack(m: &ShadeMaterial) -> [[f32; 4]; 3] {
     [
@@ -428,24 +432,26 @@ impl FrameUniform {
             sphere: Vec3::from(OBJECT_CENTRE).extend(FIT_HALF_EXTENT).into(),
             floor_plane: [FLOOR_Y, FLOOR_HALF_EXTENT, MIN_DIRECT_ALPHA, 0.0],
             sun: [0; 4],
-            shadow: [[0.0; 4]; 4],
+            shadow: [[[0.0; 4]; 4]; MAX_SHADOW_MAPS],
         }
     }
 
-    /// The frame with `light`'s split-out lights on and, when given, the sun's shadow
-    /// map: its block (`view::shadow::ShadowMap::uniform`) and edge in texels.
+    /// The frame with `light`'s split-out lights on and their shadow maps: each map's
+    /// block (`view::shadow::ShadowMap::uniform`), light by light (none: no shadows; at
+    /// most [`MAX_SHADOW_MAPS`] are kept), and the maps' edge in texels.
     pub fn with_sun(
         mut self,
         light: &ViewLight,
-        shadow: Option<([[f32; 4]; 4], u32)>,
+        (blocks, edge): (&[[[f32; 4]; 4]], u32),
     ) -> FrameUniform {
+        let maps = blocks.len().min(MAX_SHADOW_MAPS);
         self.sun = [
             light.sun_count(),
             light.sun_cell_count(),
-            shadow.is_some() as u32,
-            shadow.map_or(0, |s| s.1),
+            maps as u32,
+            if maps > 0 { edge } else { 0 },
         ];
-        self.shadow = shadow.map_or([[0.0; 4]; 4], |s| s.0);
+        self.shadow[..maps].copy_from_slice(&blocks[..maps]);
         self
     }
 

@@ -24,7 +24,7 @@ use crate::view::hud;
 use crate::view::model::{Model, Shape};
 use crate::view::raster::{rasterize, scene_vertices, GBuffer, Vertex};
 use crate::view::scene::{floor_material, FLOOR_ROUGHNESS, POINT_LIGHTS};
-use crate::view::shadow::ShadowMap;
+use crate::view::shadow::ShadowMaps;
 use crate::view::state::{Action, Change, ViewState, KEYS};
 use crate::{Error, Result};
 
@@ -79,8 +79,8 @@ pub struct Viewer {
     pub light: ViewLight,
     /// The heat map's mean over the object, measured after a heat-view frame.
     heat_mean: Option<f32>,
-    /// The sun's shadow map for the light and model shown (with the sun split out).
-    shadow: Option<ShadowMap>,
+    /// The shadow maps of the lights split out, for the light and model shown.
+    shadow: ShadowMaps,
     /// The models on keys.
     pub models: Vec<Model>,
     /// Quadrature points per lobe of each truth estimate (1 ..= 256).
@@ -119,7 +119,7 @@ impl Viewer {
             state: ViewState::default(),
             light,
             heat_mean: None,
-            shadow: None,
+            shadow: ShadowMaps::default(),
             models,
             points_per_estimate: DEFAULT_POINTS_PER_ESTIMATE,
             renderer,
@@ -153,17 +153,20 @@ impl Viewer {
         self.update_shadow()
     }
 
-    /// Makes the sun's shadow map for the light and model shown (none without a sun split
-    /// out) and uploads it to the GPU renderer (the CPU one reads it from here).
+    /// Makes the shadow maps of the lights split out for the light and model shown (none
+    /// with the lights kept) and uploads them to the GPU renderer (the CPU one reads them
+    /// from here).
     fn update_shadow(&mut self) -> Result<()> {
         let model = &self.models[self.state.model.min(self.models.len() - 1)];
-        self.shadow = self
+        let lights: Vec<(Vec3, f32)> = self
             .light
             .split_lights()
-            .first()
-            .map(|sun| ShadowMap::new(Vec3::from(sun.direction), model, sun.penumbra_spread()));
+            .iter()
+            .map(|l| (Vec3::from(l.direction), l.penumbra_spread()))
+            .collect();
+        self.shadow = ShadowMaps::new(&lights, model);
         if let Renderer::Gpu(g) = &mut self.renderer {
-            g.set_shadow(self.shadow.as_ref())?;
+            g.set_shadow(&self.shadow)?;
         }
         Ok(())
     }
@@ -245,10 +248,10 @@ impl Viewer {
         )
         .with_sun(
             &self.light,
-            self.shadow
-                .as_ref()
-                .filter(|_| s.shadow)
-                .map(|m| (m.uniform(), m.size)),
+            (
+                if s.shadow { &self.shadow.blocks } else { &[] },
+                self.shadow.size,
+            ),
         )
     }
 
@@ -310,17 +313,21 @@ impl Viewer {
 
     /// The HUD's line on the lights: the first (a sun, or an area light and its width),
     /// where it is, its share of the light, how many more there are, and whether they are
-    /// split out (the first with its shadow, soft for an area light) or kept in the IBL.
+    /// split out (each with its shadow, soft for an area light) or kept in the IBL.
     fn sun_line(&self) -> String {
         let Some(sun) = self.light.found.first() else {
             return "sun: none found (no compact dominant light)".into();
         };
-        let (what, shadow) = match sun.shape {
-            Some(_) => (
-                format!("area light {:.0}°", 2.0 * sun.angular_radius_deg),
-                "soft shadow",
-            ),
-            None => ("sun".to_string(), "shadow"),
+        let what = match sun.shape {
+            Some(_) => format!("area light {:.0}°", 2.0 * sun.angular_radius_deg),
+            None => "sun".to_string(),
+        };
+        // Each light split out casts its shadow, soft for an area light.
+        let split = self.light.split_lights();
+        let shadow = match (split.len(), self.light.has_area_lights()) {
+            (0 | 1, false) => "shadow",
+            (0 | 1, true) => "soft shadow",
+            _ => "shadows",
         };
         let more = match self.light.found.len() - 1 {
             0 => String::new(),
@@ -467,8 +474,8 @@ impl Viewer {
                 hud.as_ref(),
             )?,
             Renderer::Cpu(c) => {
-                // The CPU passes read the map's texels where they are.
-                let shadow = self.shadow.as_ref().map_or(&[][..], |s| &s.depth[..]);
+                // The CPU passes read the maps' texels where they are.
+                let shadow = &self.shadow.depth[..];
                 if changed {
                     let g = rasterize(&frame, &c.vertices, c.sphere);
                     c.shaded = shade_split_sum(&frame, &self.light, &c.lights, shadow, &g);

@@ -1,9 +1,11 @@
-//! The sun's shadow in the viewer: a map of how far along the sun's rays the object
-//! first stands, made on the CPU by the viewer's own rasteriser ([`rasterize`], the
-//! sphere ray-cast exactly) through an orthographic camera looking down the sun's rays,
-//! and looked up by both renderers' shading (`sun_visibility` in
-//! `shaders/common/view_sun.wgsl`, [`ShadowMap::visibility`] here), so the GPU and CPU
-//! frames read the same texels.
+//! The lights' shadows in the viewer: per light taken out of the environment (the sun, a
+//! studio's lamps, at most [`MAX_SHADOW_MAPS`]), a map of how far along the light's rays
+//! the object first stands, made on the CPU by the viewer's own rasteriser ([`rasterize`],
+//! the sphere ray-cast exactly) through an orthographic camera looking down the rays, and
+//! looked up by both renderers' shading (`light_visibility` in
+//! `shaders/common/view_sun.wgsl`, [`visibility`] here), so the GPU and CPU frames read
+//! the same texels. [`ShadowMaps`] holds them as the kernels read them: one layer of an
+//! array texture and one block of the frame's uniform (`FrameUniform::shadow`) a light.
 //!
 //! Visibility of a surface point p with normal n: q = p + n·[`NORMAL_OFFSET_TEXELS`]
 //! texels (off the surface, so a surface does not shadow itself where the map's texels
@@ -28,7 +30,7 @@
 use glam::Vec3;
 
 use crate::view::camera::{CameraFrame, NEAR};
-use crate::view::frame::{unpack_material, FrameUniform, Surface};
+use crate::view::frame::{unpack_material, FrameUniform, Surface, MAX_SHADOW_MAPS};
 use crate::view::model::{Model, Shape};
 use crate::view::raster::{object_vertices, rasterize};
 use crate::view::scene::{FIT_HALF_EXTENT, OBJECT_CENTRE};
@@ -53,7 +55,7 @@ fn half_extent() -> f32 {
     1.01 * FIT_HALF_EXTENT * 3f32.sqrt()
 }
 
-/// The sun's shadow map.
+/// One light's shadow map.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ShadowMap {
     /// The orthographic camera looking down the sun's rays, `front` = −toward the sun.
@@ -127,14 +129,73 @@ impl ShadowMap {
         ]
     }
 
-    /// The sun's visibility at surface point `p` with unit normal `n`, in [0, 1]: mirror
-    /// of `sun_visibility` in `shaders/common/view_sun.wgsl` on [`ShadowMap::uniform`].
+    /// The light's visibility at surface point `p` with unit normal `n`, in [0, 1]: mirror
+    /// of `light_visibility` in `shaders/common/view_sun.wgsl` on [`ShadowMap::uniform`].
     pub fn visibility(&self, p: Vec3, n: Vec3) -> f32 {
         visibility(&self.uniform(), self.size, &self.depth, p, n)
     }
 }
 
-/// `sun_visibility` of view_sun.wgsl on a map's `uniform` block, edge `size` and texels
+/// The shadow maps of the lights split out, light by light, as the kernels read them.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ShadowMaps {
+    /// Texels along each map's edge ([`SHADOW_MAP_SIZE`]; 0 without a map).
+    pub size: u32,
+    /// Each map's [`ShadowMap::uniform`], by light.
+    pub blocks: Vec<[[f32; 4]; 4]>,
+    /// The maps' texels, layer after layer (each `size`² row-major).
+    pub depth: Vec<f32>,
+}
+
+impl ShadowMaps {
+    /// The maps of `model` lit by each of `lights` (unit direction toward the light, tan of
+    /// its angular radius for an area light's penumbra, 0 for a directional light), the
+    /// first [`MAX_SHADOW_MAPS`] of them.
+    pub fn new(lights: &[(Vec3, f32)], model: &Model) -> ShadowMaps {
+        let maps: Vec<ShadowMap> = lights
+            .iter()
+            .take(MAX_SHADOW_MAPS)
+            .map(|&(toward, spread)| ShadowMap::new(toward, model, spread))
+            .collect();
+        ShadowMaps {
+            size: maps.first().map_or(0, |m| m.size),
+            blocks: maps.iter().map(ShadowMap::uniform).collect(),
+            depth: maps.into_iter().flat_map(|m| m.depth).collect(),
+        }
+    }
+
+    /// How many lights have a map.
+    pub fn len(&self) -> usize {
+        self.blocks.len()
+    }
+
+    /// Whether no light has one.
+    pub fn is_empty(&self) -> bool {
+        self.blocks.is_empty()
+    }
+}
+
+/// Light `k`'s visibility at `p` with unit normal `n`, in [0, 1], from a frame's shadow
+/// blocks, the maps' edge `size` and their texels `layers` (as [`ShadowMaps`] holds them).
+pub fn layer_visibility(
+    blocks: &[[[f32; 4]; 4]],
+    size: u32,
+    layers: &[f32],
+    k: usize,
+    p: Vec3,
+    n: Vec3,
+) -> f32 {
+    let texels = (size * size) as usize;
+    visibility(
+        &blocks[k],
+        size,
+        &layers[k * texels..(k + 1) * texels],
+        p,
+        n,
+    )
+}
+
+/// `light_visibility` of view_sun.wgsl on a map's `uniform` block, edge `size` and texels
 /// `depth`.
 pub fn visibility(uniform: &[[f32; 4]; 4], size: u32, depth: &[f32], p: Vec3, n: Vec3) -> f32 {
     let [origin, right, up, front] = uniform.map(|r| Vec3::from_slice(&r[..3]));

@@ -35,7 +35,7 @@ pub struct ViewState {
     pub lights: bool,
     /// Whether the HUD is drawn.
     pub hud: bool,
-    /// Whether the sun (split out of the environment) casts its shadow.
+    /// Whether the lights split out of the environment cast their shadows.
     pub shadow: bool,
     /// The camera.
     pub camera: Camera,
@@ -90,7 +90,7 @@ pub enum Action {
     /// The sun split out of the environment (a light with a shadow) or kept in it; the
     /// viewer swaps its light (the state holds nothing of it).
     ToggleSun,
-    /// The sun's shadow on or off.
+    /// The lights' shadows on or off.
     ToggleShadow,
     /// A walk of `forward`, `sideways` for a tenth of a second (the `w a s d` tokens).
     Walk(f32, f32),
@@ -158,7 +158,7 @@ pub const KEYS: &[(&str, &str, &str, &str)] = &[
         "the sun split out as a light or kept in the IBL (an HDRI with a sun)",
         "U sun split/kept",
     ),
-    ("O", "o", "the sun's shadow on / off", "O shadow"),
+    ("O", "o", "the lights' shadows on / off", "O shadow"),
     ("F1", "hud", "HUD on / off", "F1 HUD"),
     (
         "W A S D, mouse",

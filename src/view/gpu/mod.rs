@@ -32,7 +32,7 @@ use crate::view::frame::{heat_table, light_table, FrameUniform, Mode, PresentUni
 use crate::view::model::{Model, Shape};
 use crate::view::raster::{scene_vertices, sphere_box_vertices};
 use crate::view::scene::POINT_LIGHTS;
-use crate::view::shadow::{ShadowMap, EMPTY_DEPTH};
+use crate::view::shadow::{ShadowMaps, EMPTY_DEPTH};
 use crate::{Error, Result};
 
 mod passes;
@@ -113,7 +113,7 @@ pub struct GpuRenderer {
     lights: wgpu::Buffer,
     heat: wgpu::Buffer,
     light: Option<LightTextures>,
-    /// The sun's shadow map (a 1 × 1 empty one until one is set).
+    /// The lights' shadow maps, a layer each (one 1 × 1 empty layer until maps are set).
     shadow: wgpu::TextureView,
     vertices: Option<(wgpu::Buffer, u32)>,
     sphere_box: wgpu::Buffer,
@@ -121,18 +121,19 @@ pub struct GpuRenderer {
     targets: Option<Targets>,
 }
 
-/// An r32float texture of `size`² `depth` texels (a shadow map).
+/// An r32float array texture of `layers` layers of `size`² `depth` texels (the shadow
+/// maps), viewed as an array however many layers it has.
 fn shadow_texture(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
-    size: u32,
+    (size, layers): (u32, u32),
     depth: &[f32],
 ) -> Result<wgpu::TextureView> {
-    with_error_scope(device, "uploading the sun's shadow map", || {
+    with_error_scope(device, "uploading the lights' shadow maps", || {
         let texture = create_texture_2d(
             device,
-            "view shadow map",
-            (size, size, 1),
+            "view shadow maps",
+            (size, size, layers),
             wgpu::TextureFormat::R32Float,
             wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
         );
@@ -140,10 +141,13 @@ fn shadow_texture(
             queue,
             &texture,
             (0, 0),
-            (size, size, 1),
+            (size, size, layers),
             bytemuck::cast_slice(depth),
         );
-        texture.create_view(&Default::default())
+        texture.create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(wgpu::TextureViewDimension::D2Array),
+            ..Default::default()
+        })
     })
 }
 
@@ -155,7 +159,7 @@ fn gpu_error(stage: &str, message: impl Into<String>) -> Error {
 }
 
 /// A shading kernel of the viewer (`label`, `source`), compiled with or without area
-/// lights (`AREA_LIGHTS`: their LTC shading and light 0's soft shadow).
+/// lights (`AREA_LIGHTS`: their LTC shading and soft shadows).
 fn shading_kernel(
     device: &wgpu::Device,
     (label, source): (&'static str, &str),
@@ -249,7 +253,7 @@ impl GpuRenderer {
             bytemuck::cast_slice(&sphere_box_vertices()),
             wgpu::BufferUsages::VERTEX,
         );
-        let shadow = shadow_texture(&device, &queue, 1, &[EMPTY_DEPTH])?;
+        let shadow = shadow_texture(&device, &queue, (1, 1), &[EMPTY_DEPTH])?;
         let cube_linear = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("view chains, bilinear"),
             mag_filter: wgpu::FilterMode::Linear,
@@ -398,12 +402,18 @@ impl GpuRenderer {
         Ok(())
     }
 
-    /// Uploads the sun's shadow map (none: an empty one; the frame's `sun` says whether
-    /// the kernels read it).
-    pub fn set_shadow(&mut self, map: Option<&ShadowMap>) -> Result<()> {
-        self.shadow = match map {
-            Some(m) => shadow_texture(&self.device, &self.queue, m.size, &m.depth)?,
-            None => shadow_texture(&self.device, &self.queue, 1, &[EMPTY_DEPTH])?,
+    /// Uploads the lights' shadow maps (none: one empty layer; the frame's `sun` says how
+    /// many the kernels read).
+    pub fn set_shadow(&mut self, maps: &ShadowMaps) -> Result<()> {
+        self.shadow = if maps.is_empty() {
+            shadow_texture(&self.device, &self.queue, (1, 1), &[EMPTY_DEPTH])?
+        } else {
+            shadow_texture(
+                &self.device,
+                &self.queue,
+                (maps.size, maps.len() as u32),
+                &maps.depth,
+            )?
         };
         Ok(())
     }
