@@ -12,6 +12,7 @@
 //! equivalent cap for the horizon-clipped case (see `cpu::irradiance`); the rest is
 //! converted exactly to an [`IRRADIANCE_SOURCE_SIZE`]² cube.
 
+use crate::math::color::luminance;
 use crate::environment::texels::{MomentTexel, IRRADIANCE_SOURCE_SIZE};
 use crate::environment::{Cubemap, Equirect};
 use crate::math::cubemap::{cube_texel_direction, cube_texel_solid_angle, rotate_y};
@@ -107,10 +108,6 @@ fn reduced_cold(mut cube: Cubemap) -> Cubemap {
         size: cube.level_size(m),
         levels: cube.levels.split_off(m),
     }
-}
-
-fn luminance(c: [f32; 3]) -> f32 {
-    0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
 }
 
 /// A cell of radiance `l` with first moment ∫ l dω = `moment` and solid angle `omega`;

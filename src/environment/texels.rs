@@ -44,7 +44,7 @@ pub struct MomentTexel {
 }
 
 fn luminance(c: [f32; 4]) -> f32 {
-    0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
+    crate::math::color::luminance([c[0], c[1], c[2]])
 }
 
 /// Visits every texel of mip `m` of `env` with the level-0 texels it covers:
@@ -153,7 +153,7 @@ pub fn moment_texels(env: &Cubemap, m: usize) -> Vec<MomentTexel> {
         // Effective cap: a uniform cap of half-angle σ has a mean direction of length
         // (1 + cos σ)/2, so the luminance moment's length sets σ: a texel holding a sun
         // acts as a point, a uniform texel as a cap of its own solid angle.
-        let lum = |v: [f64; 3]| 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2];
+        let lum = crate::math::color::luminance_f64;
         let m_lum = [0, 1, 2].map(|a| lum([moments[0][a], moments[1][a], moments[2][a]]));
         let l_lum = lum(lw);
         let cos_sigma = if l_lum > 0.0 {

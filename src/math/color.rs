@@ -3,8 +3,24 @@
 //! luminance weights.
 
 /// Rec. 709 luminance weights of linear RGB (ITU-R BT.709, the Y row of its RGB to XYZ
-/// matrix).
-pub const LUMINANCE: [f32; 3] = [0.2126, 0.7152, 0.0722];
+/// matrix), in f64.
+pub const LUMINANCE_F64: [f64; 3] = [0.2126, 0.7152, 0.0722];
+/// [`LUMINANCE_F64`] in f32.
+pub const LUMINANCE: [f32; 3] = [
+    LUMINANCE_F64[0] as f32,
+    LUMINANCE_F64[1] as f32,
+    LUMINANCE_F64[2] as f32,
+];
+
+/// The luminance Y of linear RGB `c` ([`LUMINANCE`]).
+pub fn luminance(c: [f32; 3]) -> f32 {
+    LUMINANCE[0] * c[0] + LUMINANCE[1] * c[1] + LUMINANCE[2] * c[2]
+}
+
+/// [`luminance`] in f64.
+pub fn luminance_f64(c: [f64; 3]) -> f64 {
+    LUMINANCE_F64[0] * c[0] + LUMINANCE_F64[1] * c[1] + LUMINANCE_F64[2] * c[2]
+}
 
 /// Largest linear value on the sRGB curve's linear segment.
 pub const SRGB_LINEAR_MAX: f32 = 0.003_130_8;

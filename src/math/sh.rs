@@ -152,7 +152,7 @@ pub struct Zh3 {
 /// harmonic about the luminance axis, z = √(4π/5) Σₘ f₂ₘ Y₂ₘ(axis) (the addition theorem:
 /// the rotated zonal harmonic's coefficients are √(4π/5) Y₂ₘ(axis)).
 pub fn zh3_from_sh9(coeffs: &[[f32; 3]; 9]) -> Zh3 {
-    let lum = |c: [f32; 3]| 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+    let lum = crate::math::color::luminance;
     // Band 1 is c1 (k11 x + k1-1 y + k10 z): the luminance's vector is (k11, k1-1, k10).
     let v = [lum(coeffs[3]), lum(coeffs[1]), lum(coeffs[2])];
     let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();

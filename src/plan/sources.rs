@@ -16,6 +16,7 @@ use crate::environment::sample::BorderedCube;
 use crate::environment::texels::{source_texels, SourceTexel};
 use crate::environment::{Cubemap, IrradianceSource};
 use crate::math::brdf::{alpha_from_roughness, d_ggx};
+use crate::math::color::luminance;
 use crate::math::sampling::{hammersley, importance_sample_ggx};
 use crate::plan::chain::EXACT_MAX_SOURCE;
 
@@ -49,8 +50,7 @@ pub fn split_hot_texels(env: &Cubemap) -> SampledSource {
         .unwrap_or(env.levels.len() - 1);
     let n = env.level_size(m);
     let texels = source_texels(env, m);
-    let lum =
-        |t: &SourceTexel| 0.2126 * t.radiance[0] + 0.7152 * t.radiance[1] + 0.0722 * t.radiance[2];
+    let lum = |t: &SourceTexel| luminance([t.radiance[0], t.radiance[1], t.radiance[2]]);
     let mean = texels
         .iter()
         .map(|t| (lum(t) * t.dir_omega[3]) as f64)

@@ -4,9 +4,7 @@
 use crate::environment::{Cubemap, Environment, Equirect};
 use crate::math::cubemap::{cube_face_coords, cube_texel_direction, cube_texel_solid_angle};
 
-pub(crate) fn luminance(c: [f64; 3]) -> f64 {
-    0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
-}
+pub(crate) use crate::math::color::luminance_f64 as luminance;
 
 /// The texels of an equirect or of a cube's level 0.
 pub(crate) enum Grid<'a> {

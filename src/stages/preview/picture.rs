@@ -39,7 +39,7 @@ pub const LUMINANCE: [f32; 3] = crate::math::color::LUMINANCE;
 
 /// Rec. 709 luminance of linear RGB.
 pub fn luminance(c: [f32; 3]) -> f32 {
-    LUMINANCE[0] * c[0] + LUMINANCE[1] * c[1] + LUMINANCE[2] * c[2]
+    crate::math::color::luminance(c)
 }
 
 /// The largest ratio of the arithmetic mean luminance to the log-average the default
