@@ -1,6 +1,7 @@
 //! `cargo bench`: peak memory, bake and cubemap timings, and the BRDF LUT's timings and
 //! accuracy on both backends, printed as tables. `cargo bench --bench bench -- memory`
-//! (or bake, cubemap, specular, lut, preview, bc6h, astc, view) runs only those sections.
+//! (or bake, cubemap, specular, lut, ltc, preview, bc6h, astc, view) runs only those
+//! sections.
 //!
 //! CPU seconds come from /proc/self/stat (user + system, all threads), wall seconds from a
 //! monotonic clock. GPU times are measured around the whole kernel call (upload, dispatch,
@@ -12,6 +13,8 @@ mod astc;
 mod bc6h;
 #[path = "../tests/common/mod.rs"]
 mod common;
+#[path = "sections/ltc.rs"]
+mod ltc;
 #[path = "sections/view.rs"]
 mod view;
 
@@ -467,6 +470,9 @@ fn main() {
     if run("lut") {
         lut_benchmarks();
         lut_versus_cmgen();
+    }
+    if run("ltc") {
+        ltc::benchmarks();
     }
     if run("preview") {
         preview_benchmarks();

@@ -99,6 +99,7 @@ pub use backend::BackendChoice;
 pub use bake::{
     clipped_sun_warning, read_bake_dir, BakeOptions, BakeReport, Baker, LoadedInput, Manifest,
 };
+pub use cpu::ltc_fit::fit_ltc;
 pub use environment::inventory::{inventory, Inventory};
 pub use environment::sun::{
     find_lights, find_sources, find_sun, split_lights, split_sun, take_sources_out, RectLight,
@@ -120,7 +121,7 @@ pub use math::lookup::SpecularLookup;
 pub use plan::astc::AstcQuality;
 pub use plan::bc6h::Bc6hQuality;
 pub use plan::chain::{MipRoughness, SpecularChain};
-pub use plan::ltc::{fit_ltc, LtcCell, LtcTable};
+pub use plan::ltc::{LtcCell, LtcTable};
 pub use plan::lut::{BrdfLut, LutModel, DEFAULT_LUT_SIZE, MAX_LUT_SIZE};
 pub use plan::shading::{
     DiffuseLobe, IblTerms, IrradianceSource, LightBrdf, Masking, Shading, ShadingTerms,

@@ -472,3 +472,34 @@ fn view_area_light_constants_match_rust() {
         splitsum::math::ltc::MIN_SIN_SQUARED
     );
 }
+
+/// The LTC fit's constants are the same on both sides.
+#[test]
+fn ltc_fit_constants_match_rust() {
+    use splitsum::plan::ltc;
+    let module = parse("ltc_fit", splitsum::gpu::shaders::LTC_FIT);
+    for (name, rust) in [
+        ("FIT_THREADS", splitsum::gpu::ltc_fit::FIT_THREADS),
+        ("FIT_SAMPLES", ltc::FIT_SAMPLES),
+        ("SIMPLEX_ITERATIONS", ltc::SIMPLEX_ITERATIONS),
+    ] {
+        assert_eq!(wgsl_u32_constant(&module, name), rust, "{name}");
+    }
+    for (name, rust) in [
+        ("MIN_ALPHA", ltc::MIN_ALPHA),
+        ("SIMPLEX_STEP", ltc::SIMPLEX_STEP),
+        ("SIMPLEX_TOLERANCE", ltc::SIMPLEX_TOLERANCE),
+        ("MIN_SCALE", ltc::MIN_SCALE),
+        ("MIN_FIT_N_DOT_V", ltc::MIN_FIT_N_DOT_V),
+        ("MIN_POSITIVE", f32::MIN_POSITIVE),
+    ] {
+        assert_eq!(wgsl_f32_constant(&module, name), rust, "{name}");
+    }
+    let (members, span) = struct_layout(&module, "LtcFitParams");
+    let names: Vec<&str> = members.iter().map(|m| m.0.as_str()).collect();
+    assert_eq!(names, ["size", "masking", "stage", "step"]);
+    assert_eq!(
+        span as usize,
+        std::mem::size_of::<splitsum::gpu::ltc_fit::LtcFitParams>()
+    );
+}

@@ -7,8 +7,10 @@ use crate::gpu::{self, GpuContext};
 use crate::plan::bc6h::Bc6hQuality;
 use crate::plan::chain::SpecularChain;
 use crate::plan::convert::EquirectToCubeParams;
+use crate::plan::ltc::LtcTable;
 use crate::plan::lut::{validate_lut_size, BrdfLut, LutModel, LutQuadrature};
 use crate::plan::scene::{SceneUniform, SplitSumInputs, TruthInputs};
+use crate::plan::shading::LightBrdf;
 use crate::Result;
 
 /// The wgpu backend.
@@ -103,11 +105,18 @@ impl Backend for GpuBackend {
             gpu::bc6h::encode_bc6h(device, queue, &self.ctx.bc6h, cube, quality)
         })
     }
+
+    fn fit_ltc(&self, brdf: LightBrdf, size: u32) -> Result<LtcTable> {
+        self.ctx.run_kernel("ltc_fit", |device, queue| {
+            gpu::ltc_fit::fit_ltc(device, queue, brdf, size)
+        })
+    }
 }
 
 /// What `--backend auto` uses on a software adapter (Mesa's lavapipe and the like): the
-/// GPU for the kernel lavapipe runs faster than the CPU backend (the preview's ground
-/// truth) and the CPU reference for the others (the LUT, cube conversion, prefilter,
+/// GPU for the kernels lavapipe runs faster than the CPU backend (the preview's ground
+/// truth, the LTC fit: docs/accuracy.md, "The LTC fit on either backend") and the CPU
+/// reference for the others (the LUT, cube conversion, prefilter,
 /// irradiance, the preview's split-sum), as measured by `cargo bench` on a 2-core machine
 /// (LUT 512: 2.0 CPU-s on lavapipe integrating every texel, 0.24 on the CPU interpolating
 /// most of them; prefilter 256: 2.1 on lavapipe, 1.3 on the CPU; irradiance 32: 1.9 and
@@ -122,7 +131,7 @@ pub struct SoftwareAdapterBackend {
 impl Backend for SoftwareAdapterBackend {
     fn description(&self) -> String {
         format!(
-            "{} for the preview's truth, {} for the LUT, conversion, prefilter, irradiance and the preview's split-sum (software adapter)",
+            "{} for the preview's truth and the LTC fit, {} for the LUT, conversion, prefilter, irradiance and the preview's split-sum (software adapter)",
             self.gpu.description(),
             CpuBackend.description()
         )
@@ -138,7 +147,7 @@ impl Backend for SoftwareAdapterBackend {
 
     fn identity(&self) -> String {
         format!(
-            "{} for the preview's truth, cpu for the LUT, conversion, prefilter, irradiance and the preview's split-sum",
+            "{} for the preview's truth and the LTC fit, cpu for the LUT, conversion, prefilter, irradiance and the preview's split-sum",
             self.gpu.identity()
         )
     }
@@ -197,5 +206,9 @@ impl Backend for SoftwareAdapterBackend {
 
     fn encode_bc6h(&self, cube: &Cubemap, quality: Bc6hQuality) -> Result<Vec<Vec<u8>>> {
         CpuBackend.encode_bc6h(cube, quality)
+    }
+
+    fn fit_ltc(&self, brdf: LightBrdf, size: u32) -> Result<LtcTable> {
+        self.gpu.fit_ltc(brdf, size)
     }
 }

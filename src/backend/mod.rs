@@ -11,8 +11,10 @@ use crate::environment::{Cubemap, EquirectIntegral, IrradianceSource};
 use crate::plan::bc6h::Bc6hQuality;
 use crate::plan::chain::SpecularChain;
 use crate::plan::convert::EquirectToCubeParams;
+use crate::plan::ltc::LtcTable;
 use crate::plan::lut::{BrdfLut, LutModel};
 use crate::plan::scene::{SceneUniform, SplitSumInputs, TruthInputs};
+use crate::plan::shading::LightBrdf;
 use crate::{Error, Result};
 
 /// Which backend the user asked for.
@@ -109,6 +111,9 @@ pub trait Backend {
     /// The BC6H blocks of every level of `cube`, each level its six faces one after the
     /// other (see [`crate::plan::bc6h`]).
     fn encode_bc6h(&self, cube: &Cubemap, quality: Bc6hQuality) -> Result<Vec<Vec<u8>>>;
+
+    /// The `size`² LTC table of `brdf` (see [`crate::plan::ltc`]).
+    fn fit_ltc(&self, brdf: LightBrdf, size: u32) -> Result<LtcTable>;
 }
 
 /// A backend picked by `choice`, and a note for the user when `Auto` fell back to the CPU.

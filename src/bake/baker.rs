@@ -13,6 +13,7 @@ use crate::environment::sun::SunMode;
 use crate::environment::{Cubemap, Environment};
 use crate::io::cubemap::{clip_warning, write_cubemap_with, Container, CubeWriteOptions};
 use crate::io::input::{load_faces, load_input, InputOptions, LoadedEnvironment};
+use crate::plan::ltc::{ltc_brdf, LtcTable};
 use crate::plan::lut::{BrdfLut, LutModel, DEFAULT_LUT_SIZE};
 use crate::stages::convert::{default_cube_size, environment_into_cube};
 use crate::stages::light::{BakedEnvironment, Stage};
@@ -234,6 +235,13 @@ impl Baker {
     /// The BRDF LUT of `model`, `size`² texels.
     pub fn lut(&mut self, model: LutModel, size: u32) -> Result<BrdfLut> {
         self.with_fallback(|baker| baker.backend.brdf_lut_model(size, size, model))
+    }
+
+    /// The `size`² LTC table that goes with the LUT `model` (`plan::ltc::ltc_brdf` says
+    /// which BRDF it fits).
+    pub fn ltc(&mut self, model: LutModel, size: u32) -> Result<LtcTable> {
+        let brdf = ltc_brdf(model, size)?;
+        self.with_fallback(|baker| baker.backend.fit_ltc(brdf, size))
     }
 
     /// `env` as a cube of edge `size` (default: the largest power of two ≤ an equirect's

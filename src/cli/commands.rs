@@ -302,8 +302,12 @@ fn ltc(args: LutArgs) -> anyhow::Result<()> {
     let size = args.size.unwrap_or(DEFAULT_LTC_SIZE);
     check_output_extension(&args.output, "an LTC table", &["json"])
         .map_err(|e| for_user("lut", e))?;
+    let mut baker = open_baker("lut", BakeOptions::default(), &args.common)?;
     let start = Instant::now();
-    let table = splitsum::fit_ltc(args.model, size).map_err(|e| for_user("lut", e))?;
+    let table = baker
+        .ltc(args.model, size)
+        .map_err(|e| for_user("lut", e))?;
+    warn(baker.take_warnings());
     if args.common.verbose {
         eprintln!("ltc {0}x{0}: {1:.3} s", size, start.elapsed().as_secs_f64());
     }

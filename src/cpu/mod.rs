@@ -10,6 +10,7 @@
 //! | `convolve_exact.rs` | `shaders/convolve_exact.wgsl` (specular, irradiance, sheen) |
 //! | `preview_split_sum.rs` | `shaders/preview_split_sum.wgsl` |
 //! | `preview_truth.rs` | `shaders/preview_truth.wgsl` |
+//! | `ltc_fit.rs` | `shaders/ltc_fit.wgsl` |
 //!
 //! The shared WGSL in `shaders/common/` has its twins in [`crate::math`] and, for cube
 //! sampling, [`crate::environment::sample`]; the mip reduction's
@@ -19,6 +20,7 @@
 pub mod brdf_lut;
 pub mod convolve_exact;
 pub mod equirect_to_cube;
+pub mod ltc_fit;
 pub mod prefilter_sampled;
 pub mod preview_split_sum;
 pub mod preview_truth;

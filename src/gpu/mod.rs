@@ -9,6 +9,7 @@ pub mod brdf_lut;
 pub mod compute;
 pub mod context;
 pub mod equirect_to_cube;
+pub mod ltc_fit;
 pub mod prefilter;
 pub mod preview;
 pub mod shaders;

@@ -72,6 +72,9 @@ pub const PREVIEW_SPLIT_SUM: &str = kernel_source!(
     ]
 );
 
+/// `shaders/ltc_fit.wgsl` with brdf and material.
+pub const LTC_FIT: &str = kernel_source!("ltc_fit.wgsl", ["brdf.wgsl", "material.wgsl"]);
+
 /// `shaders/preview_truth.wgsl` with brdf, sampling, cubemap, cube_fetch, cube_bilinear,
 /// cube_sample, material, truth, preview_scene.
 pub const PREVIEW_TRUTH: &str = kernel_source!(
@@ -186,6 +189,7 @@ pub const ALL: &[(&str, &str)] = &[
     ("cube_downsample", CUBE_DOWNSAMPLE),
     ("preview_split_sum", PREVIEW_SPLIT_SUM),
     ("preview_truth", PREVIEW_TRUTH),
+    ("ltc_fit", LTC_FIT),
     ("view_split_sum", VIEW_SPLIT_SUM),
     ("view_truth", VIEW_TRUTH),
 ];

@@ -6,7 +6,8 @@
 //! the split-sum) and its Fresnel part ∫ f (n·l) (1 − v·h)⁵ dl (B), so F0 A + B scales it
 //! (Heitz, Dupuy, Hill, Neubelt 2016, their `fitLTC.cpp`, step for step):
 //!
-//! - the view v = (sin θ, 0, cos θ), θ = acos(1 − x²) for the row's x (at most 1.57);
+//! - the view v = (sin θ, 0, cos θ), cos θ = 1 − x² for the row's x, at least
+//!   [`MIN_FIT_N_DOT_V`] (θ at most 1.57);
 //!   α = max(r², [`MIN_ALPHA`]);
 //! - the magnitude, Fresnel part and the lobe's mean direction from
 //!   [`FIT_SAMPLES`]² GGX samples;
@@ -17,6 +18,9 @@
 //!   incidence, the previous θ otherwise), minimising the cube of |f (n·l) − A D(l)| by
 //!   multiple importance sampling of both (each [`FIT_SAMPLES`]² points, weights
 //!   1 / (pdf_LTC + pdf_BRDF)).
+//!
+//! The fit is a kernel with two twins: `cpu::ltc_fit` (`LtcTable::fit`) and `gpu::ltc_fit`
+//! (shaders/ltc_fit.wgsl); this module holds what both read and write.
 //!
 //! A cell stores M⁻¹ divided by its (1, 1) entry as (x, y, z, w) = (M⁻¹₀₀, M⁻¹₂₀, M⁻¹₀₂,
 //! M⁻¹₂₂) (row, column): three.js's `LTC_1` layout, whose `mat3(vec3(x, 0, y), vec3(0, 1,
@@ -42,46 +46,24 @@
 //! centre, solid angle and world-space vector form factor (the diffuse's) are computed
 //! once a frame.
 
-use std::sync::{Arc, Mutex};
-
 use crate::{Error, Result};
 
 use glam::{Mat3, Vec3};
-use rayon::prelude::*;
 
-use crate::math::brdf::d_ggx;
 use crate::math::ltc::{
     edge_vector_form_factor, horizon_form_factor, inverse_density, polygon_form_factor, polygon_solid_angle,
     polygon_vector_form_factor, Ltc,
 };
-use crate::plan::material::{diffuse_weight, directional_light, light_masking, ShadeMaterial};
+use crate::plan::material::{diffuse_weight, directional_light, ShadeMaterial};
 use crate::plan::lut::LutModel;
 use crate::plan::shading::{DiffuseLobe, LightBrdf, Masking};
 
-/// Cells per side of the table the preview and the viewer shade area lights from: the
-/// mean of `tests/ltc.rs`'s lights within 1.5 % of brute force at r = 0.25 (2.8 % at
-/// 16²), a fit of 7 CPU-s.
-pub const SHARED_TABLE_SIZE: u32 = 32;
-
-/// The tables fitted in this process, by BRDF.
-static SHARED: Mutex<Vec<Arc<LtcTable>>> = Mutex::new(Vec::new());
-
-/// The [`SHARED_TABLE_SIZE`]² table of `brdf`, fitted once a process.
-pub fn shared_table(brdf: LightBrdf) -> Arc<LtcTable> {
-    let mut tables = SHARED.lock().unwrap_or_else(|e| e.into_inner());
-    if let Some(t) = tables.iter().find(|t| t.brdf == brdf) {
-        return Arc::clone(t);
-    }
-    let table = Arc::new(LtcTable::fit(brdf, SHARED_TABLE_SIZE));
-    tables.push(Arc::clone(&table));
-    table
-}
-
-/// The `size`² LTC table that goes with the split-sum LUT `model`: fitted to the GGX lobe
+/// The light BRDF an LTC table for the split-sum LUT `model` is fitted to: the GGX lobe
 /// with its masking (Schlick-GGX for `schlick-ggx` and its multiscatter model, the
 /// height-correlated Smith for `smith-correlated`, its multiscatter model and Filament's
-/// DFG). The sheen models have no GGX lobe: an [`Error::InvalidOption`].
-pub fn fit_ltc(model: LutModel, size: u32) -> Result<LtcTable> {
+/// DFG). The sheen models have no GGX lobe, and a table has 2 to [`MAX_LTC_SIZE`] cells a
+/// side: an [`Error::InvalidOption`] otherwise.
+pub fn ltc_brdf(model: LutModel, size: u32) -> Result<LightBrdf> {
     let masking = match model {
         LutModel::SchlickGgx | LutModel::MultiscatterSchlickGgx => Masking::SchlickGgx,
         LutModel::SmithCorrelated | LutModel::MultiscatterSmithCorrelated | LutModel::FilamentDfg => {
@@ -100,15 +82,14 @@ pub fn fit_ltc(model: LutModel, size: u32) -> Result<LtcTable> {
             message: format!("{size} cells a side; an LTC table has 2 to {MAX_LTC_SIZE}"),
         });
     }
-    let brdf = LightBrdf {
+    Ok(LightBrdf {
         masking,
         diffuse: DiffuseLobe::FresnelWeighted,
         compensated: false,
-    };
-    Ok(LtcTable::fit(brdf, size))
+    })
 }
 
-/// The largest table [`fit_ltc`] fits: 256² cells cost about 16 × a 64² fit's 28 CPU-s.
+/// The largest table `fit_ltc` fits: 256² cells cost about 16 × a 64² fit's 28 CPU-s.
 pub const MAX_LTC_SIZE: u32 = 256;
 
 /// The smallest α fitted: a mirror has no lobe to fit. Heitz's 1e-5 underflows GGX D in
@@ -117,13 +98,18 @@ pub const MAX_LTC_SIZE: u32 = 256;
 pub const MIN_ALPHA: f32 = 1e-3;
 /// Points per axis of each of the fit's quadratures (Heitz's 32).
 pub const FIT_SAMPLES: u32 = 32;
-/// The Nelder-Mead simplex's first step and its stopping tolerance (Heitz's).
-const SIMPLEX_STEP: f32 = 0.05;
-const SIMPLEX_TOLERANCE: f32 = 1e-5;
+/// The Nelder-Mead simplex's first step (Heitz's).
+pub const SIMPLEX_STEP: f32 = 0.05;
+/// The Nelder-Mead's stopping tolerance (Heitz's).
+pub const SIMPLEX_TOLERANCE: f32 = 1e-5;
 /// At most this many Nelder-Mead iterations a cell (Heitz's 100).
-const SIMPLEX_ITERATIONS: u32 = 100;
+pub const SIMPLEX_ITERATIONS: u32 = 100;
 /// The smallest scale of the cosine a fit may reach (Heitz's floor of m11 and m22).
-const MIN_SCALE: f32 = 1e-7;
+pub const MIN_SCALE: f32 = 1e-7;
+/// The smallest n·v fitted: cos 1.57, Heitz's largest θ. The last row's n·v is taken as
+/// this constant rather than as the cosine of the clamped angle, which a GPU's cos
+/// (absolute error up to 2⁻¹¹ in WGSL) may put below the horizon.
+pub const MIN_FIT_N_DOT_V: f32 = 7.963_267e-4;
 
 /// One cell of the table.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -156,209 +142,7 @@ pub struct LtcTable {
     pub cells: Vec<LtcCell>,
 }
 
-/// The BRDF's f (n·l) with F = 1 at unit l for view v (n = +Z) and the pdf of
-/// [`sample_brdf`] for l: GGX D, `brdf`'s masking, D (n·h) / (4 v·h).
-fn eval_brdf(brdf: LightBrdf, v: Vec3, l: Vec3, alpha: f32) -> (f32, f32) {
-    let h = (v + l).normalize();
-    let d = d_ggx(h.z.max(0.0), alpha);
-    let pdf = (d * h.z / (4.0 * v.dot(h))).abs();
-    if l.z <= 0.0 || v.z <= 0.0 {
-        return (0.0, pdf);
-    }
-    (d * light_masking(brdf, l.z, v.z, alpha) * 0.25, pdf)
-}
-
-/// l reflected about a GGX normal sampled by (u1, u2) (Walter et al. 2007, eq. 35-36).
-fn sample_brdf(v: Vec3, alpha: f32, u1: f32, u2: f32) -> Vec3 {
-    let phi = 2.0 * std::f32::consts::PI * u1;
-    let r = alpha * (u2 / (1.0 - u2)).sqrt();
-    let h = Vec3::new(r * phi.cos(), r * phi.sin(), 1.0).normalize();
-    2.0 * h.dot(v) * h - v
-}
-
-/// The quadrature's points (u1, u2), cell centres of a [`FIT_SAMPLES`]² grid.
-fn fit_points() -> impl Iterator<Item = (f32, f32)> {
-    let n = FIT_SAMPLES;
-    (0..n * n).map(move |k| {
-        (
-            ((k % n) as f32 + 0.5) / n as f32,
-            ((k / n) as f32 + 0.5) / n as f32,
-        )
-    })
-}
-
-/// The lobe's magnitude (F = 1), Fresnel part and mean direction (in the plane of
-/// incidence) by GGX sampling.
-fn lobe_terms(brdf: LightBrdf, v: Vec3, alpha: f32) -> (f32, f32, Vec3) {
-    let (mut norm, mut fresnel, mut mean) = (0.0f64, 0.0f64, Vec3::ZERO);
-    for (u1, u2) in fit_points() {
-        let l = sample_brdf(v, alpha, u1, u2);
-        let (value, pdf) = eval_brdf(brdf, v, l, alpha);
-        if pdf > 0.0 {
-            let w = value / pdf;
-            let h = (v + l).normalize();
-            norm += f64::from(w);
-            fresnel += f64::from(w * (1.0 - v.dot(h).max(0.0)).powi(5));
-            mean += w * l;
-        }
-    }
-    let count = f64::from(FIT_SAMPLES * FIT_SAMPLES);
-    mean.y = 0.0;
-    let mean = mean.try_normalize().unwrap_or(Vec3::Z);
-    ((norm / count) as f32, (fresnel / count) as f32, mean)
-}
-
-/// The fit's error of `ltc` (scaled by `norm`) against the lobe: the mean of
-/// |f (n·l) − norm D|³ / (pdf_LTC + pdf_BRDF) over samples of both.
-fn fit_error(brdf: LightBrdf, ltc: &Ltc, norm: f32, v: Vec3, alpha: f32) -> f64 {
-    let mut error = 0.0f64;
-    let mut add = |l: Vec3| {
-        let (value, pdf_brdf) = eval_brdf(brdf, v, l, alpha);
-        let d = ltc.density(l);
-        let e = f64::from((value - norm * d).abs()).powi(3);
-        error += e / f64::from(d + pdf_brdf).max(f64::from(f32::MIN_POSITIVE));
-    };
-    for (u1, u2) in fit_points() {
-        add(ltc.sample(u1, u2));
-        add(sample_brdf(v, alpha, u1, u2));
-    }
-    error / f64::from(FIT_SAMPLES * FIT_SAMPLES)
-}
-
-/// Nelder-Mead over three parameters from `start` (Heitz's `NelderMead.h`: reflection 1,
-/// expansion 2, contraction and shrink 1/2): the best point found.
-fn nelder_mead(start: [f32; 3], f: &dyn Fn([f32; 3]) -> f64) -> [f32; 3] {
-    let mut s = [start; 4];
-    for (i, p) in s.iter_mut().enumerate().skip(1) {
-        p[i - 1] += SIMPLEX_STEP;
-    }
-    let mut fs = s.map(f);
-    let along = |o: [f32; 3], p: [f32; 3], t: f32| std::array::from_fn(|i| o[i] + t * (o[i] - p[i]));
-    for _ in 0..SIMPLEX_ITERATIONS {
-        let (mut lo, mut hi, mut nh) = (0, 0, 0);
-        for i in 1..4 {
-            if fs[i] < fs[lo] {
-                lo = i;
-            }
-            if fs[i] > fs[hi] {
-                nh = hi;
-                hi = i;
-            } else if fs[i] > fs[nh] {
-                nh = i;
-            }
-        }
-        let (a, b) = (fs[lo].abs(), fs[hi].abs());
-        if 2.0 * (a - b).abs() < (a + b) * f64::from(SIMPLEX_TOLERANCE) {
-            break;
-        }
-        let mut o = [0.0f32; 3];
-        for (k, p) in s.iter().enumerate() {
-            if k != hi {
-                for i in 0..3 {
-                    o[i] += p[i] / 3.0;
-                }
-            }
-        }
-        let r = along(o, s[hi], 1.0);
-        let fr = f(r);
-        if fr < fs[nh] {
-            if fr < fs[lo] {
-                let e = along(o, s[hi], 2.0);
-                let fe = f(e);
-                if fe < fr {
-                    (s[hi], fs[hi]) = (e, fe);
-                    continue;
-                }
-            }
-            (s[hi], fs[hi]) = (r, fr);
-            continue;
-        }
-        let c = along(o, s[hi], -0.5);
-        let fc = f(c);
-        if fc < fs[hi] {
-            (s[hi], fs[hi]) = (c, fc);
-            continue;
-        }
-        for k in 0..4 {
-            if k != lo {
-                s[k] = std::array::from_fn(|i| s[lo][i] + 0.5 * (s[k][i] - s[lo][i]));
-                fs[k] = f(s[k]);
-            }
-        }
-    }
-    let lo = (0..4).min_by(|&a, &b| fs[a].total_cmp(&fs[b])).unwrap_or(0);
-    s[lo]
-}
-
-/// The fitted parameters (m11, m22, m13) of one cell from `start`, and the cell.
-fn fit_cell(brdf: LightBrdf, size: u32, i: u32, j: u32, start: [f32; 3]) -> ([f32; 3], LtcCell) {
-    let x = j as f32 / (size - 1) as f32;
-    let theta = (1.0 - x * x).acos().min(1.57);
-    let v = Vec3::new(theta.sin(), 0.0, theta.cos());
-    let r = i as f32 / (size - 1) as f32;
-    let alpha = (r * r).max(MIN_ALPHA);
-    let (norm, fresnel, mean) = lobe_terms(brdf, v, alpha);
-    let isotropic = j == 0;
-    let frame = match isotropic {
-        true => [Vec3::X, Vec3::Y, Vec3::Z],
-        false => [Vec3::new(mean.z, 0.0, -mean.x), Vec3::Y, mean],
-    };
-    let ltc_of = |p: [f32; 3]| {
-        let (m11, m22) = (p[0].max(MIN_SCALE), p[1].max(MIN_SCALE));
-        match isotropic {
-            true => ([m11, m11, 0.0], Ltc::new(m11, m11, 0.0, frame)),
-            false => ([m11, m22, p[2]], Ltc::new(m11, m22, p[2], frame)),
-        }
-    };
-    let best = nelder_mead(start, &|p| fit_error(brdf, &ltc_of(p).1, norm, v, alpha));
-    let (params, ltc) = ltc_of(best);
-    let inverse = ltc.inverse;
-    let scale = inverse.y_axis.y;
-    let cell = LtcCell {
-        inverse: [
-            inverse.x_axis.x / scale,
-            inverse.x_axis.z / scale,
-            inverse.z_axis.x / scale,
-            inverse.z_axis.z / scale,
-        ],
-        norm,
-        fresnel,
-    };
-    (params, cell)
-}
-
 impl LtcTable {
-    /// Fits the `size`² table of `brdf` (at least 2): the normal-incidence column from the
-    /// roughest cell down, then each roughness's row along θ in parallel.
-    pub fn fit(brdf: LightBrdf, size: u32) -> LtcTable {
-        let size = size.max(2);
-        // Normal incidence, r = 1 first: a cosine (m11 = m22 = 1).
-        let mut first = vec![([1.0f32, 1.0, 0.0], None); size as usize];
-        let mut start = [1.0f32, 1.0, 0.0];
-        for i in (0..size).rev() {
-            let (params, cell) = fit_cell(brdf, size, i, 0, start);
-            first[i as usize] = (params, Some(cell));
-            start = params;
-        }
-        let rows: Vec<Vec<LtcCell>> = (0..size)
-            .into_par_iter()
-            .map(|i| {
-                let (mut params, cell) = first[i as usize];
-                let mut column = vec![cell.expect("fitted above")];
-                for j in 1..size {
-                    let (p, cell) = fit_cell(brdf, size, i, j, params);
-                    params = p;
-                    column.push(cell);
-                }
-                column
-            })
-            .collect();
-        let cells = (0..size as usize)
-            .flat_map(|j| rows.iter().map(move |column| column[j]))
-            .collect();
-        LtcTable { size, brdf, cells }
-    }
-
     /// The cell bilinearly interpolated at (n·v, r), clamped to the table (three.js reads
     /// its `LTC_1`/`LTC_2` so, at uv = (r, √(1 − n·v)) with half-texel margins).
     pub fn lookup(&self, n_dot_v: f32, roughness: f32) -> LtcCell {

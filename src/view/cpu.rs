@@ -10,12 +10,13 @@ use glam::Vec3;
 use image::RgbaImage;
 use rayon::prelude::*;
 
+use crate::cpu::ltc_fit::shared_table;
 use crate::cpu::preview_split_sum::split_sum_shade;
 use crate::cpu::preview_truth::{pixel_shift, truth_shade};
 use crate::environment::sample::sample_cube_lod;
 use crate::math::brdf::alpha_from_roughness;
 use crate::math::color::linear_to_srgb;
-use crate::plan::ltc::{shared_table, LtcPoint, LtcTable, QuadLight};
+use crate::plan::ltc::{LtcPoint, LtcTable, QuadLight};
 use crate::plan::material::{directional_light, point_light, ShadeMaterial};
 use crate::plan::shading::LightBrdf;
 use crate::stages::preview::picture::{luminance, pbr_neutral, HEAT_BACKGROUND};

@@ -10,13 +10,14 @@
 
 use glam::{Mat4, Vec3};
 
+use crate::cpu::ltc_fit::shared_table;
 use crate::environment::sun::{Sun, SunMode, MAX_LIGHTS};
 use crate::environment::texels::SourceTexel;
 use crate::environment::Cubemap;
 use crate::math::lookup::SpecularLookup;
 use crate::math::ltc::rect_polygon;
 use crate::plan::chain::SpecularChain;
-use crate::plan::ltc::{shared_table, QuadLight};
+use crate::plan::ltc::QuadLight;
 use crate::plan::lut::BrdfLut;
 use crate::plan::material::{ShadeMaterial, MIN_DIRECT_ALPHA};
 use crate::plan::scene::{SplitSumLight, TruthLight, MIN_N_DOT_V};
@@ -159,7 +160,7 @@ pub fn view_quad(light: &Sun) -> Option<(QuadLight, Vec3)> {
 /// 3. the area lights' corners, counter-clockwise seen from the origin, a unit vector an
 ///    entry;
 /// 4. when there is an area light, the LTC table of the viewer's light BRDF
-///    (`plan::ltc::shared_table`), two entries a cell: M⁻¹'s four numbers, (A + B, B, 0, 0).
+///    (`cpu::ltc_fit::shared_table`), two entries a cell: M⁻¹'s four numbers, (A + B, B, 0, 0).
 ///
 /// Returns the table and the count of part 2's texels.
 pub fn sun_texel_table(lights: &[Sun], hot: &mut Vec<SourceTexel>) -> (Vec<[f32; 4]>, u32) {

@@ -17,8 +17,10 @@ use crate::environment::{Cubemap, EquirectIntegral, IrradianceSource};
 use crate::plan::bc6h::Bc6hQuality;
 use crate::plan::chain::SpecularChain;
 use crate::plan::convert::EquirectToCubeParams;
+use crate::plan::ltc::LtcTable;
 use crate::plan::lut::{validate_lut_size, BrdfLut, LutModel, LutQuadrature};
 use crate::plan::scene::{SceneUniform, SplitSumInputs, TruthInputs};
+use crate::plan::shading::LightBrdf;
 use crate::Result;
 
 /// The CPU reference backend.
@@ -96,5 +98,9 @@ impl Backend for CpuBackend {
 
     fn encode_bc6h(&self, cube: &Cubemap, quality: Bc6hQuality) -> Result<Vec<Vec<u8>>> {
         Ok(bc6h::encode_bc6h(cube, quality))
+    }
+
+    fn fit_ltc(&self, brdf: LightBrdf, size: u32) -> Result<LtcTable> {
+        Ok(LtcTable::fit(brdf, size))
     }
 }

@@ -33,7 +33,7 @@ use std::borrow::Cow;
 use crate::environment::sun::Sun;
 use crate::environment::Cubemap;
 use crate::plan::chain::SpecularChain;
-use crate::plan::ltc::shared_table;
+use crate::cpu::ltc_fit::shared_table;
 use crate::plan::lut::{BrdfLut, LutLayout, DEFAULT_LUT_SIZE};
 use crate::plan::scene::{
     disk_points, material_table, pixel_geometry, PixelGeometry, Scene,
