@@ -24,7 +24,8 @@ use crate::Result;
 
 /// Cells per side of the table the preview and the viewer shade area lights from: the
 /// mean of `tests/ltc.rs`'s lights within 1.5 % of brute force at r = 0.25 (2.8 % at
-/// 16²), a fit of 7 CPU-s.
+/// 16²), a fit of 13 CPU-s on the CPU (docs/accuracy.md, "The LTC fit on either
+/// backend").
 pub const SHARED_TABLE_SIZE: u32 = 32;
 
 /// The tables fitted in this process, by BRDF.

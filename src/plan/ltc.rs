@@ -89,7 +89,8 @@ pub fn ltc_brdf(model: LutModel, size: u32) -> Result<LightBrdf> {
     })
 }
 
-/// The largest table `fit_ltc` fits: 256² cells cost about 16 × a 64² fit's 28 CPU-s.
+/// The largest table `fit_ltc` fits: 256² cells cost about 16 × a 64² fit
+/// (docs/accuracy.md, "The LTC fit on either backend").
 pub const MAX_LTC_SIZE: u32 = 256;
 
 /// The smallest α fitted: a mirror has no lobe to fit. Heitz's 1e-5 underflows GGX D in
