@@ -131,6 +131,7 @@ impl ShadowMap {
 
     /// The light's visibility at surface point `p` with unit normal `n`, in [0, 1]: mirror
     /// of `light_visibility` in `shaders/common/view_sun.wgsl` on [`ShadowMap::uniform`].
+    #[cfg(any(test, feature = "internals"))]
     pub fn visibility(&self, p: Vec3, n: Vec3) -> f32 {
         visibility(&self.uniform(), self.size, &self.depth, p, n)
     }
