@@ -12,9 +12,9 @@
 //! equivalent cap for the horizon-clipped case (see `cpu::irradiance`); the rest is
 //! converted exactly to an [`IRRADIANCE_SOURCE_SIZE`]² cube.
 
-use crate::math::color::luminance;
 use crate::environment::texels::{MomentTexel, IRRADIANCE_SOURCE_SIZE};
 use crate::environment::{Cubemap, Equirect};
+use crate::math::color::luminance;
 use crate::math::cubemap::{cube_texel_direction, cube_texel_solid_angle, rotate_y};
 
 /// A texel is "hot" when its radiance exceeds this multiple of the environment's mean.

@@ -34,13 +34,8 @@ pub const KEY_VALUE: f32 = 0.18;
 /// The heat map's range of relative differences: log10 of its ends (0.1 % and 100 %).
 pub const HEAT_LOG10_RANGE: [f32; 2] = [-3.0, 0.0];
 
-/// Rec. 709 luminance weights of linear RGB.
-pub const LUMINANCE: [f32; 3] = crate::math::color::LUMINANCE;
-
-/// Rec. 709 luminance of linear RGB.
-pub fn luminance(c: [f32; 3]) -> f32 {
-    crate::math::color::luminance(c)
-}
+/// Rec. 709 luminance and its weights, as the pictures measure them.
+pub use crate::math::color::{luminance, LUMINANCE};
 
 /// The largest ratio of the arithmetic mean luminance to the log-average the default
 /// exposure follows. A white Lambertian sphere sends on average the arithmetic mean of
