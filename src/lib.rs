@@ -95,7 +95,7 @@ pub mod view;
 #[cfg(all(feature = "view", not(feature = "internals")))]
 pub(crate) mod view;
 
-pub use backend::BackendChoice;
+pub use backend::{BackendChoice, BackendJob};
 pub use bake::{
     clipped_sun_warning, read_bake_dir, BakeOptions, BakeReport, Baker, LoadedInput, Manifest,
 };

@@ -186,6 +186,39 @@ fn backend_gpu_without_adapter_fails_and_auto_falls_back() {
     assert!(out.exists());
 }
 
+/// `-v` names where the job's kernels run: on a software adapter `auto` bakes a LUT on the
+/// CPU but fits the LTC table on the adapter (`SoftwareAdapterBackend`), and says so.
+#[test]
+fn verbose_names_where_each_job_runs() {
+    let Some(ctx) = common::gpu() else { return };
+    let adapter = ctx.adapter_info.name.clone();
+    let software = ctx.adapter_info.device_type == wgpu::DeviceType::Cpu;
+    drop(ctx);
+    let dir = common::output_dir("cli-verbose-backend");
+    let backend_line = |args: &[&str], out: &str| -> String {
+        let o = splitsum()
+            .args(args)
+            .args(["-v", "-o"])
+            .arg(dir.join(out))
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let err = String::from_utf8_lossy(&o.stderr).into_owned();
+        err.lines()
+            .find(|l| l.starts_with("backend: "))
+            .unwrap_or_else(|| panic!("no backend line in {err}"))
+            .to_owned()
+    };
+    let lut = backend_line(&["lut", "--size", "16"], "lut.png");
+    let ltc = backend_line(&["lut", "--ltc", "--size", "4"], "ltc.json");
+    assert!(ltc.contains(&adapter), "{ltc}");
+    if software {
+        assert!(lut.starts_with("backend: cpu"), "{lut}");
+    } else {
+        assert!(lut.contains(&adapter), "{lut}");
+    }
+}
+
 #[test]
 fn cubemap_from_a_face_pattern_and_back_to_faces() {
     use splitsum::io::cubemap::{write_cubemap, CubeLayout, CubeWriteOptions};

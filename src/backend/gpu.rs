@@ -1,7 +1,7 @@
 //! The wgpu backend, and what `--backend auto` runs on a software adapter.
 
 use crate::backend::cpu::CpuBackend;
-use crate::backend::Backend;
+use crate::backend::{Backend, BackendJob};
 use crate::environment::{Cubemap, EquirectIntegral, IrradianceSource};
 use crate::gpu::{self, GpuContext};
 use crate::plan::bc6h::Bc6hQuality;
@@ -137,11 +137,11 @@ impl Backend for SoftwareAdapterBackend {
         )
     }
 
-    fn description_for(&self, preview: bool) -> String {
-        if preview {
-            self.description()
-        } else {
-            format!("{} (software adapter: the CPU is faster here)", CpuBackend.description())
+    fn description_for(&self, job: BackendJob) -> String {
+        match job {
+            BackendJob::Preview => self.description(),
+            BackendJob::LtcFit => format!("{} (software adapter: faster here than the CPU)", self.gpu.description()),
+            BackendJob::Bake => format!("{} (software adapter: the CPU is faster here)", CpuBackend.description()),
         }
     }
 

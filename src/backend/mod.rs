@@ -31,14 +31,26 @@ pub enum BackendChoice {
     Cpu,
 }
 
+/// What a backend is asked to run, for the description of where it runs: a software adapter
+/// runs some jobs on the GPU and the rest on the CPU.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BackendJob {
+    /// A bake, a cube conversion or a LUT.
+    Bake,
+    /// A preview: a bake, its split-sum render and its ground truth.
+    Preview,
+    /// The LTC table's fit (`lut --ltc`).
+    LtcFit,
+}
+
 /// The kernels splitsum runs; each backend implements all of them.
 pub trait Backend {
     /// A human-readable description ("cpu (rayon, 2 threads)", "gpu: NVIDIA ... (Vulkan)").
     fn description(&self) -> String;
 
-    /// [`Backend::description`] for jobs that render a preview (`preview`) or not.
-    fn description_for(&self, preview: bool) -> String {
-        let _ = preview;
+    /// [`Backend::description`] for `job`: where its kernels run.
+    fn description_for(&self, job: BackendJob) -> String {
+        let _ = job;
         self.description()
     }
 

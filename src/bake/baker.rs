@@ -7,7 +7,7 @@
 
 use std::path::Path;
 
-use crate::backend::{create_backend, Backend, BackendChoice, CpuBackend};
+use crate::backend::{create_backend, Backend, BackendChoice, CpuBackend, BackendJob};
 use crate::bake::{bake, bake_environment, BakeOptions, BakeReport};
 use crate::environment::sun::SunMode;
 use crate::environment::{Cubemap, Environment};
@@ -77,9 +77,9 @@ impl Baker {
     }
 
     /// What the backend is, in words ("cpu (rayon, 2 threads)", "gpu: … (Vulkan)"): what
-    /// runs where for this baker's jobs (the preview's kernels only when it renders one).
-    pub fn backend_description(&self) -> String {
-        self.backend.description_for(self.opts.preview.is_some())
+    /// runs where for `job`.
+    pub fn backend_description(&self, job: BackendJob) -> String {
+        self.backend.description_for(job)
     }
 
     /// Why [`BackendChoice::Auto`] chose the CPU backend, when it did for want of an adapter.

@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::Context;
+use splitsum::BackendJob;
 use splitsum::{
     check_cube_path, check_cube_size, check_lut_path, check_output_extension, input_stem,
     png_clip_warning, write_atomic, write_lut, BakeOptions, BakeReport, Container,
@@ -43,7 +44,12 @@ pub fn bake(args: BakeArgs) -> anyhow::Result<()> {
         sun: args.sun.sun,
         ..defaults
     };
-    let mut baker = open_baker("bake", opts, &args.common)?;
+    let job = if opts.preview.is_some() {
+        BackendJob::Preview
+    } else {
+        BackendJob::Bake
+    };
+    let mut baker = open_baker("bake", opts, &args.common, job)?;
     let mut failed = 0;
     for input in &args.inputs {
         let bar = progress_bar(
@@ -153,7 +159,7 @@ pub fn cubemap(args: CubemapArgs) -> anyhow::Result<()> {
         exposure_ev: args.input_opts.exposure,
         ..BakeOptions::for_target(target)
     };
-    let mut baker = open_baker("cubemap", opts, &args.common)?;
+    let mut baker = open_baker("cubemap", opts, &args.common, BackendJob::Bake)?;
     let start = Instant::now();
     let mut loaded = match &args.input {
         Some(path) => baker.load(path, args.size)?,
@@ -267,7 +273,12 @@ pub fn lut(args: LutArgs) -> anyhow::Result<()> {
     }
     let size = args.size.unwrap_or(splitsum::DEFAULT_LUT_SIZE);
     check_lut_path(&args.output).map_err(|e| for_user("lut", e))?;
-    let mut baker = open_baker("lut", BakeOptions::default(), &args.common)?;
+    let mut baker = open_baker(
+        "lut",
+        BakeOptions::default(),
+        &args.common,
+        BackendJob::Bake,
+    )?;
     let start = Instant::now();
     let lut = baker
         .lut(args.model, size)
@@ -302,7 +313,12 @@ fn ltc(args: LutArgs) -> anyhow::Result<()> {
     let size = args.size.unwrap_or(DEFAULT_LTC_SIZE);
     check_output_extension(&args.output, "an LTC table", &["json"])
         .map_err(|e| for_user("lut", e))?;
-    let mut baker = open_baker("lut", BakeOptions::default(), &args.common)?;
+    let mut baker = open_baker(
+        "lut",
+        BakeOptions::default(),
+        &args.common,
+        BackendJob::LtcFit,
+    )?;
     let start = Instant::now();
     let table = baker
         .ltc(args.model, size)

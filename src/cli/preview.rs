@@ -8,6 +8,7 @@ use splitsum::{
     PreviewOptions, PREVIEW_ROUGHNESS,
 };
 
+use splitsum::BackendJob;
 use splitsum::{Shading, Target};
 
 use super::args::{PreviewArgs, PreviewRenderArgs};
@@ -100,7 +101,7 @@ pub fn preview(args: PreviewArgs) -> anyhow::Result<()> {
         sun: args.sun.unwrap_or_default(),
         ..BakeOptions::for_target(args.target)
     };
-    let mut baker = open_baker("preview", opts, &args.common)?;
+    let mut baker = open_baker("preview", opts, &args.common, BackendJob::Preview)?;
     let spinner = progress_bar(true, 0, "{spinner} {msg} ({elapsed})");
     spinner.enable_steady_tick(std::time::Duration::from_millis(120));
     let (baked, lut) = if args.input.is_dir() {

@@ -5,17 +5,19 @@ use std::io::IsTerminal;
 use std::path::Path;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use splitsum::BackendJob;
 use splitsum::{BakeOptions, Baker, SunMode, MIN_SUN_SHARE};
 
 use super::args::CommonArgs;
 use super::for_user;
 
-/// A baker for `command` with `opts`, its backend note printed and, with -v, what runs
-/// where.
+/// A baker for `command` with `opts`, its backend note printed and, with -v, where `job`
+/// runs.
 pub(super) fn open_baker(
     command: &str,
     mut opts: BakeOptions,
     common: &CommonArgs,
+    job: BackendJob,
 ) -> anyhow::Result<Baker> {
     opts.backend = common.backend.into();
     let baker = Baker::new(opts).map_err(|e| for_user(command, e))?;
@@ -23,7 +25,7 @@ pub(super) fn open_baker(
         eprintln!("note: {note}");
     }
     if common.verbose {
-        eprintln!("backend: {}", baker.backend_description());
+        eprintln!("backend: {}", baker.backend_description(job));
     }
     Ok(baker)
 }
