@@ -39,8 +39,7 @@ use std::collections::HashMap;
 use std::f32::consts::PI;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::sync::{Arc, Mutex};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use bevy::app::ScheduleRunnerPlugin;
 use bevy::asset::UntypedAssetId;
@@ -49,9 +48,15 @@ use bevy::camera::{Exposure, Hdr, RenderTarget};
 use bevy::core_pipeline::tonemapping::Tonemapping;
 use bevy::light::{EnvironmentMapLight, GlobalAmbientLight, Skybox};
 use bevy::prelude::*;
-use bevy::render::render_resource::TextureFormat;
-use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
 use bevy::window::ExitCondition;
+
+mod capture;
+/// The helper the README's recipe points to (`bevy/splitsum_bevy.rs`).
+#[path = "../../../bevy/splitsum_bevy.rs"]
+mod splitsum_bevy;
+mod studio;
+
+use capture::{check_camera, float_target, save_png, Captures, CheckCamera, Progress, Step};
 
 /// The README's Bevy recipe (`build.rs`).
 mod readme_recipe {
@@ -61,10 +66,6 @@ mod readme_recipe {
 /// The HDRI the README's recipe bakes (as `sky.hdr`), and the label of its shot.
 const RECIPE_HDRI: &str = "venice_sunset_1k";
 const RECIPE_LABEL: &str = "readme_recipe";
-
-/// Marks the check's own cameras (the one the README's recipe spawns has none).
-#[derive(Component)]
-struct CheckCamera;
 
 /// The bars: sun within 1°, skybox mean |Δ ln(1 + L)| ≤ 0.01, the rough sphere
 /// within 2 % of E/π in mean with correlation ≥ 0.99.
@@ -309,17 +310,10 @@ impl Shot {
     }
 }
 
-/// The captures, by shot index, shared with the screenshot observers.
-#[derive(Resource, Clone, Default)]
-struct Captures(Arc<Mutex<HashMap<usize, Vec<Vec<f32>>>>>);
-
 #[derive(Resource)]
 struct Check {
     shots: Vec<Shot>,
-    assets: Vec<UntypedAssetId>,
-    loaded_at: Option<u32>,
-    frame: u32,
-    started: Instant,
+    progress: Progress,
     out: PathBuf,
     equirects: HashMap<&'static str, Equirect>,
     /// Each HDRI's sun ([`Equirect::sun`]), found once.
@@ -430,6 +424,12 @@ fn bake_split(splitsum: &Path, bakes: &Path) {
 fn main() -> AppExit {
     let root = root();
     let out = root.join("target/engines/bevy");
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if let [command, mode] = args.as_slice() {
+        if command == "studio" {
+            return studio::main(mode, &out);
+        }
+    }
     // The asset folder: the README's recipe writes `assets/sky/` in `out`, the check's
     // bakes go beside it.
     let bakes = out.join("assets");
@@ -444,14 +444,42 @@ fn main() -> AppExit {
     std::fs::create_dir_all(&out).unwrap();
     bake_everything(&splitsum, &bakes);
     bake_split(&splitsum, &bakes);
+    studio::bake(&splitsum, &out);
     let sun_light = SunLight::read(&bakes.join(format!("split/{SUN_HDRI}/sun.json")));
-    run_recipe_commands(&splitsum, &out);
+    run_recipe_commands(&splitsum, &out, RECIPE_HDRI);
     let equirects: HashMap<&'static str, Equirect> = HDRIS
         .iter()
         .map(|&h| (h, Equirect::load(&root.join(format!("tests/data/{h}.hdr")))))
         .collect();
     let suns = equirects.iter().map(|(&h, e)| (h, e.sun())).collect();
 
+    let mut app = headless_app(&bakes);
+    app.insert_resource(Captures::default())
+        .insert_resource(Check {
+            shots: Vec::new(),
+            progress: Progress::default(),
+            out: out.clone(),
+            equirects,
+            suns,
+            sun_light,
+        })
+        .add_systems(Startup, setup)
+        .add_systems(PostStartup, aim_recipe_camera)
+        .add_systems(Update, capture);
+    readme_recipe::add(&mut app);
+    let checked = app.run();
+    // The studio's RectLights would light every view above: its renders come from processes
+    // of their own.
+    let studio = studio::render_all(&out);
+    if checked.is_success() && studio {
+        AppExit::Success
+    } else {
+        AppExit::error()
+    }
+}
+
+/// A windowless Bevy app reading its assets from `assets`, with no ambient light.
+fn headless_app(assets: &Path) -> App {
     let mut app = App::new();
     app.add_plugins(
         DefaultPlugins
@@ -461,29 +489,13 @@ fn main() -> AppExit {
                 ..default()
             })
             .set(AssetPlugin {
-                file_path: bakes.to_string_lossy().into_owned(),
+                file_path: assets.to_string_lossy().into_owned(),
                 ..default()
             }),
     )
     .add_plugins(ScheduleRunnerPlugin::run_loop(Duration::from_millis(5)))
-    .insert_resource(GlobalAmbientLight::NONE)
-    .insert_resource(Captures::default())
-    .insert_resource(Check {
-        shots: Vec::new(),
-        assets: Vec::new(),
-        loaded_at: None,
-        frame: 0,
-        started: Instant::now(),
-        out,
-        equirects,
-        suns,
-        sun_light,
-    })
-    .add_systems(Startup, setup)
-    .add_systems(PostStartup, aim_recipe_camera)
-    .add_systems(Update, capture);
-    readme_recipe::add(&mut app);
-    app.run()
+    .insert_resource(GlobalAmbientLight::NONE);
+    app
 }
 
 fn setup(
@@ -607,44 +619,7 @@ fn setup(
         &mut handles,
     );
     check.shots = shots;
-    check.assets = handles;
-}
-
-/// A `size`² RGBA float image for a check camera to render into and the check to read.
-fn float_target(images: &mut Assets<Image>, size: u32) -> Handle<Image> {
-    images.add(Image::new_target_texture(
-        size,
-        size,
-        TextureFormat::Rgba32Float,
-        None,
-    ))
-}
-
-/// A check camera drawn as the `order`-th into the float image `target` with vertical
-/// field of view `fov` (radians): linear radiance (no tone mapping, no MSAA) at Bevy's
-/// default exposure.
-fn check_camera(
-    order: usize,
-    target: &Handle<Image>,
-    fov: f32,
-    transform: Transform,
-) -> impl Bundle {
-    (
-        CheckCamera,
-        Camera3d::default(),
-        Camera {
-            order: order as isize,
-            clear_color: ClearColorConfig::Custom(Color::NONE),
-            ..default()
-        },
-        RenderTarget::Image(target.clone().into()),
-        Projection::Perspective(PerspectiveProjection { fov, ..default() }),
-        transform,
-        Hdr,
-        Tonemapping::None,
-        Msaa::Off,
-        Exposure::default(),
-    )
+    check.progress.assets = handles;
 }
 
 /// The sun case's scene and cameras. Render layers keep it apart from the other shots and
@@ -753,11 +728,12 @@ fn sun_shots(
     }
 }
 
-/// Runs the README recipe's shell lines in `out` on the bundled venice_sunset HDRI, copied
-/// there as `sky.hdr`, with `splitsum` the binary under test.
-fn run_recipe_commands(splitsum: &Path, out: &Path) {
+/// Runs the README recipe's shell lines in `out` on the bundled `hdri`, copied there as
+/// `sky.hdr`, with `splitsum` the binary under test.
+fn run_recipe_commands(splitsum: &Path, out: &Path, hdri: &str) {
+    std::fs::create_dir_all(out).unwrap();
     std::fs::copy(
-        root().join(format!("tests/data/{RECIPE_HDRI}.hdr")),
+        root().join(format!("tests/data/{hdri}.hdr")),
         out.join("sky.hdr"),
     )
     .unwrap();
@@ -819,7 +795,7 @@ fn aim_recipe_camera(
         light.specular_map.id().untyped(),
     ];
     loads.extend(skybox.image.as_ref().map(|i| i.id().untyped()));
-    check.assets.extend(loads);
+    check.progress.assets.extend(loads);
     check.shots.push(Shot {
         hdri: RECIPE_HDRI,
         format: RECIPE_LABEL,
@@ -831,12 +807,6 @@ fn aim_recipe_camera(
     });
 }
 
-/// Frames between capture rounds once everything has loaded; a shot counts as final when
-/// two rounds in a row are identical (pipelines compile asynchronously, so the first frames
-/// may lack a mesh or a skybox).
-const CAPTURE_EVERY: u32 = 15;
-const TIMEOUT: Duration = Duration::from_secs(600);
-
 fn capture(
     mut commands: Commands,
     assets: Res<AssetServer>,
@@ -844,63 +814,21 @@ fn capture(
     mut check: ResMut<Check>,
     mut exit: MessageWriter<AppExit>,
 ) {
-    check.frame += 1;
-    if check.started.elapsed() > TIMEOUT {
-        eprintln!("error: no stable renders after {TIMEOUT:?}");
-        exit.write(AppExit::error());
-        return;
-    }
-    for id in &check.assets {
-        if let Some(bevy::asset::LoadState::Failed(e)) = assets.get_load_state(*id) {
-            eprintln!("error: Bevy failed to load an asset: {e}");
+    match check.progress.step(&assets) {
+        Step::Wait => return,
+        Step::Fail(e) => {
+            eprintln!("error: {e}");
             exit.write(AppExit::error());
             return;
         }
+        Step::Capture => {}
     }
-    if check.loaded_at.is_none() {
-        if check
-            .assets
-            .iter()
-            .all(|id| assets.is_loaded_with_dependencies(*id))
-        {
-            check.loaded_at = Some(check.frame);
-        }
-        return;
-    }
-    let since = check.frame - check.loaded_at.unwrap_or(0);
-    if since % CAPTURE_EVERY != 0 {
-        return;
-    }
-    let stable = {
-        let map = captures.0.lock().unwrap();
-        check.shots.len() == map.len()
-            && map.values().all(|v| {
-                v.len() >= 2
-                    && v[v.len() - 1] == v[v.len() - 2]
-                    && v[v.len() - 1].iter().any(|&x| x > 0.0)
-            })
-    };
-    if stable {
+    if captures.stable(check.shots.len()) {
         let code = evaluate(&check, &captures.0.lock().unwrap());
         exit.write(AppExit::from_code(code));
         return;
     }
-    for (i, shot) in check.shots.iter().enumerate() {
-        let store = captures.0.clone();
-        commands
-            .spawn(Screenshot::image(shot.target.clone()))
-            .observe(move |captured: On<ScreenshotCaptured>| {
-                let floats = captured
-                    .image
-                    .data
-                    .as_deref()
-                    .unwrap_or(&[])
-                    .chunks_exact(4)
-                    .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-                    .collect();
-                store.lock().unwrap().entry(i).or_default().push(floats);
-            });
-    }
+    captures.request(&mut commands, check.shots.iter().map(|s| &s.target));
 }
 
 /// Pixel (x, y) of an RGBA float capture.
@@ -943,29 +871,6 @@ fn correlation(a: &[f32], b: &[f32]) -> f32 {
         bb += (y - mb) * (y - mb);
     }
     ab / (aa * bb).sqrt()
-}
-
-/// A Reinhard-mapped 8-bit PNG of a float capture, for people.
-fn save_png(path: &Path, data: &[f32], size: u32) {
-    let mut rgb = Vec::with_capacity((3 * size * size) as usize);
-    for y in 0..size {
-        for x in 0..size {
-            rgb.extend(pixel(data, size, x, y).map(|v| {
-                let v = v.max(0.0);
-                (255.0 * (v / (1.0 + v)).powf(1.0 / 2.2)).round() as u8
-            }));
-        }
-    }
-    let file = std::fs::File::create(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), size, size);
-    encoder.set_color(png::ColorType::Rgb);
-    encoder.set_depth(png::BitDepth::Eight);
-    let mut writer = encoder
-        .write_header()
-        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    writer
-        .write_image_data(&rgb)
-        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
 }
 
 /// Measures every shot against the HDRI, prints and writes the results; the exit code.
