@@ -166,7 +166,7 @@ pub fn save_png(path: &Path, data: &[f32], size: u32) {
     let mut rgb = Vec::with_capacity((3 * size * size) as usize);
     for y in 0..size {
         for x in 0..size {
-            rgb.extend(crate::pixel(data, size, x, y).map(|v| {
+            rgb.extend(crate::evaluate::pixel(data, size, x, y).map(|v| {
                 let v = v.max(0.0);
                 (255.0 * (v / (1.0 + v)).powf(1.0 / 2.2)).round() as u8
             }));

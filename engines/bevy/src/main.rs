@@ -21,7 +21,10 @@
 //!   E / max(E)); a white Lambertian sphere (reflectance 0) under the residual IBL plus the
 //!   light against the full IBL, on its lit and shaded sides, and a unit box above a floor
 //!   lit by the light alone with its shadows, seen from above: the shadow where the sun's
-//!   direction puts it.
+//!   direction puts it;
+//! - a studio's lamps as `RectLight`s (`studio.rs`): studio_small_03 baked and lit by the
+//!   README's recipe, its spheres written as floats for tests/engine_renders.rs, which holds
+//!   them against the truth.
 //!
 //! The README's Bevy recipe runs as written (`build.rs` copies it into the check): its
 //! shell lines bake the bundled venice_sunset HDRI as `sky.hdr`, its `setup` spawns its
@@ -42,7 +45,6 @@ use std::process::Command;
 use std::time::Duration;
 
 use bevy::app::ScheduleRunnerPlugin;
-use bevy::asset::UntypedAssetId;
 use bevy::camera::visibility::RenderLayers;
 use bevy::camera::{Exposure, Hdr, RenderTarget};
 use bevy::core_pipeline::tonemapping::Tonemapping;
@@ -51,12 +53,18 @@ use bevy::prelude::*;
 use bevy::window::ExitCondition;
 
 mod capture;
+mod equirect;
+mod evaluate;
 /// The helper the README's recipe points to (`bevy/splitsum_bevy.rs`).
 #[path = "../../../bevy/splitsum_bevy.rs"]
 mod splitsum_bevy;
 mod studio;
+mod sun;
 
-use capture::{check_camera, float_target, save_png, Captures, CheckCamera, Progress, Step};
+use capture::{check_camera, float_target, Captures, CheckCamera, Progress, Step};
+use equirect::Equirect;
+use evaluate::evaluate;
+use sun::{sun_shots, SunLight};
 
 /// The README's Bevy recipe (`build.rs`).
 mod readme_recipe {
@@ -134,133 +142,6 @@ fn view_geometry() -> ViewGeometry {
     }
 }
 
-/// An equirect in splitsum's convention (u = 0.5 + atan2(z, x)/2π, v = acos(y)/π).
-#[derive(Clone)]
-struct Equirect {
-    width: usize,
-    height: usize,
-    data: Vec<[f32; 3]>,
-}
-
-impl Equirect {
-    fn load(path: &Path) -> Equirect {
-        let img = image::open(path)
-            .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-            .into_rgb32f();
-        Equirect {
-            width: img.width() as usize,
-            height: img.height() as usize,
-            data: img.pixels().map(|p| p.0).collect(),
-        }
-    }
-
-    /// Bilinear lookup (wrapping in u, clamped in v) of direction `d`.
-    fn lookup(&self, d: Vec3) -> [f32; 3] {
-        let u = 0.5 + d.z.atan2(d.x) / (2.0 * PI);
-        let v = d.y.clamp(-1.0, 1.0).acos() / PI;
-        let x = u * self.width as f32 - 0.5;
-        let y = (v * self.height as f32 - 0.5).clamp(0.0, (self.height - 1) as f32);
-        let (x0, y0) = (x.floor(), y.floor());
-        let (fx, fy) = (x - x0, y - y0);
-        let at = |xi: i64, yi: usize| {
-            let xi = xi.rem_euclid(self.width as i64) as usize;
-            self.data[yi.min(self.height - 1) * self.width + xi]
-        };
-        let (xi, yi) = (x0 as i64, y0 as usize);
-        let mut out = [0.0; 3];
-        for c in 0..3 {
-            let top = at(xi, yi)[c] * (1.0 - fx) + at(xi + 1, yi)[c] * fx;
-            let bottom = at(xi, yi + 1)[c] * (1.0 - fx) + at(xi + 1, yi + 1)[c] * fx;
-            out[c] = top * (1.0 - fy) + bottom * fy;
-        }
-        out
-    }
-
-    /// Direction and solid angle of texel (x, y).
-    fn texel(&self, x: usize, y: usize) -> (Vec3, f32) {
-        let (t0, t1) = (
-            PI * y as f32 / self.height as f32,
-            PI * (y + 1) as f32 / self.height as f32,
-        );
-        let theta = 0.5 * (t0 + t1);
-        let phi = 2.0 * PI * ((x as f32 + 0.5) / self.width as f32 - 0.5);
-        let omega = 2.0 * PI / self.width as f32 * (t0.cos() - t1.cos());
-        (
-            Vec3::new(
-                theta.sin() * phi.cos(),
-                theta.cos(),
-                theta.sin() * phi.sin(),
-            ),
-            omega,
-        )
-    }
-
-    /// The sun: luminance-weighted mean direction of the texels above half the maximum.
-    fn sun(&self) -> Vec3 {
-        let max = self.data.iter().map(|&p| luminance(p)).fold(0.0, f32::max);
-        let mut d = Vec3::ZERO;
-        for y in 0..self.height {
-            for x in 0..self.width {
-                let l = luminance(self.data[y * self.width + x]);
-                if l >= 0.5 * max {
-                    let (dir, omega) = self.texel(x, y);
-                    d += dir * l * omega;
-                }
-            }
-        }
-        d.normalize()
-    }
-
-    /// The solid-angle-weighted box reduction by `k` in each axis (energy kept).
-    fn reduce(&self, k: usize) -> Equirect {
-        let (w, h) = (self.width / k, self.height / k);
-        let mut data = vec![[0.0; 3]; w * h];
-        for y in 0..h {
-            for x in 0..w {
-                let (mut sum, mut weight) = ([0.0f32; 3], 0.0);
-                for yy in y * k..(y + 1) * k {
-                    let omega = self.texel(0, yy).1;
-                    for xx in x * k..(x + 1) * k {
-                        let p = self.data[yy * self.width + xx];
-                        for c in 0..3 {
-                            sum[c] += p[c] * omega;
-                        }
-                        weight += omega;
-                    }
-                }
-                data[y * w + x] = sum.map(|s| s / weight);
-            }
-        }
-        Equirect {
-            width: w,
-            height: h,
-            data,
-        }
-    }
-
-    /// E(n)/π, the cosine-weighted sum over every texel.
-    fn irradiance_over_pi(&self, n: Vec3) -> [f32; 3] {
-        let mut e = [0.0f32; 3];
-        for y in 0..self.height {
-            for x in 0..self.width {
-                let (d, omega) = self.texel(x, y);
-                let c = n.dot(d);
-                if c > 0.0 {
-                    let p = self.data[y * self.width + x];
-                    for k in 0..3 {
-                        e[k] += p[k] * c * omega;
-                    }
-                }
-            }
-        }
-        e.map(|v| v / PI)
-    }
-}
-
-fn luminance(p: [f32; 3]) -> f32 {
-    0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]
-}
-
 /// What one camera renders.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 enum View {
@@ -320,49 +201,6 @@ struct Check {
     suns: HashMap<&'static str, Vec3>,
     /// The sun of the split bake's sun.json.
     sun_light: SunLight,
-}
-
-/// The sun of a `--sun split` bake's sun.json: toward the sun, in Bevy's world, and E.
-#[derive(Clone, Copy)]
-struct SunLight {
-    direction: Vec3,
-    irradiance: Vec3,
-}
-
-impl SunLight {
-    fn read(path: &Path) -> SunLight {
-        let text = match std::fs::read_to_string(path) {
-            Ok(text) => text,
-            Err(e) => panic!("{}: {e}", path.display()),
-        };
-        let json: serde_json::Value =
-            serde_json::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-        let v = |key: &str| {
-            Vec3::from_array([0, 1, 2].map(|i| json[key][i].as_f64().expect("sun.json") as f32))
-        };
-        SunLight {
-            direction: v("direction"),
-            irradiance: v("irradiance"),
-        }
-    }
-
-    /// Bevy's `DirectionalLight` of this sun, next to an `EnvironmentMapLight` of
-    /// `intensity`: Bevy shades a directional light with colour × illuminance and the
-    /// environment with radiance × intensity, so illuminance = max(E) × intensity and the
-    /// colour E / max(E); it shines along −direction.
-    fn bundle(&self, intensity: f32, shadows: bool) -> (DirectionalLight, Transform) {
-        let peak = self.irradiance.max_element();
-        let c = self.irradiance / peak;
-        (
-            DirectionalLight {
-                color: Color::linear_rgb(c.x, c.y, c.z),
-                illuminance: peak * intensity,
-                shadow_maps_enabled: shadows,
-                ..default()
-            },
-            Transform::IDENTITY.looking_to(-self.direction, Vec3::Y),
-        )
-    }
 }
 
 fn root() -> PathBuf {
@@ -622,112 +460,6 @@ fn setup(
     check.progress.assets = handles;
 }
 
-/// The sun case's scene and cameras. Render layers keep it apart from the other shots and
-/// give each light only the views it belongs to (Bevy skips a directional light in a view
-/// whose layers it does not share, and casts its shadows from the meshes it shares a layer
-/// with): 3 the diffuse sphere, seen by both sphere cameras; 4 the sun's light, in the
-/// split camera's layers only; 5 the floor and box, seen from above; 6 a second light of
-/// the same sun, casting shadows, sharing a layer with the floor, the box and the camera
-/// above.
-#[allow(clippy::too_many_arguments)]
-fn sun_shots(
-    commands: &mut Commands,
-    assets: &AssetServer,
-    images: &mut Assets<Image>,
-    meshes: &mut Assets<Mesh>,
-    materials: &mut Assets<StandardMaterial>,
-    check: &Check,
-    intensity: f32,
-    shots: &mut Vec<Shot>,
-    handles: &mut Vec<UntypedAssetId>,
-) {
-    let geometry = view_geometry();
-    let diffuse_white = materials.add(StandardMaterial {
-        base_color: Color::WHITE,
-        metallic: 0.0,
-        perceptual_roughness: 1.0,
-        // F0 = 0 (and with it Bevy's F90): no specular, the Lambertian term alone.
-        reflectance: 0.0,
-        ..default()
-    });
-    commands.spawn((
-        Mesh3d(meshes.add(Sphere::new(1.0).mesh().uv(128, 64))),
-        MeshMaterial3d(diffuse_white.clone()),
-        RenderLayers::layer(3),
-    ));
-    let sun = check.sun_light;
-    commands.spawn((sun.bundle(intensity, false), RenderLayers::layer(4)));
-    commands.spawn((sun.bundle(intensity, true), RenderLayers::layer(6)));
-    commands.spawn((
-        Mesh3d(
-            meshes.add(
-                Plane3d::default()
-                    .mesh()
-                    .size(4.0 * SHADOW_EXTENT, 4.0 * SHADOW_EXTENT),
-            ),
-        ),
-        MeshMaterial3d(diffuse_white.clone()),
-        RenderLayers::from_layers(&[5, 6]),
-    ));
-    commands.spawn((
-        Mesh3d(meshes.add(Cuboid::new(1.0, 1.0, 1.0))),
-        MeshMaterial3d(diffuse_white),
-        Transform::from_xyz(0.0, SHADOW_HEIGHT, 0.0),
-        RenderLayers::from_layers(&[5, 6]),
-    ));
-
-    // The sphere cameras 90° from the sun: half the sphere lit, half shaded.
-    let toward = sun.direction;
-    let axis = Vec3::Y.cross(toward).normalize();
-    let view_dir = Quat::from_axis_angle(axis, 90f32.to_radians()) * toward;
-    let sphere_transform = Transform::from_translation(view_dir * geometry.sphere_distance)
-        .looking_at(Vec3::ZERO, Vec3::Y);
-    let full = format!("{}/{SUN_HDRI}", FORMATS[0].0);
-    let split = format!("split/{SUN_HDRI}");
-    for (view, dir, layers) in [
-        (View::SunFull, full.as_str(), RenderLayers::layer(3)),
-        (
-            View::SunSplit,
-            split.as_str(),
-            RenderLayers::from_layers(&[3, 4]),
-        ),
-        (View::SunShadow, "", RenderLayers::from_layers(&[5, 6])),
-    ] {
-        let size = geometry.size;
-        let target = float_target(images, size);
-        let (transform, fov) = match view {
-            View::SunShadow => (
-                Transform::from_xyz(0.0, SHADOW_CAMERA_HEIGHT, 0.0)
-                    .looking_at(Vec3::ZERO, Vec3::NEG_Z),
-                2.0 * (SHADOW_EXTENT / SHADOW_CAMERA_HEIGHT).atan(),
-            ),
-            _ => (sphere_transform, geometry.sphere_fov),
-        };
-        let mut camera =
-            commands.spawn((check_camera(shots.len(), &target, fov, transform), layers));
-        if view != View::SunShadow {
-            let specular: Handle<Image> = assets.load(format!("{dir}/specular.ktx2"));
-            let diffuse: Handle<Image> = assets.load(format!("{dir}/irradiance.ktx2"));
-            handles.extend([specular.id().untyped(), diffuse.id().untyped()]);
-            camera.insert(EnvironmentMapLight {
-                diffuse_map: diffuse,
-                specular_map: specular,
-                intensity,
-                ..default()
-            });
-        }
-        shots.push(Shot {
-            hdri: SUN_HDRI,
-            format: SUN_LABEL,
-            view,
-            size,
-            transform,
-            fov,
-            target,
-        });
-    }
-}
-
 /// Runs the README recipe's shell lines in `out` on the bundled `hdri`, copied there as
 /// `sky.hdr`, with `splitsum` the binary under test.
 fn run_recipe_commands(splitsum: &Path, out: &Path, hdri: &str) {
@@ -829,260 +561,4 @@ fn capture(
         return;
     }
     captures.request(&mut commands, check.shots.iter().map(|s| &s.target));
-}
-
-/// Pixel (x, y) of an RGBA float capture.
-fn pixel(data: &[f32], size: u32, x: u32, y: u32) -> [f32; 3] {
-    let i = 4 * (y * size + x) as usize;
-    [data[i], data[i + 1], data[i + 2]]
-}
-
-/// Centroid of the pixels above half the maximum luminance (of those `keep` accepts).
-fn bright_centroid(data: &[f32], size: u32, keep: impl Fn(u32, u32) -> bool) -> (f32, f32) {
-    let mut max = 0.0f32;
-    for y in 0..size {
-        for x in 0..size {
-            if keep(x, y) {
-                max = max.max(luminance(pixel(data, size, x, y)));
-            }
-        }
-    }
-    let (mut sx, mut sy, mut sw) = (0.0, 0.0, 0.0);
-    for y in 0..size {
-        for x in 0..size {
-            let l = luminance(pixel(data, size, x, y));
-            if keep(x, y) && l >= 0.5 * max {
-                sx += l * x as f32;
-                sy += l * y as f32;
-                sw += l;
-            }
-        }
-    }
-    (sx / sw, sy / sw)
-}
-
-fn correlation(a: &[f32], b: &[f32]) -> f32 {
-    let n = a.len() as f32;
-    let (ma, mb) = (a.iter().sum::<f32>() / n, b.iter().sum::<f32>() / n);
-    let (mut ab, mut aa, mut bb) = (0.0, 0.0, 0.0);
-    for (x, y) in a.iter().zip(b) {
-        ab += (x - ma) * (y - mb);
-        aa += (x - ma) * (x - ma);
-        bb += (y - mb) * (y - mb);
-    }
-    ab / (aa * bb).sqrt()
-}
-
-/// Measures every shot against the HDRI, prints and writes the results; the exit code.
-fn evaluate(check: &Check, captures: &HashMap<usize, Vec<Vec<f32>>>) -> u8 {
-    let mut lines = Vec::new();
-    let mut failed = false;
-    let mut report = |ok: bool, text: String| {
-        let line = format!("{} {text}", if ok { "ok  " } else { "FAIL" });
-        println!("{line}");
-        lines.push(line);
-        failed |= !ok;
-    };
-    let reduced: HashMap<&str, Equirect> = check
-        .equirects
-        .iter()
-        .map(|(k, e)| (*k, e.reduce(4)))
-        .collect();
-    for (i, shot) in check.shots.iter().enumerate() {
-        let data = captures[&i].last().unwrap();
-        let e = &check.equirects[shot.hdri];
-        let n = shot.size;
-        save_png(&check.out.join(format!("{}.png", shot.name())), data, n);
-        let label = format!("{} {}", shot.hdri, shot.format);
-        match shot.view {
-            View::Sky => {
-                let mut want = vec![0.0f32; data.len()];
-                let mut diff = 0.0;
-                for y in 0..n {
-                    for x in 0..n {
-                        let w = e.lookup(shot.ray(x as f32, y as f32));
-                        let g = pixel(data, n, x, y);
-                        let k = 4 * (y * n + x) as usize;
-                        want[k..k + 3].copy_from_slice(&w);
-                        for c in 0..3 {
-                            diff += ((1.0 + g[c]).ln() - (1.0 + w[c]).ln()).abs();
-                        }
-                    }
-                }
-                diff /= (3 * n * n) as f32;
-                save_png(
-                    &check.out.join(format!("{}_equirect.png", shot.name())),
-                    &want,
-                    n,
-                );
-                let (gx, gy) = bright_centroid(data, n, |_, _| true);
-                let (wx, wy) = bright_centroid(&want, n, |_, _| true);
-                let angle = shot
-                    .ray(gx, gy)
-                    .angle_between(shot.ray(wx, wy))
-                    .to_degrees();
-                report(
-                    angle <= SUN_DEGREES && diff <= SKY_LOG_DIFF,
-                    format!("{label}: skybox sun {angle:.2}° from the equirect lookup's (bar {SUN_DEGREES}°), mean |Δ ln(1+L)| {diff:.4} (bar {SKY_LOG_DIFF})"),
-                );
-            }
-            View::Mirror => {
-                let on = |x: u32, y: u32| {
-                    shot.sphere_hit(x as f32, y as f32)
-                        .is_some_and(|(p, d)| -d.dot(p) > 0.2)
-                };
-                let (cx, cy) = bright_centroid(data, n, on);
-                let reflected = shot
-                    .sphere_hit(cx, cy)
-                    .map(|(p, d)| d - 2.0 * d.dot(p) * p)
-                    .unwrap_or(Vec3::ZERO);
-                let angle = reflected.angle_between(check.suns[shot.hdri]).to_degrees();
-                report(
-                    angle <= SUN_DEGREES,
-                    format!("{label}: mirror sphere reflects the sun {angle:.2}° from the HDRI's sun (bar {SUN_DEGREES}°)"),
-                );
-            }
-            // Measured together in evaluate_sun.
-            View::SunFull | View::SunSplit | View::SunShadow => {}
-            View::Rough => {
-                let r = &reduced[shot.hdri];
-                let (mut got, mut want) = (Vec::new(), Vec::new());
-                for y in 0..n {
-                    for x in 0..n {
-                        if let Some((p, d)) = shot.sphere_hit(x as f32, y as f32) {
-                            // Away from the silhouette, where a pixel straddles the edge.
-                            if -d.dot(p) > 0.2 {
-                                got.push(luminance(pixel(data, n, x, y)));
-                                want.push(luminance(r.irradiance_over_pi(p)));
-                            }
-                        }
-                    }
-                }
-                let ratio = got.iter().sum::<f32>() / want.iter().sum::<f32>();
-                let corr = correlation(&got, &want);
-                report(
-                    (ratio - 1.0).abs() <= DIFFUSE_BRIGHTNESS && corr >= DIFFUSE_CORRELATION,
-                    format!(
-                        "{label}: white dielectric r = 1 is {:+.2} % from E/π (bar {:.0} %), correlation {corr:.4} (bar {DIFFUSE_CORRELATION}), {} pixels",
-                        100.0 * (ratio - 1.0),
-                        100.0 * DIFFUSE_BRIGHTNESS,
-                        got.len()
-                    ),
-                );
-            }
-        }
-    }
-    evaluate_sun(check, captures, &reduced[SUN_HDRI], &mut report);
-    let text = lines.join("\n") + "\n";
-    std::fs::write(check.out.join("results.txt"), text).unwrap();
-    println!("renders and results.txt in {}", check.out.display());
-    u8::from(failed)
-}
-
-/// The sun case: the diffuse sphere's sides (the split render against the full one, and
-/// each against E/π of the HDRI, `reduced`), sun.json's direction against the HDRI's own
-/// sun, and the box's shadow.
-fn evaluate_sun(
-    check: &Check,
-    captures: &HashMap<usize, Vec<Vec<f32>>>,
-    reduced: &Equirect,
-    report: &mut impl FnMut(bool, String),
-) {
-    let shot_of = |view: View| {
-        let i = check
-            .shots
-            .iter()
-            .position(|s| s.view == view)
-            .expect("the sun shots");
-        (&check.shots[i], captures[&i].last().unwrap())
-    };
-    let toward = check.sun_light.direction;
-    let angle = toward.angle_between(check.suns[SUN_HDRI]).to_degrees();
-    report(
-        angle <= SUN_DEGREES,
-        format!("{SUN_HDRI} {SUN_LABEL}: sun.json's direction {angle:.2}° from the HDRI's sun (bar {SUN_DEGREES}°)"),
-    );
-    // Mean luminance on the lit and the shaded side: the render's, and E/π's.
-    let sides = |view: View| {
-        let (shot, data) = shot_of(view);
-        let n = shot.size;
-        let (mut lit, mut shaded) = ([0.0f64; 3], [0.0f64; 3]);
-        for y in 0..n {
-            for x in 0..n {
-                let Some((p, d)) = shot.sphere_hit(x as f32, y as f32) else {
-                    continue;
-                };
-                if -d.dot(p) <= 0.2 {
-                    continue;
-                }
-                let c = p.dot(toward);
-                let side = match c {
-                    c if c >= SUN_SIDE_EDGE => &mut lit,
-                    c if c <= -SUN_SIDE_EDGE => &mut shaded,
-                    _ => continue,
-                };
-                side[0] += luminance(pixel(data, n, x, y)) as f64;
-                side[1] += luminance(reduced.irradiance_over_pi(p)) as f64;
-                side[2] += 1.0;
-            }
-        }
-        (lit, shaded)
-    };
-    let (full_lit, full_shaded) = sides(View::SunFull);
-    let (split_lit, split_shaded) = sides(View::SunSplit);
-    let pc = |a: f64, b: f64| 100.0 * (a / b - 1.0);
-    let lit = split_lit[0] / full_lit[0];
-    let shaded = split_shaded[0] / full_shaded[0];
-    report(
-        (lit as f32 - 1.0).abs() <= SUN_SIDES && (shaded as f32 - 1.0).abs() <= SUN_SIDES,
-        format!(
-            "{SUN_HDRI} {SUN_LABEL}: diffuse sphere under the residual IBL + DirectionalLight against the full IBL: lit side {:+.2} % ({} pixels), shaded side {:+.2} % ({} pixels) (bar {:.0} %); against E/π of the HDRI: split {:+.2} / {:+.2} %, full {:+.2} / {:+.2} %",
-            100.0 * (lit - 1.0),
-            split_lit[2],
-            100.0 * (shaded - 1.0),
-            split_shaded[2],
-            100.0 * SUN_SIDES,
-            pc(split_lit[0], split_lit[1]),
-            pc(split_shaded[0], split_shaded[1]),
-            pc(full_lit[0], full_lit[1]),
-            pc(full_shaded[0], full_shaded[1]),
-        ),
-    );
-
-    // The shadow: the floor's pixels darker than half the lit floor's median, their
-    // centroid on the floor against the shadow of the box's centre (the shadow of a
-    // centrally symmetric solid is centrally symmetric about it).
-    let (shot, data) = shot_of(View::SunShadow);
-    let n = shot.size;
-    let lums: Vec<f32> = (0..n * n)
-        .map(|i| luminance(pixel(data, n, i % n, i / n)))
-        .collect();
-    let mut lit: Vec<f32> = lums.iter().copied().filter(|&l| l > 0.0).collect();
-    lit.sort_by(f32::total_cmp);
-    let median = lit.get(lit.len() / 2).copied().unwrap_or(0.0);
-    let (mut sum, mut count) = (Vec2::ZERO, 0u32);
-    for y in 0..n {
-        for x in 0..n {
-            if lums[(y * n + x) as usize] < 0.5 * median {
-                let d = shot.ray(x as f32, y as f32);
-                let o = shot.transform.translation;
-                let floor = o + d * (-o.y / d.y);
-                sum += Vec2::new(floor.x, floor.z);
-                count += 1;
-            }
-        }
-    }
-    let centre = sum / count.max(1) as f32;
-    let expected = Vec2::new(-toward.x, -toward.z) * SHADOW_HEIGHT / toward.y;
-    let azimuth = |v: Vec2| v.y.atan2(v.x).to_degrees();
-    let mut error = (azimuth(centre) - azimuth(expected)).abs();
-    error = error.min(360.0 - error);
-    report(
-        count > 100 && error <= SHADOW_DEGREES,
-        format!(
-            "{SUN_HDRI} {SUN_LABEL}: the box's shadow at azimuth {:.2}°, where the sun puts it {:.2}° ({error:.2}°, bar {SHADOW_DEGREES}°; {count} pixels)",
-            azimuth(centre),
-            azimuth(expected)
-        ),
-    );
 }
