@@ -133,17 +133,25 @@ struct SpherePixel {
     geometry: f32,
 }
 
+/// Where an engine check wrote its bakes of the spheres' HDRIs, and how the engine reads
+/// one.
+struct SphereBakes {
+    /// The bakes' folder under the check's output.
+    dir: &'static str,
+    /// The chain, the diffuse light E/π and the LUT the engine reads, from a bake folder,
+    /// in the generic orientation.
+    read: fn(&Path) -> (Cubemap, Cubemap, BrdfLut),
+}
+
 /// What one engine check wrote and how its engine reads the files.
 struct Engine {
     /// The check's output folder.
     out: &'static str,
-    /// Its bakes' folder under it.
-    bakes: &'static str,
     target: &'static Target,
     shading: Shading,
-    /// The chain, the diffuse light E/π and the LUT the engine reads, from a bake folder,
-    /// in the generic orientation.
-    read: fn(&Path) -> (Cubemap, Cubemap, BrdfLut),
+    /// Its sphere bakes, where it renders spheres from them (Bevy's check writes the
+    /// studio case alone).
+    spheres: Option<SphereBakes>,
     /// Whether the engine adds the screen-space change of the normal to r (three.js's
     /// `geometryRoughness`).
     geometry_roughness: bool,
@@ -207,20 +215,6 @@ fn read_babylon(dir: &Path) -> (Cubemap, Cubemap, BrdfLut) {
     (chain, irradiance, lut)
 }
 
-/// Bevy: `specular.ktx2` and `irradiance.ktx2` (z mirrored), and the LUT of its
-/// `EnvBrdfApprox` as the preview computes it.
-fn read_bevy(dir: &Path) -> (Cubemap, Cubemap, BrdfLut) {
-    let read = |name: &str| {
-        read_cube_chain(&dir.join(name))
-            .unwrap()
-            .remapped(BEVY.orientation.texel_map().inverse())
-    };
-    let mut irradiance = read("irradiance.ktx2");
-    irradiance.levels.truncate(1);
-    let lut = shading_lut(&CpuBackend, &BEVY_SHADING, None).unwrap();
-    (read("specular.ktx2"), irradiance, lut)
-}
-
 /// The results.json an engine check wrote into `out`, or `None` (and a skip, or a failure
 /// where peers are required) where it has not run.
 fn read_results(out: &Path) -> Option<serde_json::Value> {
@@ -241,15 +235,19 @@ fn check(engine: &Engine) {
     let Some(results) = read_results(out) else {
         return;
     };
+    let bakes = engine
+        .spheres
+        .as_ref()
+        .unwrap_or_else(|| panic!("{}: no sphere bakes", engine.out));
     let shading = engine.shading;
     let mut failures = Vec::new();
     for hdri in ["quarry_01_1k", "venice_sunset_1k"] {
-        let dir: PathBuf = out.join(engine.bakes).join(hdri);
+        let dir: PathBuf = out.join(bakes.dir).join(hdri);
         assert_eq!(
             Manifest::read(&dir).unwrap().target.name,
             engine.target.name
         );
-        let (specular, irradiance, lut) = (engine.read)(&dir);
+        let (specular, irradiance, lut) = (bakes.read)(&dir);
         let levels = specular.levels.len() as u32;
         let light = SplitSumLight {
             specular: &specular,
@@ -333,40 +331,45 @@ fn check(engine: &Engine) {
 /// three.js: its check's folder and how it reads `--target three` bakes.
 const THREE_ENGINE: Engine = Engine {
     out: "target/engines/three",
-    bakes: "bakes",
     target: &THREE,
     shading: THREE_SHADING,
-    read: read_three,
+    spheres: Some(SphereBakes {
+        dir: "bakes",
+        read: read_three,
+    }),
     geometry_roughness: true,
 };
 
 /// The glTF Sample Viewer.
 const GLTF_ENGINE: Engine = Engine {
     out: "target/engines/gltf",
-    bakes: "splitsum",
     target: &GLTF,
     shading: GLTF_SHADING,
-    read: read_gltf,
+    spheres: Some(SphereBakes {
+        dir: "splitsum",
+        read: read_gltf,
+    }),
     geometry_roughness: false,
 };
 
 /// Babylon.js.
 const BABYLON_ENGINE: Engine = Engine {
     out: "target/engines/babylon",
-    bakes: "splitsum",
     target: &BABYLON,
     shading: BABYLON_SHADING,
-    read: read_babylon,
+    spheres: Some(SphereBakes {
+        dir: "splitsum",
+        read: read_babylon,
+    }),
     geometry_roughness: false,
 };
 
 /// Bevy (its check writes the studio case alone: `engines/bevy/src/studio.rs`).
 const BEVY_ENGINE: Engine = Engine {
     out: "target/engines/bevy",
-    bakes: "studio_split/assets",
     target: &BEVY,
     shading: BEVY_SHADING,
-    read: read_bevy,
+    spheres: None,
     geometry_roughness: false,
 };
 

@@ -122,7 +122,7 @@ impl Default for Progress {
 }
 
 /// What a check's app does this frame.
-pub enum Step {
+enum Step {
     /// Nothing: an asset is loading, or it is not a capture round.
     Wait,
     /// A capture round.
@@ -131,9 +131,37 @@ pub enum Step {
     Fail(String),
 }
 
+/// One frame of a check app's capture loop: counts it in `progress`, ends the app with
+/// an error (naming `label`) where an asset failed or the renders never settle, and on a
+/// capture round screenshots each of `targets`; true when every render is final (the
+/// caller writes them and ends the app).
+pub fn capture_round<'a>(
+    progress: &mut Progress,
+    assets: &AssetServer,
+    captures: &Captures,
+    commands: &mut Commands,
+    exit: &mut MessageWriter<AppExit>,
+    label: &str,
+    targets: impl ExactSizeIterator<Item = &'a Handle<Image>>,
+) -> bool {
+    match progress.step(assets) {
+        Step::Wait => false,
+        Step::Fail(e) => {
+            eprintln!("error: {label}: {e}");
+            exit.write(AppExit::error());
+            false
+        }
+        Step::Capture if captures.stable(targets.len()) => true,
+        Step::Capture => {
+            captures.request(commands, targets);
+            false
+        }
+    }
+}
+
 impl Progress {
     /// Counts this frame and says what to do in it.
-    pub fn step(&mut self, assets: &AssetServer) -> Step {
+    fn step(&mut self, assets: &AssetServer) -> Step {
         self.frame += 1;
         if self.started.elapsed() > TIMEOUT {
             return Step::Fail(format!("no stable renders after {TIMEOUT:?}"));

@@ -61,7 +61,7 @@ mod splitsum_bevy;
 mod studio;
 mod sun;
 
-use capture::{check_camera, float_target, Captures, CheckCamera, Progress, Step};
+use capture::{capture_round, check_camera, float_target, Captures, CheckCamera, Progress};
 use equirect::Equirect;
 use evaluate::evaluate;
 use sun::{sun_shots, SunLight};
@@ -460,15 +460,18 @@ fn setup(
     check.progress.assets = handles;
 }
 
+/// Copies the bundled `hdri` into `dir` (made where missing) as `sky.hdr`, the name the
+/// README's shell lines bake.
+fn copy_as_sky(dir: &Path, hdri: &str) {
+    std::fs::create_dir_all(dir).unwrap();
+    let from = root().join(format!("tests/data/{hdri}.hdr"));
+    std::fs::copy(&from, dir.join("sky.hdr")).unwrap_or_else(|e| panic!("{}: {e}", from.display()));
+}
+
 /// Runs the README recipe's shell lines in `out` on the bundled `hdri`, copied there as
 /// `sky.hdr`, with `splitsum` the binary under test.
 fn run_recipe_commands(splitsum: &Path, out: &Path, hdri: &str) {
-    std::fs::create_dir_all(out).unwrap();
-    std::fs::copy(
-        root().join(format!("tests/data/{hdri}.hdr")),
-        out.join("sky.hdr"),
-    )
-    .unwrap();
+    copy_as_sky(out, hdri);
     for command in readme_recipe::COMMANDS {
         let mut words = command.split_whitespace();
         assert_eq!(
@@ -546,19 +549,19 @@ fn capture(
     mut check: ResMut<Check>,
     mut exit: MessageWriter<AppExit>,
 ) {
-    match check.progress.step(&assets) {
-        Step::Wait => return,
-        Step::Fail(e) => {
-            eprintln!("error: {e}");
-            exit.write(AppExit::error());
-            return;
-        }
-        Step::Capture => {}
-    }
-    if captures.stable(check.shots.len()) {
-        let code = evaluate(&check, &captures.0.lock().unwrap());
+    let check = &mut *check;
+    let targets = check.shots.iter().map(|s| &s.target);
+    let label = "the check";
+    if capture_round(
+        &mut check.progress,
+        &assets,
+        &captures,
+        &mut commands,
+        &mut exit,
+        label,
+        targets,
+    ) {
+        let code = evaluate(check, &captures.0.lock().unwrap());
         exit.write(AppExit::from_code(code));
-        return;
     }
-    captures.request(&mut commands, check.shots.iter().map(|s| &s.target));
 }

@@ -21,8 +21,10 @@ use bevy::camera::visibility::RenderLayers;
 use bevy::light::EnvironmentMapLight;
 use bevy::prelude::*;
 
-use crate::capture::{check_camera, float_target, save_png, Captures, CheckCamera, Progress, Step};
-use crate::{readme_recipe, run, run_recipe_commands, view_geometry};
+use crate::capture::{
+    capture_round, check_camera, float_target, save_png, Captures, CheckCamera, Progress,
+};
+use crate::{copy_as_sky, readme_recipe, run, run_recipe_commands, view_geometry};
 
 /// The studio HDRI (a 6° lamp holding 72 % of the light and a soft source on its horizon).
 pub const HDRI: &str = "studio_small_03_1k";
@@ -79,12 +81,7 @@ impl Mode {
 pub fn bake(splitsum: &Path, out: &Path) {
     run_recipe_commands(splitsum, &Mode::Split.folder(out), HDRI);
     let kept = Mode::Kept.folder(out);
-    std::fs::create_dir_all(&kept).unwrap();
-    std::fs::copy(
-        crate::root().join(format!("tests/data/{HDRI}.hdr")),
-        kept.join("sky.hdr"),
-    )
-    .unwrap();
+    copy_as_sky(&kept, HDRI);
     run(Command::new(splitsum).current_dir(&kept).args([
         "bake", "sky.hdr", "--target", "bevy", "--sun", "keep", "-q", "--no-sh", "--no-lut", "-o",
         "assets/",
@@ -321,21 +318,21 @@ fn capture(
     mut studio: ResMut<Studio>,
     mut exit: MessageWriter<AppExit>,
 ) {
-    match studio.progress.step(&assets) {
-        Step::Wait => return,
-        Step::Fail(e) => {
-            eprintln!("error: studio {}: {e}", studio.mode.name());
-            exit.write(AppExit::error());
-            return;
-        }
-        Step::Capture => {}
-    }
-    if captures.stable(studio.shots.len()) {
-        write(&studio, &captures);
+    let studio = &mut *studio;
+    let targets = studio.shots.iter().map(|(_, t)| t);
+    let label = format!("studio {}", studio.mode.name());
+    if capture_round(
+        &mut studio.progress,
+        &assets,
+        &captures,
+        &mut commands,
+        &mut exit,
+        &label,
+        targets,
+    ) {
+        write(studio, &captures);
         exit.write(AppExit::Success);
-        return;
     }
-    captures.request(&mut commands, studio.shots.iter().map(|(_, t)| t));
 }
 
 /// Writes each sphere's linear floats (row 0 at the bottom) and a PNG, and in the split
