@@ -7,10 +7,9 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::Context;
-use splitsum::BackendJob;
 use splitsum::{
     check_cube_path, check_cube_size, check_lut_path, check_output_extension, input_stem,
-    png_clip_warning, write_atomic, write_lut, BakeOptions, BakeReport, Container,
+    png_clip_warning, write_atomic, write_lut, BackendJob, BakeOptions, BakeReport, Container,
     CubeWriteOptions, LutWriteOptions, Stage, SunMode,
 };
 

@@ -4,11 +4,10 @@
 use std::path::{Path, PathBuf};
 
 use splitsum::{
-    check_output_extension, input_stem, read_bake_dir, write_atomic, BakeOptions, Preview,
-    PreviewOptions, PREVIEW_ROUGHNESS,
+    check_output_extension, input_stem, read_bake_dir, write_atomic, BackendJob, BakeOptions,
+    Preview, PreviewOptions, PREVIEW_ROUGHNESS,
 };
 
-use splitsum::BackendJob;
 use splitsum::{Shading, Target};
 
 use super::args::{PreviewArgs, PreviewRenderArgs};

@@ -5,8 +5,7 @@ use std::io::IsTerminal;
 use std::path::Path;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use splitsum::BackendJob;
-use splitsum::{BakeOptions, Baker, SunMode, MIN_SUN_SHARE};
+use splitsum::{BackendJob, BakeOptions, Baker, SunMode, MIN_SUN_SHARE};
 
 use super::args::CommonArgs;
 use super::for_user;
