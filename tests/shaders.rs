@@ -130,7 +130,8 @@ fn split_sum_constants_match_rust() {
 fn filtered_lookup_constants_match_rust() {
     use splitsum::plan::chain::{MipRoughness, BABYLON_LOD_SCALE, BABYLON_MINIMUM_VARIANCE};
     use splitsum::plan::filtered::{
-        FILTERED_LOD_BIAS, FILTERED_N_DOT_V, FILTERED_ROUGHNESS, FILTERED_TAPS, MIN_FILTERED_ALPHA,
+        FILTERED_LEVEL_TAPS, FILTERED_LOD_BIAS, FILTERED_N_DOT_V, FILTERED_PLANE_POINTS,
+        FILTERED_ROUGHNESS, FILTERED_TAPS, MIN_FILTERED_ALPHA,
     };
     let module = parse(
         "preview_split_sum",
@@ -142,6 +143,8 @@ fn filtered_lookup_constants_match_rust() {
         ("FILTERED_ROUGHNESS_LO", FILTERED_ROUGHNESS[0]),
         ("FILTERED_ROUGHNESS_HI", FILTERED_ROUGHNESS[1]),
         ("FILTERED_LOD_BIAS", FILTERED_LOD_BIAS),
+        ("FILTERED_PLANE_INNER", FILTERED_PLANE_POINTS[0]),
+        ("FILTERED_PLANE_OUTER", FILTERED_PLANE_POINTS[1]),
         ("MIN_FILTERED_ALPHA", MIN_FILTERED_ALPHA),
         ("BABYLON_LOD_SCALE", BABYLON_LOD_SCALE),
         ("BABYLON_MINIMUM_VARIANCE", BABYLON_MINIMUM_VARIANCE),
@@ -150,6 +153,7 @@ fn filtered_lookup_constants_match_rust() {
     }
     for (name, rust) in [
         ("FILTERED_TAPS", FILTERED_TAPS),
+        ("FILTERED_LEVEL_TAPS", FILTERED_LEVEL_TAPS),
         ("MIP_ROUGHNESS_LINEAR", MipRoughness::Linear.code()),
         ("MIP_ROUGHNESS_QUADRATIC", MipRoughness::Quadratic.code()),
     ] {

@@ -1,15 +1,18 @@
 // The recipe's quality lookup: filtered importance sampling of the prefiltered chain with
-// samples of GGX's visible normals at grazing views (src/plan/filtered.rs says what and
+// samples of GGX's visible normals in the plane of incidence at grazing views (src/plan/filtered.rs says what and
 // why). Mirror of cpu::preview_split_sum::{filtered_lookup, filtered_prefiltered} and
 // plan::filtered::{filtered_share, sample_lod, filtered_point}, plan::chain::MipRoughness::lod.
 // The including kernel includes brdf.wgsl, sampling.wgsl, cube_sample.wgsl, material.wgsl
 // and split_sum.wgsl, and declares `light` (SplitSumParams) and `specular`.
 
 // plan::filtered's constants.
-const FILTERED_TAPS: u32 = 16u;
+const FILTERED_TAPS: u32 = 4u;
+const FILTERED_LEVEL_TAPS: u32 = 2u;
+const FILTERED_PLANE_INNER: f32 = 0.19764395;
+const FILTERED_PLANE_OUTER: f32 = 0.6347046;
 const FILTERED_N_DOT_V_LO: f32 = 0.4;
 const FILTERED_N_DOT_V_HI: f32 = 0.6;
-const FILTERED_ROUGHNESS_LO: f32 = 0.8;
+const FILTERED_ROUGHNESS_LO: f32 = 0.6;
 const FILTERED_ROUGHNESS_HI: f32 = 0.9;
 const FILTERED_LOD_BIAS: f32 = -0.5;
 const MIN_FILTERED_ALPHA: f32 = 1e-3;
@@ -47,9 +50,11 @@ fn sample_lod(levels: u32, pdf: f32, taps: u32) -> f32 {
     return clamp(lod, 0.0, f32(max(levels, 1u) - 1u));
 }
 
-// The i-th point of the fixed set: ((i + 1/2)/N, radical inverse of i).
+// The i-th point of the fixed set on the disc of sample_ggx_vndf: on its axis in the plane
+// of incidence at -outer, -inner, inner, outer.
 fn filtered_point(i: u32) -> vec2<f32> {
-    return vec2<f32>((f32(i) + 0.5) / f32(FILTERED_TAPS), f32(reverseBits(i)) * 2.3283064365386963e-10);
+    let y = select(FILTERED_PLANE_INNER, FILTERED_PLANE_OUTER, i == 0u || i + 1u == FILTERED_TAPS);
+    return vec2<f32>(0.0, select(y, -y, i < FILTERED_TAPS / 2u));
 }
 
 // The quality lookup's normalised radiance at a point (rgb) and whether a sample was above
@@ -67,10 +72,7 @@ fn filtered_prefiltered(n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, m: ShadeMateri
     var sum = vec3<f32>(0.0);
     var weight = vec3<f32>(0.0);
     for (var i = 0u; i < FILTERED_TAPS; i++) {
-        let xi = filtered_point(i);
-        let r = sqrt(xi.x);
-        let phi = 2.0 * PI * xi.y;
-        let hl = sample_ggx_vndf(v_local, alpha, vec2<f32>(r * cos(phi), r * sin(phi)));
+        let hl = sample_ggx_vndf(v_local, alpha, filtered_point(i));
         let h = t1 * hl.x + t2 * hl.y + n * hl.z;
         let v_dot_h = dot(v, h);
         let l = 2.0 * v_dot_h * h - v;
@@ -79,7 +81,7 @@ fn filtered_prefiltered(n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, m: ShadeMateri
             continue;
         }
         let pdf = g1_v * d_ggx(max(dot(n, h), 0.0), alpha) / (4.0 * n_dot_v);
-        let lod = sample_lod(light.specular_levels, pdf, FILTERED_TAPS);
+        let lod = sample_lod(light.specular_levels, pdf, FILTERED_LEVEL_TAPS);
         let w = fresnel3(m.f0, v_dot_h) * (g1_schlick_ggx(n_dot_l, k) * masking_v);
         sum += w * sample_cube_lod(specular, light.specular_size, light.specular_levels, l, lod);
         weight += w;

@@ -38,7 +38,7 @@ use crate::math::brdf::{
 use crate::math::sampling::{sample_ggx_vndf, tangent_frame};
 use crate::plan::chain::MipRoughness;
 use crate::plan::filtered::{
-    filtered_point, filtered_share, sample_lod, FILTERED_TAPS, MIN_FILTERED_ALPHA,
+    filtered_point, filtered_share, sample_lod, FILTERED_LEVEL_TAPS, FILTERED_TAPS, MIN_FILTERED_ALPHA,
 };
 use crate::plan::material::fresnel3;
 use crate::math::lookup::{bent_reflection, stretched_taps};
@@ -137,12 +137,11 @@ pub fn split_sum_shade_with(
 }
 
 /// The quality lookup's prefiltered radiance at a point of normal `n` seen from `v`
-/// (`plan::filtered`): [`FILTERED_TAPS`] samples of the GGX lobe's visible normals, each
-/// l = reflect(−v, h) above the horizon read from `chain` at the level of its share of the
-/// sphere (`mapping` its levels' roughness), their sum weighted by F G(l) G(v) / G1(v),
-/// normalised per channel; None where no sample is above the horizon. Mirror of
-/// `filtered_prefiltered` in shaders/common/filtered.wgsl (which draws the disc's points
-/// with the GPU's sin and cos, within 1e-6 of these on lavapipe).
+/// (`plan::filtered`): [`FILTERED_TAPS`] samples of the GGX lobe's visible normals in the
+/// plane of incidence, each l = reflect(−v, h) above the horizon read from `chain` at the
+/// level of its share of the sphere (`mapping` its levels' roughness), their sum weighted
+/// by F G(l) G(v) / G1(v), normalised per channel; None where no sample is above the
+/// horizon. Mirror of `filtered_prefiltered` in shaders/common/filtered.wgsl.
 pub fn filtered_prefiltered(
     chain: &Cubemap,
     mapping: MipRoughness,
@@ -162,10 +161,7 @@ pub fn filtered_prefiltered(
     let levels = chain.levels.len() as u32;
     let (mut sum, mut weight) = (Vec3::ZERO, Vec3::ZERO);
     for i in 0..FILTERED_TAPS {
-        let xi = filtered_point(i);
-        let r = xi[0].sqrt();
-        let phi = 2.0 * std::f32::consts::PI * xi[1];
-        let h = sample_ggx_vndf(v_local, alpha, [r * phi.cos(), r * phi.sin()]);
+        let h = sample_ggx_vndf(v_local, alpha, filtered_point(i));
         let h = t1 * h[0] + t2 * h[1] + n * h[2];
         let v_dot_h = v.dot(h);
         let l = 2.0 * v_dot_h * h - v;
@@ -174,7 +170,7 @@ pub fn filtered_prefiltered(
             continue;
         }
         let pdf = g1_v * d_ggx(n.dot(h).max(0.0), alpha) / (4.0 * n_dot_v);
-        let lod = sample_lod(mapping, levels, pdf, FILTERED_TAPS);
+        let lod = sample_lod(mapping, levels, pdf, FILTERED_LEVEL_TAPS);
         let w = fresnel3(m.f0, v_dot_h) * (g1_schlick_ggx(n_dot_l, k) * masking_v);
         sum += w * Vec3::from(sample_cube_lod(chain, l.into(), lod));
         weight += w;

@@ -47,9 +47,9 @@ pub enum SpecularLookup {
     /// splitsum's own, the README's recipe.
     Stretched,
     /// [`SpecularLookup::Stretched`] blended at grazing views of glossy points into
-    /// filtered importance sampling of the chain (`plan::filtered`: 16 samples of the GGX
-    /// lobe, each read at the level of its share of the sphere): the recipe's quality mode,
-    /// for offline and still renders.
+    /// filtered importance sampling of the chain (`plan::filtered`: 4 samples of the GGX
+    /// lobe in the plane of incidence, each read at the level of its share of the sphere):
+    /// the recipe's quality mode.
     Filtered,
 }
 
@@ -110,7 +110,7 @@ impl SpecularLookup {
                 "Frostbite's direction (its bend faded in below r = 0.5, less for a low F0) as two taps stretched along the plane of incidence toward grazing views (the README's recipe)"
             }
             SpecularLookup::Filtered => {
-                "the recipe's, blended at grazing views (n.v < 0.6, r < 0.9) into 16 samples of the GGX lobe each read from the chain at its own level (a quality mode)"
+                "the recipe's, blended at grazing views (n.v < 0.6, r < 0.9) into 4 samples of the GGX lobe in the plane of incidence, each read from the chain at its own level (a quality mode)"
             }
         }
     }
@@ -123,7 +123,7 @@ impl SpecularLookup {
             SpecularLookup::AlphaSquared => "mix(R, n, α²) (three.js, Filament)",
             SpecularLookup::Frostbite => "Frostbite's dominant direction",
             SpecularLookup::Stretched => "Frostbite's, stretched (two taps)",
-            SpecularLookup::Filtered => "stretched, 16 filtered taps at grazing views",
+            SpecularLookup::Filtered => "stretched, 4 filtered taps at grazing views",
         }
     }
 
