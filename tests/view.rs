@@ -32,6 +32,18 @@ const CELL: u32 = 64;
 /// The preview's roughness columns compared here: 0, 0.25, 0.5, 1.
 const COLUMNS: [usize; 4] = [0, 1, 2, 4];
 
+/// The viewer's light of a venice_sunset bake (no area light: its LTC table is never asked
+/// for; the CPU backend's where it would be).
+fn venice_light(baked: &BakedEnvironment, lut: BrdfLut) -> ViewLight {
+    ViewLight::new("venice", baked, lut, &mut || {
+        splitsum::backend::shared_ltc_table(
+            &splitsum::backend::CpuBackend,
+            splitsum::plan::shading::LightBrdf::GENERIC,
+        )
+    })
+    .unwrap()
+}
+
 /// The default bake of venice_sunset_1k and the default LUT, on `backend`.
 fn bake(backend: &dyn Backend) -> (BakedEnvironment, BrdfLut) {
     let env = Environment::Equirect(test_equirect("venice_sunset_1k.hdr"));
@@ -102,7 +114,7 @@ fn cell_pixels(scene: &Scene, material: usize, column: usize) -> Vec<(usize, usi
 #[test]
 fn split_sum_equals_the_previews() {
     let (baked, lut) = bake(&CpuBackend);
-    let light = ViewLight::new("venice", &baked, lut.clone());
+    let light = venice_light(&baked, lut.clone());
     let opts = PreviewOptions {
         cell: CELL,
         truth_samples: 0,
@@ -167,7 +179,7 @@ fn truth_matches_the_previews() {
     let Some(ctx) = gpu() else { return };
     let backend = GpuBackend { ctx };
     let (baked, lut) = bake(&CpuBackend);
-    let light = ViewLight::new("venice", &baked, lut.clone());
+    let light = venice_light(&baked, lut.clone());
     let opts = PreviewOptions {
         cell: CELL,
         truth_samples: 2048,
@@ -242,7 +254,7 @@ fn truth_matches_the_previews() {
 fn gpu_and_cpu_frames_agree() {
     let Some(ctx) = gpu() else { return };
     let (baked, lut) = bake(&CpuBackend);
-    let light = ViewLight::new("venice", &baked, lut);
+    let light = venice_light(&baked, lut);
     let size = (160, 90);
     let render = |renderer: Renderer| {
         let mut v =
@@ -415,7 +427,7 @@ fn forward_and_deferred_pictures_are_the_same() {
         return;
     }
     let (baked, lut) = bake(&CpuBackend);
-    let light = ViewLight::new("venice", &baked, lut);
+    let light = venice_light(&baked, lut);
     let size = (320, 180);
     let render = |forward: bool, model: usize, hud: bool| {
         let mut r = GpuRenderer::new(ctx.device.clone(), ctx.queue.clone()).unwrap();

@@ -3,9 +3,11 @@
 
 pub mod cpu;
 pub mod gpu;
+mod shared_ltc;
 
 pub use cpu::CpuBackend;
 pub use gpu::{GpuBackend, SoftwareAdapterBackend};
+pub use shared_ltc::{shared_ltc_table, SHARED_TABLE_SIZE};
 
 use crate::environment::{Cubemap, EquirectIntegral, IrradianceSource};
 use crate::plan::bc6h::Bc6hQuality;

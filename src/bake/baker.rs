@@ -6,8 +6,11 @@
 //! are exactly a CPU bake's, as the manifest says.
 
 use std::path::Path;
+use std::sync::Arc;
 
-use crate::backend::{create_backend, Backend, BackendChoice, CpuBackend, BackendJob};
+use crate::backend::{
+    create_backend, shared_ltc_table, Backend, BackendChoice, BackendJob, CpuBackend,
+};
 use crate::bake::{bake, bake_environment, BakeOptions, BakeReport};
 use crate::environment::sun::SunMode;
 use crate::environment::{Cubemap, Environment};
@@ -15,6 +18,7 @@ use crate::io::cubemap::{clip_warning, write_cubemap_with, Container, CubeWriteO
 use crate::io::input::{load_faces, load_input, InputOptions, LoadedEnvironment};
 use crate::plan::ltc::{ltc_brdf, LtcTable};
 use crate::plan::lut::{BrdfLut, LutModel, DEFAULT_LUT_SIZE};
+use crate::plan::shading::LightBrdf;
 use crate::stages::convert::{default_cube_size, environment_into_cube};
 use crate::stages::light::{BakedEnvironment, Stage};
 use crate::stages::preview::{preview_baked, Preview, PreviewOptions};
@@ -242,6 +246,12 @@ impl Baker {
     pub fn ltc(&mut self, model: LutModel, size: u32) -> Result<LtcTable> {
         let brdf = ltc_brdf(model, size)?;
         self.with_fallback(|baker| baker.backend.fit_ltc(brdf, size))
+    }
+
+    /// The LTC table the preview and the viewer shade area lights of `brdf` from, fitted on
+    /// this baker's backend once a process (`backend::shared_ltc_table`).
+    pub fn shared_ltc_table(&mut self, brdf: LightBrdf) -> Result<Arc<LtcTable>> {
+        self.with_fallback(|baker| shared_ltc_table(baker.backend.as_ref(), brdf))
     }
 
     /// `env` as a cube of edge `size` (default: the largest power of two ≤ an equirect's

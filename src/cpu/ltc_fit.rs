@@ -3,10 +3,7 @@
 //! holds and how it is fitted): the BRDF's lobe by GGX sampling (`lobe_terms`), the
 //! fit's error by multiple importance sampling of the lobe and the LTC (`fit_error`),
 //! Nelder-Mead over (m11, m22, m13) (`nelder_mead`), in the kernel's order
-//! ([`LtcTable::fit`]); and the table the preview and the viewer shade area lights from,
-//! fitted once a process ([`shared_table`]).
-
-use std::sync::{Arc, Mutex};
+//! ([`LtcTable::fit`]).
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -21,26 +18,6 @@ use crate::plan::lut::LutModel;
 use crate::plan::material::light_masking;
 use crate::plan::shading::LightBrdf;
 use crate::Result;
-
-/// Cells per side of the table the preview and the viewer shade area lights from: the
-/// mean of `tests/ltc.rs`'s lights within 1.5 % of brute force at r = 0.25 (2.8 % at
-/// 16²), a fit of 13 CPU-s on the CPU (docs/accuracy.md, "The LTC fit on either
-/// backend").
-pub const SHARED_TABLE_SIZE: u32 = 32;
-
-/// The tables fitted in this process, by BRDF.
-static SHARED: Mutex<Vec<Arc<LtcTable>>> = Mutex::new(Vec::new());
-
-/// The [`SHARED_TABLE_SIZE`]² table of `brdf`, fitted once a process.
-pub fn shared_table(brdf: LightBrdf) -> Arc<LtcTable> {
-    let mut tables = SHARED.lock().unwrap_or_else(|e| e.into_inner());
-    if let Some(t) = tables.iter().find(|t| t.brdf == brdf) {
-        return Arc::clone(t);
-    }
-    let table = Arc::new(LtcTable::fit(brdf, SHARED_TABLE_SIZE));
-    tables.push(Arc::clone(&table));
-    table
-}
 
 /// The `size`² LTC table that goes with the split-sum LUT `model`, fitted on the CPU to
 /// the GGX lobe with the LUT's masking (`Baker::ltc` fits it on a baker's backend): a sheen

@@ -10,7 +10,6 @@ use glam::Vec3;
 use image::RgbaImage;
 use rayon::prelude::*;
 
-use crate::cpu::ltc_fit::shared_table;
 use crate::cpu::preview_split_sum::split_sum_shade;
 use crate::cpu::preview_truth::{pixel_shift, truth_shade};
 use crate::environment::sample::sample_cube_lod;
@@ -165,9 +164,7 @@ impl AreaLights {
             })
             .collect();
         AreaLights {
-            table: light
-                .has_area_lights()
-                .then(|| shared_table(LightBrdf::GENERIC)),
+            table: light.ltc.clone(),
             quads,
         }
     }

@@ -8,16 +8,17 @@
 //! one more truth estimate accumulated), and the **present** pass (the mode's picture,
 //! exposure, Khronos PBR Neutral, sRGB, the HUD over it).
 
+use std::sync::Arc;
+
 use glam::{Mat4, Vec3};
 
-use crate::cpu::ltc_fit::shared_table;
 use crate::environment::sun::{Sun, SunMode, MAX_LIGHTS};
 use crate::environment::texels::SourceTexel;
 use crate::environment::Cubemap;
 use crate::math::lookup::SpecularLookup;
 use crate::math::ltc::rect_polygon;
 use crate::plan::chain::SpecularChain;
-use crate::plan::ltc::QuadLight;
+use crate::plan::ltc::{LtcTable, QuadLight};
 use crate::plan::lut::BrdfLut;
 use crate::plan::material::{ShadeMaterial, MIN_DIRECT_ALPHA};
 use crate::plan::scene::{SplitSumLight, TruthLight, MIN_N_DOT_V};
@@ -29,6 +30,7 @@ use crate::view::camera::CameraFrame;
 use crate::view::scene::{
     BaseMaterial, PointLight, FIT_HALF_EXTENT, FLOOR_HALF_EXTENT, FLOOR_Y, OBJECT_CENTRE,
 };
+use crate::Result;
 
 /// A frame before tone mapping, per pixel: the split-sum (radiance, surface id) and the
 /// truth accumulation (radiance × points, points).
@@ -120,6 +122,9 @@ pub struct ViewLight {
     /// How many of the environment's texels in `sun_texels` the truth view integrates as
     /// the lights'.
     pub sun_cells: u32,
+    /// The LTC table of the viewer's light BRDF in `sun_texels`, when an area light is
+    /// split out (both renderers read it).
+    pub ltc: Option<Arc<LtcTable>>,
     /// The same environment baked in the other sun mode, when that differs (an HDRI
     /// with a sun): what the viewer's U key swaps in.
     pub alternate: Option<Box<ViewLight>>,
@@ -159,11 +164,15 @@ pub fn view_quad(light: &Sun) -> Option<(QuadLight, Vec3)> {
 ///    the environment holds it, each light's part through the same shadow as the split-sum's;
 /// 3. the area lights' corners, counter-clockwise seen from the origin, a unit vector an
 ///    entry;
-/// 4. when there is an area light, the LTC table of the viewer's light BRDF
-///    (`cpu::ltc_fit::shared_table`), two entries a cell: M⁻¹'s four numbers, (A + B, B, 0, 0).
+/// 4. when there is an area light, the LTC table of the viewer's light BRDF (`ltc`, asked
+///    for only then), two entries a cell: M⁻¹'s four numbers, (A + B, B, 0, 0).
 ///
-/// Returns the table and the count of part 2's texels.
-pub fn sun_texel_table(lights: &[Sun], hot: &mut Vec<SourceTexel>) -> (Vec<[f32; 4]>, u32) {
+/// Returns the table, the count of part 2's texels and the LTC table ([`SunTexels`]).
+pub fn sun_texel_table(
+    lights: &[Sun],
+    hot: &mut Vec<SourceTexel>,
+    ltc: &mut dyn FnMut() -> Result<Arc<LtcTable>>,
+) -> Result<SunTexels> {
     let owner = |t: &SourceTexel| {
         let l = Vec3::from_slice(&t.dir_omega[..3]);
         lights.iter().position(|sun| {
@@ -181,10 +190,7 @@ pub fn sun_texel_table(lights: &[Sun], hot: &mut Vec<SourceTexel>) -> (Vec<[f32;
         None => true,
     });
     let quads: Vec<Option<(QuadLight, Vec3)>> = lights.iter().map(view_quad).collect();
-    let table = quads
-        .iter()
-        .any(Option::is_some)
-        .then(|| shared_table(LightBrdf::GENERIC));
+    let table = quads.iter().any(Option::is_some).then(ltc).transpose()?;
     let mut corner = SPLIT_RECORD * lights.len() + cells.len();
     let corners = 4 * quads.iter().flatten().count();
     let ltc_entry = corner + corners;
@@ -216,23 +222,43 @@ pub fn sun_texel_table(lights: &[Sun], hot: &mut Vec<SourceTexel>) -> (Vec<[f32;
             .flatten()
             .flat_map(|(q, _)| q.corners.map(|v| v.extend(0.0).to_array())),
     );
-    if let Some(t) = table {
+    if let Some(t) = &table {
         out.extend(
             t.cells
                 .iter()
                 .flat_map(|c| [c.inverse, [c.norm, c.fresnel, 0.0, 0.0]]),
         );
     }
-    (out, count)
+    Ok(SunTexels {
+        entries: out,
+        cells: count,
+        ltc: table,
+    })
+}
+
+/// What [`sun_texel_table`] packs: the entries, how many of them are the truth's texels of
+/// the lights (two entries each), and the LTC table when an area light is split out.
+pub struct SunTexels {
+    /// The entries, as [`ViewLight::sun_texels`].
+    pub entries: Vec<[f32; 4]>,
+    /// As [`ViewLight::sun_cells`].
+    pub cells: u32,
+    /// As [`ViewLight::ltc`].
+    pub ltc: Option<Arc<LtcTable>>,
 }
 
 impl ViewLight {
     /// The viewer's light from a bake and its LUT.
-    pub fn new(name: impl Into<String>, baked: &BakedEnvironment, lut: BrdfLut) -> ViewLight {
+    pub fn new(
+        name: impl Into<String>,
+        baked: &BakedEnvironment,
+        lut: BrdfLut,
+        ltc: &mut dyn FnMut() -> Result<Arc<LtcTable>>,
+    ) -> Result<ViewLight> {
         let (env, split) = truth_environment(baked.seen());
         let mut hot = split.hot;
-        let (sun_texels, sun_cells) = sun_texel_table(baked.split_lights(), &mut hot);
-        ViewLight {
+        let texels = sun_texel_table(baked.split_lights(), &mut hot, ltc)?;
+        Ok(ViewLight {
             name: name.into(),
             exposure: auto_exposure(baked.seen()),
             specular: baked.specular.clone(),
@@ -244,10 +270,11 @@ impl ViewLight {
             hot,
             sun_mode: baked.sun_mode,
             found: baked.lights.clone(),
-            sun_texels,
-            sun_cells,
+            sun_texels: texels.entries,
+            sun_cells: texels.cells,
+            ltc: texels.ltc,
             alternate: None,
-        }
+        })
     }
 
     /// The lights taken out of the environment, the sun first (none with the sun kept).
@@ -300,6 +327,7 @@ impl ViewLight {
             found: Vec::new(),
             sun_texels: Vec::new(),
             sun_cells: 0,
+            ltc: None,
             alternate: None,
         }
     }

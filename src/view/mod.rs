@@ -39,6 +39,7 @@ use crate::environment::sun::SunMode;
 use crate::environment::Environment;
 use crate::gpu::context::GpuContext;
 use crate::plan::lut::{LutModel, DEFAULT_LUT_SIZE};
+use crate::plan::shading::LightBrdf;
 use crate::view::frame::ViewLight;
 use crate::view::gpu::GpuRenderer;
 use crate::view::model::Model;
@@ -174,7 +175,9 @@ pub fn load_light(
                 None => baker.lut(LutModel::default(), DEFAULT_LUT_SIZE)?,
             };
             let name = dir.display().to_string();
-            return Ok(ViewLight::new(name, &baked, lut));
+            return ViewLight::new(name, &baked, lut, &mut || {
+                baker.shared_ltc_table(LightBrdf::GENERIC)
+            });
         }
         LightSource::File(path) => {
             progress(format!("reading {}", path.display()));
@@ -197,7 +200,8 @@ pub fn load_light(
         progress(format!("baking {name}: {}", stage.name()));
     })?;
     let lut = baker.lut(LutModel::default(), DEFAULT_LUT_SIZE)?;
-    let mut light = ViewLight::new(&name, &baked, lut.clone());
+    let mut ltc = || baker.shared_ltc_table(LightBrdf::GENERIC);
+    let mut light = ViewLight::new(&name, &baked, lut.clone(), &mut ltc)?;
     if !baked.lights.is_empty() {
         let other = sun.other();
         baker.set_sun(other);
@@ -208,7 +212,9 @@ pub fn load_light(
                 stage.name()
             ));
         })?;
-        light.alternate = Some(Box::new(ViewLight::new(&name, &baked, lut)));
+        light.alternate = Some(Box::new(ViewLight::new(&name, &baked, lut, &mut || {
+            baker.shared_ltc_table(LightBrdf::GENERIC)
+        })?));
     }
     Ok(light)
 }

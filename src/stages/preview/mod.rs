@@ -27,13 +27,12 @@ use std::time::Instant;
 use serde::Serialize;
 use glam::Vec3;
 
-use crate::backend::Backend;
+use crate::backend::{shared_ltc_table, Backend};
 use std::borrow::Cow;
 
 use crate::environment::sun::Sun;
 use crate::environment::Cubemap;
 use crate::plan::chain::SpecularChain;
-use crate::cpu::ltc_fit::shared_table;
 use crate::plan::lut::{BrdfLut, LutLayout, DEFAULT_LUT_SIZE};
 use crate::plan::scene::{
     disk_points, material_table, pixel_geometry, PixelGeometry, Scene,
@@ -389,7 +388,8 @@ pub fn render_preview(
         .lights
         .iter()
         .any(|l| l.shape.is_some())
-        .then(|| shared_table(shading.light));
+        .then(|| shared_ltc_table(backend, shading.light))
+        .transpose()?;
     for sun in light.lights {
         match (sun.shape, &table) {
             (Some(shape), Some(table)) => {
