@@ -595,12 +595,12 @@ fn preview_benchmarks() {
     let lut = cpu.brdf_lut(512, 512).unwrap();
     let backends = cpu_and_gpu_backends();
     for (label, backend) in &backends {
-        // The real-time lookup with both truths, and the quality lookup (the split-sum's
-        // cost: its truth is the same).
+        // The recipe's lookup with both truths, and the stretched lookup without its
+        // grazing taps (the split-sum's cost: its truth is the same).
         let cases = [
             (splitsum::SpecularLookup::GENERIC, 512),
             (splitsum::SpecularLookup::GENERIC, 2048),
-            (splitsum::SpecularLookup::Filtered, 512),
+            (splitsum::SpecularLookup::Stretched, 512),
         ];
         for (lookup, truth_samples) in cases {
             let opts = PreviewOptions {

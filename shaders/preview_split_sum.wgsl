@@ -1,5 +1,5 @@
 // The preview's split-sum render: each sphere pixel shaded by `split_sum_shade`
-// (common/split_sum.wgsl, with the quality lookup of common/filtered.wgsl where the light
+// (common/split_sum.wgsl, with the grazing taps of common/filtered.wgsl where the light
 // asks for it) with its row's material and its column's roughness; background
 // pixels read the chain's level 0. CPU mirror: src/cpu/preview_split_sum.rs.
 

@@ -124,14 +124,14 @@ fn split_sum_constants_match_rust() {
     }
 }
 
-/// The quality lookup's constants (`plan::filtered`) and the chain's mappings
+/// The grazing taps' constants (`plan::filtered`) and the chain's mappings
 /// (`plan::chain::MipRoughness`) are the same on both sides.
 #[test]
 fn filtered_lookup_constants_match_rust() {
     use splitsum::plan::chain::{MipRoughness, BABYLON_LOD_SCALE, BABYLON_MINIMUM_VARIANCE};
     use splitsum::plan::filtered::{
-        FILTERED_LEVEL_TAPS, FILTERED_LOD_BIAS, FILTERED_N_DOT_V, FILTERED_PLANE_POINTS,
-        FILTERED_ROUGHNESS, FILTERED_TAPS, MIN_FILTERED_ALPHA,
+        FILTERED_FADE_IN_ROUGHNESS, FILTERED_LEVEL_TAPS, FILTERED_LOD_BIAS, FILTERED_N_DOT_V,
+        FILTERED_PLANE_POINTS, FILTERED_ROUGHNESS, FILTERED_TAPS, MIN_FILTERED_ALPHA,
     };
     let module = parse(
         "preview_split_sum",
@@ -142,6 +142,7 @@ fn filtered_lookup_constants_match_rust() {
         ("FILTERED_N_DOT_V_HI", FILTERED_N_DOT_V[1]),
         ("FILTERED_ROUGHNESS_LO", FILTERED_ROUGHNESS[0]),
         ("FILTERED_ROUGHNESS_HI", FILTERED_ROUGHNESS[1]),
+        ("FILTERED_FADE_IN_ROUGHNESS", FILTERED_FADE_IN_ROUGHNESS),
         ("FILTERED_LOD_BIAS", FILTERED_LOD_BIAS),
         ("FILTERED_PLANE_INNER", FILTERED_PLANE_POINTS[0]),
         ("FILTERED_PLANE_OUTER", FILTERED_PLANE_POINTS[1]),

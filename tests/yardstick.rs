@@ -9,7 +9,7 @@
 //! - degenerate environments generated here (all black; one texel lit; a lamp at a pole;
 //!   across the seam; exactly on the horizon; two equal lamps; a tiny lamp beside a
 //!   bright sky) through `inspect`, `bake --sun split` for every target, `preview` in both
-//!   modes (split with the quality lookup too) and `view --screenshot`: finite figures, a
+//!   modes (split with the stretched lookup too) and `view --screenshot`: finite figures, a
 //!   sane exposure, valid light files.
 
 mod common;
@@ -442,14 +442,14 @@ fn degenerate_environments_through_every_command() {
         let keep = preview_json(&at, &input, "keep", &extra);
         check_figures(&format!("{name}: preview split"), &split, &["sun"]);
         check_figures(&format!("{name}: preview keep"), &keep, &["sun"]);
-        // The quality lookup's figures too (its samples' levels from their densities).
-        let quality = at.join("filtered");
-        std::fs::create_dir_all(&quality).unwrap();
-        let filtered = [&extra[..], &["--lookup", "filtered"]].concat();
-        let filtered = preview_json(&quality, &input, "split", &filtered);
+        // The stretched lookup's figures too (the recipe without its grazing taps).
+        let stretched_dir = at.join("stretched");
+        std::fs::create_dir_all(&stretched_dir).unwrap();
+        let stretched = [&extra[..], &["--lookup", "stretched"]].concat();
+        let stretched = preview_json(&stretched_dir, &input, "split", &stretched);
         check_figures(
-            &format!("{name}: preview split --lookup filtered"),
-            &filtered,
+            &format!("{name}: preview split --lookup stretched"),
+            &stretched,
             &["sun"],
         );
         let ev = |p: &serde_json::Value| p["exposure"].as_f64().unwrap().log2();

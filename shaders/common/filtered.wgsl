@@ -1,4 +1,4 @@
-// The recipe's quality lookup: filtered importance sampling of the prefiltered chain with
+// The recipe's taps at grazing views: filtered importance sampling of the prefiltered chain with
 // samples of GGX's visible normals in the plane of incidence at grazing views (src/plan/filtered.rs says what and
 // why). Mirror of cpu::preview_split_sum::{filtered_lookup, filtered_prefiltered} and
 // plan::filtered::{filtered_share, sample_lod, filtered_point}, plan::chain::MipRoughness::lod.
@@ -14,6 +14,7 @@ const FILTERED_N_DOT_V_LO: f32 = 0.4;
 const FILTERED_N_DOT_V_HI: f32 = 0.6;
 const FILTERED_ROUGHNESS_LO: f32 = 0.6;
 const FILTERED_ROUGHNESS_HI: f32 = 0.9;
+const FILTERED_FADE_IN_ROUGHNESS: f32 = 0.2;
 const FILTERED_LOD_BIAS: f32 = -0.5;
 const MIN_FILTERED_ALPHA: f32 = 1e-3;
 // plan::chain::MipRoughness as u32, and Babylon's mapping's constants.
@@ -35,11 +36,11 @@ fn chain_lod(r_in: f32, levels: u32) -> f32 {
     return clamp(BABYLON_LOD_SCALE * (max_lod + log2(r * r + BABYLON_MINIMUM_VARIANCE)), 0.0, max_lod);
 }
 
-// How much of the quality lookup a point of n_dot_v and roughness r takes.
+// How much of the taps' radiance a point of n_dot_v and roughness r takes.
 fn filtered_share(n_dot_v: f32, r: f32) -> f32 {
     let a = clamp((FILTERED_N_DOT_V_HI - n_dot_v) / (FILTERED_N_DOT_V_HI - FILTERED_N_DOT_V_LO), 0.0, 1.0);
     let b = clamp((FILTERED_ROUGHNESS_HI - r) / (FILTERED_ROUGHNESS_HI - FILTERED_ROUGHNESS_LO), 0.0, 1.0);
-    return a * b;
+    return a * b * clamp(r / FILTERED_FADE_IN_ROUGHNESS, 0.0, 1.0);
 }
 
 // The chain's level for a sample of density pdf among `taps`.
@@ -57,7 +58,7 @@ fn filtered_point(i: u32) -> vec2<f32> {
     return vec2<f32>(0.0, select(y, -y, i < FILTERED_TAPS / 2u));
 }
 
-// The quality lookup's normalised radiance at a point (rgb) and whether a sample was above
+// The taps' normalised radiance at a point (rgb) and whether a sample was above
 // the horizon (w = 1) or not (w = 0).
 fn filtered_prefiltered(n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, m: ShadeMaterial) -> vec4<f32> {
     let alpha = max(alpha_from_roughness(m.roughness), MIN_FILTERED_ALPHA);
@@ -92,7 +93,7 @@ fn filtered_prefiltered(n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, m: ShadeMateri
     return vec4<f32>(0.0);
 }
 
-// The quality lookup at a point as split_sum_shade_with takes it: (radiance, share), or 0
+// The taps at a point as split_sum_shade_with takes it: (radiance, share), or 0
 // where the light has none (light.filtered = 0) or the point takes none.
 fn filtered_lookup(n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, m: ShadeMaterial) -> vec4<f32> {
     let share = filtered_share(n_dot_v, m.roughness);

@@ -22,7 +22,7 @@ struct SplitSumParams {
     ibl_terms: u32,          // IBL_TERMS_* (plan::shading::IblTerms)
     roughness_fresnel: u32,  // 1: kS is the roughness-aware Fresnel
     radiance_blend: u32,     // RADIANCE_BLEND_* (plan::shading::RadianceBlend)
-    filtered: u32,           // 1: the quality lookup (common/filtered.wgsl)
+    filtered: u32,           // 1: the grazing taps (common/filtered.wgsl)
     mip_roughness: u32,      // MIP_ROUGHNESS_*: how the chain's levels map to roughness
     pad: vec2<u32>,
 }
@@ -126,7 +126,7 @@ fn split_sum_shade(n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, m: ShadeMaterial) -
 }
 
 // The split-sum radiance with the chain read along dir, its prefiltered radiance leaning
-// toward `filtered`'s rgb by its w (the quality lookup, common/filtered.wgsl; w = 0 reads
+// toward `filtered`'s rgb by its w (the recipe's grazing taps, common/filtered.wgsl; w = 0 reads
 // the chain alone). Mirror of cpu::preview_split_sum::split_sum_shade_with.
 fn split_sum_shade_with(n: vec3<f32>, dir: vec3<f32>, n_dot_v: f32, m: ShadeMaterial, filtered: vec4<f32>) -> vec3<f32> {
     let prefiltered = stretched_prefiltered(n, dir, n_dot_v, m);

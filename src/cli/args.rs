@@ -289,8 +289,9 @@ pub struct PreviewRenderArgs {
 
     /// Where the split-sum reads the specular chain [default: the shading's own: for the
     /// generic target the README's recipe, which bends R toward the normal, reads two
-    /// sharper taps toward grazing views and blends the read toward the irradiance by r⁴
-    /// (stretched); the others are the lookups engines make, read plainly].
+    /// sharper taps toward grazing views, blends the read toward the irradiance by r⁴ and
+    /// takes four taps of the lobe at grazing views of glossy points (filtered); the
+    /// others are the lookups engines make, read plainly].
     #[arg(long, value_parser = lookup_parser())]
     pub lookup: Option<splitsum::SpecularLookup>,
 }

@@ -82,7 +82,7 @@ pub fn split_sum_shade(light: &SplitSumLight, n: Vec3, v: Vec3, n_dot_v: f32, m:
     split_sum_shade_with(light, n, bent_reflection(n, v, m.bend), n_dot_v, m, filtered)
 }
 
-/// The quality lookup's radiance at a point and its share there (`plan::filtered`), where
+/// The recipe's grazing taps' radiance at a point and its share there (`plan::filtered`), where
 /// `light` has it and the share is above 0.
 pub fn filtered_lookup(
     light: &SplitSumLight,
@@ -136,7 +136,7 @@ pub fn split_sum_shade_with(
     ibl_terms(light.terms, s, irradiance, ab, n_dot_v, m)
 }
 
-/// The quality lookup's prefiltered radiance at a point of normal `n` seen from `v`
+/// The recipe's grazing taps' prefiltered radiance at a point of normal `n` seen from `v`
 /// (`plan::filtered`): [`FILTERED_TAPS`] samples of the GGX lobe's visible normals in the
 /// plane of incidence, each l = reflect(−v, h) above the horizon read from `chain` at the
 /// level of its share of the sphere (`mapping` its levels' roughness), their sum weighted

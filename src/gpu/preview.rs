@@ -36,7 +36,7 @@ pub struct SplitSumUniform {
     pub roughness_fresnel: u32,
     /// How far S leans toward E/π (`RadianceBlend` as u32).
     pub radiance_blend: u32,
-    /// 1 for the recipe's quality lookup (`plan::filtered`).
+    /// 1 for the recipe's taps at grazing views (`plan::filtered`).
     pub filtered: u32,
     /// How the chain's levels map to roughness (`MipRoughness::code`), for the quality
     /// lookup's levels.

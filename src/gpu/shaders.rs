@@ -94,7 +94,7 @@ pub const PREVIEW_TRUTH: &str = kernel_source!(
 );
 
 /// `shaders/view_split_sum.wgsl` with brdf, sampling, cubemap, cube_fetch_bordered,
-/// cube_bilinear, cube_sample, material, split_sum, view_frame, view_surface, ltc,
+/// cube_bilinear, cube_sample, material, split_sum, filtered, view_frame, view_surface, ltc,
 /// view_sun, view_gbuffer_read, view_shade.
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub const VIEW_SPLIT_SUM: &str = kernel_source!(
@@ -109,6 +109,7 @@ pub const VIEW_SPLIT_SUM: &str = kernel_source!(
         "material.wgsl",
         "lut.wgsl",
         "split_sum.wgsl",
+        "filtered.wgsl",
         "view_frame.wgsl",
         "view_surface.wgsl",
         "ltc.wgsl",
@@ -154,7 +155,7 @@ pub const VIEW_GBUFFER: &str = render_source!(
 pub const VIEW_PRESENT_BODY: &str = render_source!("view_present.wgsl", ["view_display.wgsl"]);
 
 /// `shaders/view_forward.wgsl` with brdf, sampling, cubemap, cube_filter_bordered,
-/// cube_sample, material, split_sum, view_frame, view_surface, ltc, view_sun, view_shade,
+/// cube_sample, material, split_sum, filtered, view_frame, view_surface, ltc, view_sun, view_shade,
 /// view_raster, view_display,
 /// without the constants the viewer writes before it (`view::gpu::forward_source`).
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
@@ -169,6 +170,7 @@ pub const VIEW_FORWARD_BODY: &str = render_source!(
         "material.wgsl",
         "lut.wgsl",
         "split_sum.wgsl",
+        "filtered.wgsl",
         "view_frame.wgsl",
         "view_surface.wgsl",
         "ltc.wgsl",

@@ -15,10 +15,11 @@
 //! (the GGX lobe of the reflected directions, seen from v: Heitz 2018's visible normals
 //! reflected about them): two taps either side of the bent direction d, along the plane
 //! of incidence, from a sharper level ([`stretched_taps`]; its strength is the material's
-//! `stretch`, 0 for every other lookup, where both taps are d at the chain's lod). It is
-//! the one the README's WGSL recipe, the preview and the viewer use
-//! ([`SpecularLookup::GENERIC`]), chosen by the lookup study (`examples/lookup_study.rs`,
-//! docs/accuracy.md) against the preview's ground truth.
+//! `stretch`, 0 for every other lookup, where both taps are d at the chain's lod), chosen
+//! by the lookup study (`examples/lookup_study.rs`, docs/accuracy.md) against the
+//! preview's ground truth. [`SpecularLookup::Filtered`] adds four taps of the lobe itself
+//! at grazing views of glossy points (`plan::filtered`): it is the one the README's WGSL
+//! recipe, the preview and the viewer use ([`SpecularLookup::GENERIC`]).
 
 use glam::Vec3;
 
@@ -44,12 +45,12 @@ pub enum SpecularLookup {
     /// (`math::lookup::BEND_FADE_ROUGHNESS`) and scaled down for a low F0
     /// (`math::lookup::fresnel_bend_scale`), read as two taps stretched along the plane of
     /// incidence toward grazing views, from a sharper level (`math::lookup::stretched_taps`):
-    /// splitsum's own, the README's recipe.
+    /// the README's recipe without its taps at grazing views.
     Stretched,
     /// [`SpecularLookup::Stretched`] blended at grazing views of glossy points into
     /// filtered importance sampling of the chain (`plan::filtered`: 4 samples of the GGX
     /// lobe in the plane of incidence, each read at the level of its share of the sphere):
-    /// the recipe's quality mode.
+    /// the README's recipe.
     Filtered,
 }
 
@@ -63,13 +64,14 @@ impl SpecularLookup {
         SpecularLookup::Stretched,
     ];
 
-    /// The lookup of the README's WGSL recipe, the preview and the viewer. Read with the
-    /// recipe's blend toward E/π, it is the lowest lookup, or within 0.1 point of it, in
-    /// all but three of the lookup study's 48 cells at r ≥ 0.25 (six HDRIs, the sun kept
-    /// and split). In the default preview it is below plain R on every sphere, metal or
-    /// dielectric, at every r ≥ 0.25 of the five bundled HDRIs (docs/accuracy.md, "Where
-    /// to look the chain up").
-    pub const GENERIC: SpecularLookup = SpecularLookup::Stretched;
+    /// The lookup of the README's WGSL recipe, the preview and the viewer: the stretched
+    /// lookup (read with the recipe's blend toward E/π, the lowest lookup, or within 0.1
+    /// point of it, in all but three of the lookup study's 48 cells at r ≥ 0.25: six HDRIs,
+    /// the sun kept and split; docs/accuracy.md, "Where to look the chain up") with four
+    /// taps of the lobe at grazing views, which put every bundled HDRI's spheres at
+    /// r ≥ 0.25 within 3.7 % of the truth, lights split (docs/accuracy.md, "The residual's
+    /// lookup").
+    pub const GENERIC: SpecularLookup = SpecularLookup::Filtered;
 
     /// The name `preview --lookup` takes and its JSON writes.
     pub fn id(self) -> &'static str {
@@ -84,7 +86,7 @@ impl SpecularLookup {
     }
 
     /// The lookup called `id` ([`SpecularLookup::id`]): one of [`SpecularLookup::ALL`] or
-    /// the quality mode.
+    /// the recipe's.
     pub fn by_id(id: &str) -> Option<SpecularLookup> {
         SpecularLookup::ALL
             .into_iter()
@@ -107,10 +109,10 @@ impl SpecularLookup {
                 "Frostbite's dominant direction, R bent toward n as the GGX lobe leans (Bevy)"
             }
             SpecularLookup::Stretched => {
-                "Frostbite's direction (its bend faded in below r = 0.5, less for a low F0) as two taps stretched along the plane of incidence toward grazing views (the README's recipe)"
+                "Frostbite's direction (its bend faded in below r = 0.5, less for a low F0) as two taps stretched along the plane of incidence toward grazing views (the README's recipe without its grazing taps)"
             }
             SpecularLookup::Filtered => {
-                "the recipe's, blended at grazing views (n.v < 0.6, r < 0.9) into 4 samples of the GGX lobe in the plane of incidence, each read from the chain at its own level (a quality mode)"
+                "stretched, blended at grazing views (n.v < 0.6, r < 0.9) into 4 samples of the GGX lobe in the plane of incidence, each read from the chain at its own level (the README's recipe)"
             }
         }
     }

@@ -1,4 +1,4 @@
-//! The recipe's quality lookup ([`crate::math::lookup::SpecularLookup::Filtered`]), the
+//! The recipe's taps at grazing views ([`crate::math::lookup::SpecularLookup::Filtered`]), the
 //! plan of `filtered_prefiltered` in `cpu::preview_split_sum` and shaders/common/filtered.wgsl:
 //! filtered importance sampling of the prefiltered chain (Křivánek and Colbert, "Real-time
 //! Shading with Filtered Importance Sampling", EGSR 2008; Colbert and Křivánek, GPU Gems 3
@@ -20,8 +20,8 @@
 //! Σ w L / Σ w (per channel) stands for the prefiltered radiance: the LUT's F0 A + B scales
 //! it as it scales the chain's lookup, so a uniform environment is exact whatever the taps.
 //!
-//! The recipe blends to it by [`filtered_share`]: fully below n·v = 0.4 and r = 0.6, not
-//! at all above n·v = 0.6 or r = 0.9, where the chain's lookup with its blend toward E/π
+//! The recipe blends to it by [`filtered_share`]: fully below n·v = 0.4 and between
+//! r = 0.2 and 0.6, not at all above n·v = 0.6, above r = 0.9 or at a mirror, where the chain's lookup with its blend toward E/π
 //! is the better one (a few taps of a wide lobe are worse than the chain at r = 1). A
 //! study of 50 estimators on four HDRIs, then of the taps' layout in the preview itself,
 //! chose these (docs/accuracy.md, "The residual's lookup"): four taps in the plane of
@@ -30,7 +30,7 @@
 
 use crate::plan::chain::MipRoughness;
 
-/// Samples of the quality lookup at a point where it is used in full.
+/// Samples of the lobe at a point where they are used in full.
 pub const FILTERED_TAPS: u32 = 4;
 
 /// The sample count a tap's share of the sphere counts ([`sample_lod`]): each of the
@@ -44,25 +44,32 @@ pub const FILTERED_LEVEL_TAPS: u32 = 2;
 /// midpoints of its quarters (`plan::filtered` tests check it).
 pub const FILTERED_PLANE_POINTS: [f32; 2] = [0.197_643_95, 0.634_704_6];
 
-/// n·v below which the quality lookup is used in full, and above which not at
+/// n·v below which the taps are used in full, and above which not at
 /// all (linear between).
 pub const FILTERED_N_DOT_V: [f32; 2] = [0.4, 0.6];
 
-/// Roughness below which the quality lookup is used in full, and above which not at all.
+/// Roughness below which the taps are used in full, and above which not at all.
 pub const FILTERED_ROUGHNESS: [f32; 2] = [0.6, 0.9];
+
+/// Roughness from which the taps are used in full, fading in from none at a mirror (r = 0),
+/// whose lobe is the chain's level 0 along R, which the chain's read gives exactly (taps
+/// of a lobe a texel wide would only blur it): under the first r the study measured, 0.25.
+pub const FILTERED_FADE_IN_ROUGHNESS: f32 = 0.2;
 
 /// Levels added to each sample's level ([`sample_lod`]): the sharpest of −3 … +2 in the
 /// study (+0 costs 0.5–1.5 points).
 pub const FILTERED_LOD_BIAS: f32 = -0.5;
 
-/// The smallest α the quality lookup samples at: a mirror's lobe is the chain's level 0
+/// The smallest α the taps sample at: a mirror's lobe is the chain's level 0
 /// along R, which the recipe's lookup already reads exactly.
 pub const MIN_FILTERED_ALPHA: f32 = 1e-3;
 
-/// How much of the quality lookup a point of `n_dot_v` and roughness `r` takes, in [0, 1].
+/// How much of the taps' radiance a point of `n_dot_v` and roughness `r` takes, in [0, 1].
 pub fn filtered_share(n_dot_v: f32, r: f32) -> f32 {
     let ramp = |x: f32, [lo, hi]: [f32; 2]| ((hi - x) / (hi - lo)).clamp(0.0, 1.0);
-    ramp(n_dot_v, FILTERED_N_DOT_V) * ramp(r, FILTERED_ROUGHNESS)
+    ramp(n_dot_v, FILTERED_N_DOT_V)
+        * ramp(r, FILTERED_ROUGHNESS)
+        * (r / FILTERED_FADE_IN_ROUGHNESS).clamp(0.0, 1.0)
 }
 
 /// The chain's level for a sample of density `pdf` (per steradian) among `taps`: the level
@@ -106,6 +113,8 @@ mod tests {
         assert_eq!(filtered_share(0.2, 1.0), 0.0);
         assert!((filtered_share(0.5, 0.5) - 0.5).abs() < 1e-6);
         assert!((filtered_share(0.2, 0.75) - 0.5).abs() < 1e-6);
+        assert_eq!(filtered_share(0.2, 0.0), 0.0);
+        assert!((filtered_share(0.2, 0.1) - 0.5).abs() < 1e-6);
     }
 
     /// The taps sit at the midpoints of the disc's four quarters, two each side of its

@@ -6,7 +6,7 @@
 //! and their quadrature ([`lut`]), the BC6H and ASTC encoders' settings ([`bc6h`],
 //! [`astc`]), the shading
 //! functions' material ([`material`]), how a shader combines a bake's files ([`shading`]:
-//! the recipe's and each engine's), the recipe's quality lookup ([`filtered`]), the
+//! the recipe's and each engine's), the recipe's taps at grazing views ([`filtered`]), the
 //! preview's scene ([`scene`]) and the LTC table of area lights ([`ltc`]).
 
 pub mod astc;

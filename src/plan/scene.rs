@@ -274,8 +274,8 @@ pub struct SplitSumLight<'a> {
     pub lut: &'a BrdfLut,
     /// How the shading combines the reads (the recipe's, or an engine's).
     pub terms: ShadingTerms,
-    /// The recipe's quality lookup (`plan::filtered`), reading the chain's levels as this
-    /// mapping says; None for the real-time lookup.
+    /// The recipe's taps at grazing views (`plan::filtered`), reading the chain's levels as
+    /// this mapping says; None for a lookup without them.
     pub filtered: Option<crate::plan::chain::MipRoughness>,
 }
 

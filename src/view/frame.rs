@@ -351,9 +351,11 @@ impl ViewLight {
             specular: &self.specular,
             irradiance: &self.irradiance,
             lut: &self.lut,
-            // The viewer shades as the README's recipe, in real time.
+            // The viewer shades as the README's recipe.
             terms: ShadingTerms::GENERIC,
-            filtered: None,
+            filtered: SpecularLookup::GENERIC
+                .filtered()
+                .then_some(self.chain.roughness),
         }
     }
 
