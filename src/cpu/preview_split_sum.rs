@@ -17,7 +17,9 @@
 //! direction, faded in below r = 0.5 and scaled down for a low F0; the engines' own in
 //! their modes), read as the mean of two taps
 //! stretched along the plane of incidence toward grazing views, from a sharper level, by
-//! the material's stretch (`math::lookup::stretched_taps`; one tap with stretch 0),
+//! the material's stretch (`math::lookup::stretched_taps`; one tap with stretch 0), and
+//! for the recipe's lookup leaning at grazing views of glossy points toward four taps of
+//! the lobe itself ([`filtered_prefiltered`], `plan::filtered`),
 //! (A, B) the LUT at uv = (n·v, r) sampled bilinearly with clamp-to-edge,
 //! prefiltered a seamless trilinear lookup at the chain's lod for r, E/π a seamless
 //! bilinear lookup of the irradiance cube, and W the cosine-weighted mean of the
