@@ -24,8 +24,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if (g.sphere) {
         let n_dot_v = max(dot(g.dir, g.v), scene.min_n_dot_v);
         let m = preview_material(g.material, g.column);
-        let filtered = filtered_lookup(g.dir, g.v, n_dot_v, m);
-        c = split_sum_shade_with(g.dir, bent_reflection(g.dir, g.v, m.bend), n_dot_v, m, filtered);
+        c = split_sum_shade(g.dir, g.v, n_dot_v, m);
     } else {
         c = sample_cube_lod(specular, light.specular_size, light.specular_levels, g.dir, 0.0);
     }

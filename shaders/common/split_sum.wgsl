@@ -6,7 +6,9 @@
 // directions (diffuse_fresnel_weight in common/brdf.wgsl), and
 // d = normalize(mix(R, n, bend)) the lookup direction, R = reflect(-v, n) bent toward
 // the normal by the material's bend (of r and F0), read as two taps stretched toward grazing views by the material's stretch
-// (math::lookup: Frostbite's dominant direction, stretched, for the generic target).
+// (math::lookup: Frostbite's dominant direction, stretched, for the generic target), leaning
+// toward the recipe's taps of the lobe at grazing views where the light asks for them
+// (common/filtered.wgsl, which every kernel including this one includes too).
 // CPU mirror: src/cpu/preview_split_sum.rs (same function names).
 //
 // The including kernel declares the baked light as module globals:
@@ -120,9 +122,12 @@ fn radiance_blend_weight(r: f32) -> f32 {
 }
 
 // The split-sum radiance towards v of a point with normal n; n_dot_v is n.v clamped
-// away from 0 by the caller (silhouette normals are perpendicular to v).
+// away from 0 by the caller (silhouette normals are perpendicular to v). With the recipe's
+// taps at grazing views (light.filtered) the prefiltered radiance leans toward
+// `filtered_lookup`'s (common/filtered.wgsl).
 fn split_sum_shade(n: vec3<f32>, v: vec3<f32>, n_dot_v: f32, m: ShadeMaterial) -> vec3<f32> {
-    return split_sum_shade_with(n, bent_reflection(n, v, m.bend), n_dot_v, m, vec4<f32>(0.0));
+    let filtered = filtered_lookup(n, v, n_dot_v, m);
+    return split_sum_shade_with(n, bent_reflection(n, v, m.bend), n_dot_v, m, filtered);
 }
 
 // The split-sum radiance with the chain read along dir, its prefiltered radiance leaning

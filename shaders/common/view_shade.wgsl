@@ -1,7 +1,7 @@
 // The viewer's split-sum radiance of what a pixel sees, for the deferred kernel
 // (view_split_sum.wgsl) and the forward pass (view_forward.wgsl): a surface shaded by
-// `split_sum_shade_with` (common/split_sum.wgsl, the preview's function) with the
-// recipe's taps at grazing views (`filtered_lookup`, common/filtered.wgsl) plus the point lights
+// `split_sum_shade` (common/split_sum.wgsl, the preview's function, with the recipe's taps
+// at grazing views) plus the point lights
 // on and the lights taken out of the environment (common/view_sun.wgsl), the background
 // the chain's level 0. Mirror of `shade_split_sum` in src/view/cpu.rs.
 // The including shader declares what split_sum.wgsl and view_surface.wgsl need, and
@@ -14,7 +14,5 @@ fn background_radiance(dir: vec3<f32>) -> vec3<f32> {
 
 // `point_lights`: frame.light_count; `sun_lights`: frame.sun.x (the lights taken out).
 fn surface_radiance(px: PixelView, point_lights: u32, sun_lights: u32) -> vec3<f32> {
-    let filtered = filtered_lookup(px.s.n, px.v, px.n_dot_v, px.m);
-    let ibl = split_sum_shade_with(px.s.n, bent_reflection(px.s.n, px.v, px.m.bend), px.n_dot_v, px.m, filtered);
-    return ibl + direct_lights(px, point_lights) + split_lights_shade(px, sun_lights);
+    return split_sum_shade(px.s.n, px.v, px.n_dot_v, px.m) + direct_lights(px, point_lights) + split_lights_shade(px, sun_lights);
 }

@@ -38,8 +38,8 @@ pub struct SplitSumUniform {
     pub radiance_blend: u32,
     /// 1 for the recipe's taps at grazing views (`plan::filtered`).
     pub filtered: u32,
-    /// How the chain's levels map to roughness (`MipRoughness::code`), for the quality
-    /// lookup's levels.
+    /// How the chain's levels map to roughness (`MipRoughness::code`), for the grazing
+    /// taps' levels.
     pub mip_roughness: u32,
     /// Padding to 16 bytes.
     pub pad: [u32; 2],
