@@ -9,7 +9,9 @@ struct VertexIn {
 }
 
 struct VertexOut {
-    @builtin(position) clip: vec4<f32>,
+    // Invariant: the forward pass's depth pre-pass and its shaded pass must meet the same
+    // depths (src/view/gpu/pipelines.rs, `Depth::Equal`).
+    @builtin(position) @invariant clip: vec4<f32>,
     @location(0) world: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) @interpolate(flat) id: f32,

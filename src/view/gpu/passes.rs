@@ -63,6 +63,25 @@ impl GpuRenderer {
         let p = self.compiled_display(key.format)?;
         let surfaces = self.compiled_forward(key)?;
         let hud = t.hud.create_view(&Default::default());
+        // The depth pre-pass: the model's and the floor's depth alone, so that the shaded
+        // pass below (`Depth::Equal`) shades each pixel once, where a software rasteriser
+        // would otherwise shade every fragment of a small-triangle model that is nearer
+        // than what was drawn before it (docs/accuracy.md, "The viewer").
+        {
+            let (_, (vertices, count), _) = self.frame_inputs()?;
+            let mut pass = begin_pass(encoder, "view depth pre-pass", &[], Some((&t.depth, true)));
+            pass.set_pipeline(&surfaces.depth);
+            // Its vertex stage reads the frame (binding 0) alone.
+            let group = bind_group(
+                &self.device,
+                None,
+                &surfaces.depth.get_bind_group_layout(0),
+                &[self.frame.as_entire_binding()],
+            );
+            pass.set_bind_group(0, &group, &[]);
+            pass.set_vertex_buffer(0, vertices.slice(..));
+            pass.draw(0..count, 0..1);
+        }
         let resources = [
             self.frame.as_entire_binding(),
             light.split_sum.as_entire_binding(),
@@ -81,7 +100,7 @@ impl GpuRenderer {
                 encoder,
                 "view forward",
                 &[colour_attachment(target)],
-                Some(&t.depth),
+                Some((&t.depth, false)),
             );
             let drawn = self.draw_scene(&mut pass, (&surfaces.mesh, &surfaces.sphere), &resources);
             pass.set_pipeline(&p.background);
@@ -111,7 +130,7 @@ impl GpuRenderer {
                 encoder,
                 "view gbuffer",
                 &[colour_attachment(&t.position), colour_attachment(&t.normal)],
-                Some(&t.depth),
+                Some((&t.depth, true)),
             );
             let drawn = self.draw_scene(
                 &mut pass,
@@ -232,23 +251,30 @@ fn colour_attachment(view: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAt
     })
 }
 
-/// A render pass into `colours`, with `depth` cleared to 1 (the far plane) when given.
+/// A render pass into `colours` and `depth` when given: (its view, whether it is cleared
+/// to 1, the far plane, or kept as an earlier pass left it).
 fn begin_pass<'e>(
     encoder: &'e mut wgpu::CommandEncoder,
     label: &str,
     colours: &[Option<wgpu::RenderPassColorAttachment<'_>>],
-    depth: Option<&wgpu::TextureView>,
+    depth: Option<(&wgpu::TextureView, bool)>,
 ) -> wgpu::RenderPass<'e> {
     encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: Some(label),
         color_attachments: colours,
-        depth_stencil_attachment: depth.map(|view| wgpu::RenderPassDepthStencilAttachment {
-            view,
-            depth_ops: Some(wgpu::Operations {
-                load: wgpu::LoadOp::Clear(1.0),
-                store: wgpu::StoreOp::Store,
-            }),
-            stencil_ops: None,
+        depth_stencil_attachment: depth.map(|(view, clear)| {
+            wgpu::RenderPassDepthStencilAttachment {
+                view,
+                depth_ops: Some(wgpu::Operations {
+                    load: if clear {
+                        wgpu::LoadOp::Clear(1.0)
+                    } else {
+                        wgpu::LoadOp::Load
+                    },
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }
         }),
         timestamp_writes: None,
         occlusion_query_set: None,

@@ -101,6 +101,9 @@ impl ForwardKey {
 /// The forward pass's model and sphere pipelines for one [`ForwardKey`].
 pub(super) struct ForwardPipelines {
     pub(super) key: ForwardKey,
+    /// The mesh's depth alone (the depth pre-pass).
+    pub(super) depth: wgpu::RenderPipeline,
+    /// The mesh shaded where the pre-pass left its depth.
     pub(super) mesh: wgpu::RenderPipeline,
     pub(super) sphere: wgpu::RenderPipeline,
 }
@@ -152,21 +155,22 @@ impl ForwardPipelines {
             ("SUN_LIGHTS", key.sun_lights as f64),
             ("AREA_LIGHTS", key.area_lights as f64),
         ];
-        let surface = |fragment| {
+        let surface = |fragment, depth| {
             render_pipeline(
                 device,
                 forward,
                 ("vs_main", fragment),
                 &targets,
                 &[Some(layout.clone())],
-                Depth::Nearest,
+                depth,
                 &constants,
             )
         };
         ForwardPipelines {
             key,
-            mesh: surface("fs_mesh"),
-            sphere: surface("fs_sphere"),
+            depth: depth_pipeline(device, forward, &[Some(layout.clone())]),
+            mesh: surface("fs_mesh", Depth::Equal),
+            sphere: surface("fs_sphere", Depth::Nearest),
         }
     }
 }
@@ -205,6 +209,44 @@ pub(super) enum Depth {
     /// Drawn where nothing nearer is (less or equal), not written: the forward pass's
     /// background on the far plane.
     Behind,
+    /// Drawn where the depth is the fragment's own (equal), not written: the forward
+    /// pass's mesh after its depth pre-pass, so that each pixel is shaded once.
+    Equal,
+}
+
+fn depth_state(write: bool, compare: wgpu::CompareFunction) -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format: DEPTH_FORMAT,
+        depth_write_enabled: Some(write),
+        depth_compare: Some(compare),
+        stencil: Default::default(),
+        bias: Default::default(),
+    }
+}
+
+/// The depth pre-pass: `module`'s `vs_main` (whose position is `@invariant`, so that the
+/// shaded pass meets the same depths) with no fragment stage, tested (less) and written.
+fn depth_pipeline(
+    device: &wgpu::Device,
+    module: &wgpu::ShaderModule,
+    vertex_buffers: &[Option<wgpu::VertexBufferLayout>],
+) -> wgpu::RenderPipeline {
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("depth pre-pass"),
+        layout: None,
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some("vs_main"),
+            compilation_options: Default::default(),
+            buffers: vertex_buffers,
+        },
+        primitive: wgpu::PrimitiveState::default(),
+        depth_stencil: Some(depth_state(true, wgpu::CompareFunction::Less)),
+        multisample: Default::default(),
+        fragment: None,
+        multiview_mask: None,
+        cache: None,
+    })
 }
 
 /// A render pipeline of `module`'s `vertex` and `fragment` entry points, the fragment
@@ -218,13 +260,6 @@ pub(super) fn render_pipeline(
     depth: Depth,
     constants: &[(&str, f64)],
 ) -> wgpu::RenderPipeline {
-    let depth_state = |write: bool, compare: wgpu::CompareFunction| wgpu::DepthStencilState {
-        format: DEPTH_FORMAT,
-        depth_write_enabled: Some(write),
-        depth_compare: Some(compare),
-        stencil: Default::default(),
-        bias: Default::default(),
-    };
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(fragment),
         layout: None,
@@ -239,6 +274,7 @@ pub(super) fn render_pipeline(
             Depth::None => None,
             Depth::Nearest => Some(depth_state(true, wgpu::CompareFunction::Less)),
             Depth::Behind => Some(depth_state(false, wgpu::CompareFunction::LessEqual)),
+            Depth::Equal => Some(depth_state(false, wgpu::CompareFunction::Equal)),
         },
         multisample: Default::default(),
         fragment: Some(wgpu::FragmentState {
