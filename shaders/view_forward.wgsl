@@ -1,6 +1,6 @@
 // The viewer's split-sum frame in one render pass (vertex and fragment stages), what the
 // window draws while the split-sum view is shown: each object and floor fragment shaded
-// as the deferred kernel shades a G-buffer pixel (`surface_radiance`,
+// as the deferred kernel shades a G-buffer pixel (`object_radiance`, `floor_radiance`,
 // common/view_shade.wgsl), the background where nothing nearer was drawn
 // (`background_radiance`), then displayed with the HUD over it as the present pass shows
 // a split-sum pixel (common/view_display.wgsl). The same functions of the same surface as
@@ -23,6 +23,8 @@
 @group(0) @binding(8) var<storage, read> lights: array<vec4<f32>>;
 @group(0) @binding(9) var<storage, read> sun_texels: array<vec4<f32>>;
 @group(0) @binding(10) var shadow_map: texture_2d_array<f32>;
+@group(0) @binding(11) var<storage, read> floor_table: array<vec4<f32>>;
+@group(0) @binding(12) var<storage, read> floor_shadow: array<f32>;
 
 // The frame's light counts (frame.light_count, frame.sun.x), constants of the pipeline
 // (src/view/gpu/mod.rs, `ForwardKey`): with them constant, the compiler unrolls the
@@ -31,18 +33,32 @@
 override POINT_LIGHTS: u32 = 0u;
 override SUN_LIGHTS: u32 = 0u;
 
-// The displayed split-sum colour of surface `s` at the pixel centred at `centre`.
+// The displayed split-sum colour of the object's surface `s` at the pixel centred at
+// `centre`.
 fn shade_fragment(centre: vec2<f32>, s: Surface) -> vec4<f32> {
-    return with_hud(display(surface_radiance(surface_view(centre, s), POINT_LIGHTS, SUN_LIGHTS)), vec2<u32>(centre));
+    return with_hud(display(object_radiance(surface_view(centre, s), POINT_LIGHTS, SUN_LIGHTS)), vec2<u32>(centre));
 }
 
-@fragment
-fn fs_mesh(v: VertexOut) -> @location(0) vec4<f32> {
+// The surface of a mesh fragment.
+fn mesh_surface(v: VertexOut) -> Surface {
     var s: Surface;
     s.id = u32(round(v.id));
     s.p = v.world;
     s.n = normalize(v.normal);
-    return shade_fragment(v.clip.xy, s);
+    return s;
+}
+
+// The model's fragments (the floor has a pipeline of its own, `fs_floor`, so that
+// neither pays for the other's shading on a rasteriser that runs both sides of a branch).
+@fragment
+fn fs_mesh(v: VertexOut) -> @location(0) vec4<f32> {
+    return shade_fragment(v.clip.xy, mesh_surface(v));
+}
+
+@fragment
+fn fs_floor(v: VertexOut) -> @location(0) vec4<f32> {
+    let px = surface_view(v.clip.xy, mesh_surface(v));
+    return with_hud(display(floor_radiance(px, POINT_LIGHTS, SUN_LIGHTS)), vec2<u32>(v.clip.xy));
 }
 
 struct SphereFragment {

@@ -1,6 +1,6 @@
 // The viewer's deferred split-sum shading: each pixel of the G-buffer shaded as
-// common/view_shade.wgsl says (surfaces by the preview's split-sum function plus the
-// point lights on, the background by the chain's level 0), for the heat map and the HDR
+// common/view_shade.wgsl says (the object by the preview's split-sum function, the floor
+// from its table, each plus the point lights on, the background by the chain's level 0), for the heat map and the HDR
 // readback; the window's split-sum view draws the same in one pass (view_forward.wgsl).
 // Writes (radiance, surface id) per pixel. CPU mirror: src/view/cpu.rs.
 
@@ -15,6 +15,8 @@
 @group(0) @binding(8) var<storage, read_write> shaded: array<vec4<f32>>;
 @group(0) @binding(9) var<storage, read> sun_texels: array<vec4<f32>>;
 @group(0) @binding(10) var shadow_map: texture_2d_array<f32>;
+@group(0) @binding(11) var<storage, read> floor_table: array<vec4<f32>>;
+@group(0) @binding(12) var<storage, read> floor_shadow: array<f32>;
 
 @compute @workgroup_size(WORKGROUP_X, WORKGROUP_Y, WORKGROUP_Z)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {

@@ -464,6 +464,14 @@ fn view_area_light_constants_match_rust() {
             "MAX_SHADOW_MAPS",
             splitsum::view::frame::MAX_SHADOW_MAPS as u32,
         ),
+        (
+            "FLOOR_SHADOW_PARAMS",
+            splitsum::view::floor_shadow::FLOOR_SHADOW_PARAMS as u32,
+        ),
+        (
+            "FLOOR_SHADOW_HEADER",
+            splitsum::view::floor_shadow::FLOOR_SHADOW_HEADER as u32,
+        ),
     ] {
         assert_eq!(wgsl_u32_constant(&module, name), rust, "{name}");
     }

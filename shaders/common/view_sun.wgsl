@@ -208,8 +208,9 @@ fn split_lights_shade(px: PixelView, count: u32) -> vec3<f32> {
 // The truth's `count` texels of the lights' regions, from entry `first` on (two entries
 // each), shading the surface a pixel sees, each through its light's visibility.
 fn truth_texels_shade(px: PixelView, first: u32, count: u32) -> vec3<f32> {
-    // The lights' visibilities, when there is a texel to shade.
-    let visibility = lights_visibility(px, min(count, 1u) * frame.sun.x);
+    // The lights' visibilities, when there is a texel to shade (the floor's from its grids,
+    // common/view_floor_shadow.wgsl).
+    let visibility = surface_visibility(px, min(count, 1u) * frame.sun.x);
     let alpha = alpha_from_roughness(px.m.roughness);
     var sum = vec3<f32>(0.0);
     for (var i = 0u; i < count; i++) {

@@ -129,6 +129,28 @@ pub fn bind_group(
     })
 }
 
+/// A bind group of `layout` with each resource at the binding it names: for an entry point
+/// that reads some of its module's bindings only (a pipeline's layout from its shader
+/// holds the bindings its entry point reads).
+pub fn bind_group_at(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    resources: &[(u32, wgpu::BindingResource<'_>)],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry<'_>> = resources
+        .iter()
+        .map(|(binding, r)| wgpu::BindGroupEntry {
+            binding: *binding,
+            resource: r.clone(),
+        })
+        .collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: None,
+        layout,
+        entries: &entries,
+    })
+}
+
 /// Creates a buffer initialised with `contents`.
 pub fn buffer_with_data(
     device: &wgpu::Device,

@@ -95,7 +95,7 @@ pub const PREVIEW_TRUTH: &str = kernel_source!(
 
 /// `shaders/view_split_sum.wgsl` with brdf, sampling, cubemap, cube_fetch_bordered,
 /// cube_bilinear, cube_sample, material, split_sum, filtered, view_frame, view_surface, ltc,
-/// view_sun, view_gbuffer_read, view_shade.
+/// view_sun, view_floor_shadow, view_floor, view_gbuffer_read, view_shade.
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub const VIEW_SPLIT_SUM: &str = kernel_source!(
     "view_split_sum.wgsl",
@@ -114,6 +114,8 @@ pub const VIEW_SPLIT_SUM: &str = kernel_source!(
         "view_surface.wgsl",
         "ltc.wgsl",
         "view_sun.wgsl",
+        "view_floor_shadow.wgsl",
+        "view_floor.wgsl",
         "view_gbuffer_read.wgsl",
         "view_shade.wgsl"
     ]
@@ -121,7 +123,7 @@ pub const VIEW_SPLIT_SUM: &str = kernel_source!(
 
 /// `shaders/view_truth.wgsl` with brdf, sampling, cubemap, cube_fetch_bordered,
 /// cube_bilinear, cube_sample, material, truth, view_frame, view_surface, ltc, view_sun,
-/// view_gbuffer_read.
+/// view_floor_shadow, view_gbuffer_read.
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
 pub const VIEW_TRUTH: &str = kernel_source!(
     "view_truth.wgsl",
@@ -138,6 +140,7 @@ pub const VIEW_TRUTH: &str = kernel_source!(
         "view_surface.wgsl",
         "ltc.wgsl",
         "view_sun.wgsl",
+        "view_floor_shadow.wgsl",
         "view_gbuffer_read.wgsl"
     ]
 );
@@ -155,7 +158,8 @@ pub const VIEW_GBUFFER: &str = render_source!(
 pub const VIEW_PRESENT_BODY: &str = render_source!("view_present.wgsl", ["view_display.wgsl"]);
 
 /// `shaders/view_forward.wgsl` with brdf, sampling, cubemap, cube_filter_bordered,
-/// cube_sample, material, split_sum, filtered, view_frame, view_surface, ltc, view_sun, view_shade,
+/// cube_sample, material, split_sum, filtered, view_frame, view_surface, ltc, view_sun,
+/// view_floor_shadow, view_floor, view_shade,
 /// view_raster, view_display,
 /// without the constants the viewer writes before it (`view::gpu::forward_source`).
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
@@ -175,6 +179,8 @@ pub const VIEW_FORWARD_BODY: &str = render_source!(
         "view_surface.wgsl",
         "ltc.wgsl",
         "view_sun.wgsl",
+        "view_floor_shadow.wgsl",
+        "view_floor.wgsl",
         "view_shade.wgsl",
         "view_raster.wgsl",
         "view_display.wgsl"

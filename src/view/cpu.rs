@@ -17,9 +17,12 @@ use crate::math::brdf::alpha_from_roughness;
 use crate::math::color::linear_to_srgb;
 use crate::plan::ltc::{LtcPoint, LtcTable, QuadLight};
 use crate::plan::material::{directional_light, point_light, ShadeMaterial};
+use crate::plan::scene::MIN_N_DOT_V;
 use crate::plan::shading::LightBrdf;
 use crate::stages::preview::picture::{luminance, pbr_neutral, HEAT_BACKGROUND};
 use crate::view::camera::CameraFrame;
+use crate::view::floor::{floor_layer, FloorTable, FLOOR_LAYERS};
+use crate::view::floor_shadow::FloorShadows;
 use crate::view::frame::{
     unpack_material, FrameUniform, Mode, PresentUniform, Surface, ViewLight, MAX_SHADOW_MAPS,
     SPLIT_RECORD,
@@ -96,12 +99,23 @@ fn direct_lights(frame: &FrameUniform, lights: &[[f32; 4]], px: &PixelView) -> V
         .sum()
 }
 
-/// Each light's visibility for the surface a pixel sees, by light: from its shadow map
-/// for the first `count` lights that have one, 1 for the rest (`lights_visibility` in
-/// view_sun.wgsl).
+/// What the shading passes read of the lights' shadows: the maps' texels, layer after
+/// layer (read as `frame.sun` says), and the floor's grids.
+#[derive(Clone, Copy)]
+pub struct Shadows<'a> {
+    /// The maps' texels.
+    pub maps: &'a [f32],
+    /// The floor's grids of the same maps.
+    pub floor: &'a FloorShadows,
+}
+
+/// Each light's visibility for the surface a pixel sees, by light: for the first `count`
+/// lights that have a map, the floor's from its grid, the object's from the map; 1 for
+/// the rest (`surface_visibility` in view_floor_shadow.wgsl; the object's alone is
+/// `lights_visibility` in view_sun.wgsl, the floor's `floor_lights_visibility`).
 fn lights_visibility(
     frame: &FrameUniform,
-    shadow: &[f32],
+    shadow: Shadows<'_>,
     px: &PixelView,
     count: u32,
 ) -> [f32; MAX_SHADOW_MAPS] {
@@ -111,7 +125,10 @@ fn lights_visibility(
         .enumerate()
         .take(count.min(frame.sun[2]) as usize)
     {
-        *v = shadow::layer_visibility(&frame.shadow, frame.sun[3], shadow, k, px.p, px.n);
+        *v = match px.surface {
+            Surface::Floor => shadow.floor.visibility(k, px.p),
+            _ => shadow::layer_visibility(&frame.shadow, frame.sun[3], shadow.maps, k, px.p, px.n),
+        };
     }
     visibility
 }
@@ -170,6 +187,35 @@ impl AreaLights {
     }
 }
 
+/// Split light `i` of `texels` shading the surface a pixel sees, unshadowed, and its shadow
+/// map's index (its record's w): a directional light of E⊥, or an area light from
+/// `area`'s table at the pixel's LTC `point`.
+fn split_light(
+    texels: &[[f32; 4]],
+    area: &AreaLights,
+    point: Option<&LtcPoint>,
+    px: &PixelView,
+    i: usize,
+) -> (Vec3, f32) {
+    let [t, r] = [0, 1].map(|k| texels[SPLIT_RECORD * i + k]);
+    let radiance = Vec3::from_slice(&r[..3]);
+    let c = match (point, &area.quads[i]) {
+        (Some(point), Some(quad)) => {
+            let (spec, diff) = point.shade_quad(px.n, px.v, px.n_dot_v, &px.m, quad, radiance);
+            spec + diff * px.m.albedo
+        }
+        _ => directional(px, Vec3::from_slice(&t[..3]), radiance * t[3]),
+    };
+    (c, r[3])
+}
+
+/// The pixel's LTC, once for every area light (none without a table).
+fn ltc_point(area: &AreaLights, px: &PixelView) -> Option<LtcPoint> {
+    area.table
+        .as_ref()
+        .map(|table| LtcPoint::new(table, px.n, px.v, px.n_dot_v, &px.m))
+}
+
 /// The `count` lights split out shading the surface a pixel sees, each through its
 /// visibility in `shadow` (the maps' texels): a directional light of E⊥, or an area
 /// light from `area`'s table (`split_lights_shade` in view_sun.wgsl, which reads the
@@ -178,31 +224,54 @@ fn split_lights_shade(
     frame: &FrameUniform,
     texels: &[[f32; 4]],
     area: &AreaLights,
-    shadow: &[f32],
+    shadow: Shadows<'_>,
     px: &PixelView,
     count: u32,
 ) -> Vec3 {
     let visibility = lights_visibility(frame, shadow, px, count);
-    // The point's LTC, once for every area light.
-    let point = area
-        .table
-        .as_ref()
-        .map(|table| LtcPoint::new(table, px.n, px.v, px.n_dot_v, &px.m));
+    let point = ltc_point(area, px);
     (0..count as usize)
         .map(|i| {
-            let [t, r] = [0, 1].map(|k| texels[SPLIT_RECORD * i + k]);
-            let radiance = Vec3::from_slice(&r[..3]);
-            let c = match (&point, &area.quads[i]) {
-                (Some(point), Some(quad)) => {
-                    let (spec, diff) =
-                        point.shade_quad(px.n, px.v, px.n_dot_v, &px.m, quad, radiance);
-                    spec + diff * px.m.albedo
-                }
-                _ => directional(px, Vec3::from_slice(&t[..3]), radiance * t[3]),
-            };
-            c * shadowed(&visibility, r[3])
+            let (c, index) = split_light(texels, area, point.as_ref(), px, i);
+            c * shadowed(&visibility, index)
         })
         .sum()
+}
+
+/// The floor's shading by view direction, layer by layer (`view::floor`): the floor's
+/// split-sum IBL and the lights split out, each light in its shadow map's layer, shaded as
+/// a floor pixel seen along v would be shaded pixel by pixel (n·v clamped as `pixel_view`
+/// clamps it), for the unit v towards the eye. `floor` is the floor's material.
+pub fn floor_layers<'a>(
+    light: &'a ViewLight,
+    floor: &'a ShadeMaterial,
+) -> impl Fn(Vec3) -> [Vec3; FLOOR_LAYERS] + Sync + 'a {
+    let split = light.split_sum();
+    let area = AreaLights::of(light);
+    move |v| {
+        let px = PixelView {
+            dir: -v,
+            surface: Surface::Floor,
+            p: Vec3::ZERO,
+            n: Vec3::Y,
+            v,
+            n_dot_v: v.y.max(MIN_N_DOT_V),
+            m: *floor,
+        };
+        let mut layers = [Vec3::ZERO; FLOOR_LAYERS];
+        layers[0] = split_sum_shade(&split, px.n, px.v, px.n_dot_v, &px.m);
+        let point = ltc_point(&area, &px);
+        for i in 0..light.sun_count() as usize {
+            let (c, index) = split_light(&light.sun_texels, &area, point.as_ref(), &px, i);
+            layers[floor_layer(index)] += c;
+        }
+        layers
+    }
+}
+
+/// The floor's table of `light` ([`floor_layers`] at the table's view directions).
+pub fn floor_table(light: &ViewLight, floor: &ShadeMaterial) -> FloorTable {
+    FloorTable::new(floor_layers(light, floor))
 }
 
 /// The truth's `count` texels of the lights' regions from entry `first` on, shading the
@@ -211,7 +280,7 @@ fn split_lights_shade(
 fn truth_texels_shade(
     frame: &FrameUniform,
     texels: &[[f32; 4]],
-    shadow: &[f32],
+    shadow: Shadows<'_>,
     px: &PixelView,
     (first, count): (usize, u32),
 ) -> Vec3 {
@@ -233,12 +302,12 @@ fn truth_texels_shade(
 
 /// The split-sum pass: per pixel (radiance, surface id), the background's and the
 /// surfaces' as `background_radiance` and `surface_radiance` in view_shade.wgsl; `shadow`
-/// holds the lights' shadow maps' texels, layer after layer (read as `frame.sun` says).
+/// the lights' shadows, `floor` the floor's table of `light` ([`floor_table`]).
 pub fn shade_split_sum(
     frame: &FrameUniform,
-    light: &ViewLight,
+    (light, floor): (&ViewLight, &FloorTable),
     lights: &[[f32; 4]],
-    shadow: &[f32],
+    shadow: Shadows<'_>,
     g: &GBuffer,
 ) -> Vec<[f32; 4]> {
     let camera = frame.camera();
@@ -248,12 +317,27 @@ pub fn shade_split_sum(
         .into_par_iter()
         .map(|k| {
             let px = pixel_view(frame, &camera, g, k);
-            let c = if px.surface == Surface::Background {
-                Vec3::from(sample_cube_lod(&light.specular, px.dir.into(), 0.0))
-            } else {
-                split_sum_shade(&split, px.n, px.v, px.n_dot_v, &px.m)
-                    + direct_lights(frame, lights, &px)
-                    + split_lights_shade(frame, &light.sun_texels, &area, shadow, &px, frame.sun[0])
+            let c = match px.surface {
+                Surface::Background => {
+                    Vec3::from(sample_cube_lod(&light.specular, px.dir.into(), 0.0))
+                }
+                Surface::Floor => {
+                    let visibility = lights_visibility(frame, shadow, &px, frame.sun[0]);
+                    floor.radiance(px.v, &visibility, frame.sun[0])
+                        + direct_lights(frame, lights, &px)
+                }
+                Surface::Object => {
+                    split_sum_shade(&split, px.n, px.v, px.n_dot_v, &px.m)
+                        + direct_lights(frame, lights, &px)
+                        + split_lights_shade(
+                            frame,
+                            &light.sun_texels,
+                            &area,
+                            shadow,
+                            &px,
+                            frame.sun[0],
+                        )
+                }
             };
             c.extend(px.surface as u32 as f32).into()
         })
@@ -267,7 +351,7 @@ pub fn shade_truth(
     light: &ViewLight,
     points: &[[f32; 4]],
     lights: &[[f32; 4]],
-    shadow: &[f32],
+    shadow: Shadows<'_>,
     g: &GBuffer,
     accum: &mut [[f32; 4]],
 ) {

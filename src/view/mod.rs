@@ -7,8 +7,8 @@
 //! - [`scene`]: the placements, materials and point lights; [`camera`]: the camera;
 //!   [`model`]: Spot, the sphere, the torus and OBJ/glTF files; [`state`]: what the user
 //!   controls and the keys.
-//! - [`frame`]: what one frame reads (the light, the uniform blocks); [`raster`] and
-//!   [`cpu`]: the CPU renderer; [`gpu`]: the wgpu renderer; [`hud`]: the HUD.
+//! - [`frame`]: what one frame reads (the light, the uniform blocks); [`floor`]: the
+//!   floor's shading by view direction; [`floor_shadow`]: the shadows on the floor; [`raster`] and [`cpu`]: the CPU renderer; [`gpu`]: the wgpu renderer; [`hud`]: the HUD.
 //! - [`session::Viewer`]: the state, light, models and renderer, frame by frame, driven by
 //!   the window ([`window`]) or by [`render_screenshot`] offscreen.
 //!
@@ -18,6 +18,8 @@
 
 pub mod camera;
 pub mod cpu;
+pub mod floor;
+pub mod floor_shadow;
 pub mod frame;
 pub mod gpu;
 pub mod hud;

@@ -34,10 +34,14 @@ fn vertex(p: Vec3, n: Vec3, surface: Surface) -> Vertex {
     }
 }
 
+/// The floor's vertices, the last of [`scene_vertices`]: two triangles.
+pub const FLOOR_VERTICES: u32 = 6;
+
 /// The triangles of a frame: the model's mesh (none for the sphere), then the floor. The
 /// GPU draws them in this order, so the floor's fragments behind the model fail the depth
 /// test before they are shaded (nearer first; the picture does not depend on the order).
 pub fn scene_vertices(model: &Model) -> Vec<Vertex> {
+    const _: () = assert!(FLOOR_VERTICES == 6);
     let (y, h, cz) = (FLOOR_Y, FLOOR_HALF_EXTENT, OBJECT_CENTRE[2]);
     let corners = [
         Vec3::new(-h, y, cz - h),

@@ -15,7 +15,9 @@ use glam::Vec3;
 
 use crate::environment::sun::SunMode;
 use crate::plan::scene::disk_points;
-use crate::view::cpu::{present, shade_split_sum, shade_truth};
+use crate::view::cpu::{floor_table, present, shade_split_sum, shade_truth, Shadows};
+use crate::view::floor::FloorTable;
+use crate::view::floor_shadow::FloorShadows;
 use crate::view::frame::{
     heat_mean, heat_table, light_table, FrameUniform, HdrFrame, Mode, PresentUniform, ViewLight,
 };
@@ -81,6 +83,10 @@ pub struct Viewer {
     heat_mean: Option<f32>,
     /// The shadow maps of the lights split out, for the light and model shown.
     shadow: ShadowMaps,
+    /// The floor's table of the light shown (`view::floor`).
+    floor: FloorTable,
+    /// The shadow maps' grids on the floor (`view::floor_shadow`).
+    floor_shadows: FloorShadows,
     /// The models on keys.
     pub models: Vec<Model>,
     /// Quadrature points per lobe of each truth estimate (1 ..= 256).
@@ -120,6 +126,8 @@ impl Viewer {
             light,
             heat_mean: None,
             shadow: ShadowMaps::default(),
+            floor: FloorTable::new(|_| Default::default()),
+            floor_shadows: FloorShadows::new(&ShadowMaps::default()),
             models,
             points_per_estimate: DEFAULT_POINTS_PER_ESTIMATE,
             renderer,
@@ -136,6 +144,7 @@ impl Viewer {
         if let Renderer::Gpu(g) = &mut v.renderer {
             g.set_light(&v.light)?;
         }
+        v.update_floor()?;
         v.upload_model()?;
         Ok(v)
     }
@@ -165,8 +174,20 @@ impl Viewer {
             .map(|l| (Vec3::from(l.direction), l.penumbra_spread()))
             .collect();
         self.shadow = ShadowMaps::new(&lights, model);
+        self.floor_shadows = FloorShadows::new(&self.shadow);
         if let Renderer::Gpu(g) = &mut self.renderer {
-            g.set_shadow(&self.shadow)?;
+            g.set_shadow(&self.shadow, &self.floor_shadows)?;
+        }
+        Ok(())
+    }
+
+    /// Makes the floor's table of the light shown and uploads it to the GPU renderer (the
+    /// CPU one reads it from here).
+    fn update_floor(&mut self) -> Result<()> {
+        let floor = self.light.material(&floor_material(), FLOOR_ROUGHNESS);
+        self.floor = floor_table(&self.light, &floor);
+        if let Renderer::Gpu(g) = &mut self.renderer {
+            g.set_floor(&self.floor)?;
         }
         Ok(())
     }
@@ -178,6 +199,7 @@ impl Viewer {
         }
         self.light = light;
         self.scene_dirty = true;
+        self.update_floor()?;
         self.update_shadow()
     }
 
@@ -474,11 +496,15 @@ impl Viewer {
                 hud.as_ref(),
             )?,
             Renderer::Cpu(c) => {
-                // The CPU passes read the maps' texels where they are.
-                let shadow = &self.shadow.depth[..];
+                // The CPU passes read the maps' texels and the floor's grids where they are.
+                let shadow = Shadows {
+                    maps: &self.shadow.depth,
+                    floor: &self.floor_shadows,
+                };
                 if changed {
                     let g = rasterize(&frame, &c.vertices, c.sphere);
-                    c.shaded = shade_split_sum(&frame, &self.light, &c.lights, shadow, &g);
+                    c.shaded =
+                        shade_split_sum(&frame, (&self.light, &self.floor), &c.lights, shadow, &g);
                     c.accum = vec![[0.0; 4]; c.shaded.len()];
                     c.gbuffer = Some(g);
                 }

@@ -28,6 +28,8 @@ use crate::gpu::shaders;
 use crate::gpu::texture::{
     create_texture_2d, upload_bordered_cube, upload_lut_pairs, write_texels,
 };
+use crate::view::floor::FloorTable;
+use crate::view::floor_shadow::FloorShadows;
 use crate::view::frame::{heat_table, light_table, FrameUniform, Mode, PresentUniform, ViewLight};
 use crate::view::model::{Model, Shape};
 use crate::view::raster::{scene_vertices, sphere_box_vertices};
@@ -115,10 +117,18 @@ pub struct GpuRenderer {
     light: Option<LightTextures>,
     /// The lights' shadow maps, a layer each (one 1 × 1 empty layer until maps are set).
     shadow: wgpu::TextureView,
+    /// The floor's table (`view::floor`; a table of zeros until one is set).
+    floor: wgpu::Buffer,
+    /// The shadow maps' grids on the floor (`view::floor_shadow`; none until set).
+    floor_shadow: wgpu::Buffer,
     vertices: Option<(wgpu::Buffer, u32)>,
     sphere_box: wgpu::Buffer,
     sphere: bool,
     targets: Option<Targets>,
+}
+
+fn floor_buffer(device: &wgpu::Device, table: &FloorTable) -> wgpu::Buffer {
+    storage_buffer(device, "view floor table", &table.entries)
 }
 
 /// An r32float array texture of `layers` layers of `size`² `depth` texels (the shadow
@@ -254,6 +264,12 @@ impl GpuRenderer {
             wgpu::BufferUsages::VERTEX,
         );
         let shadow = shadow_texture(&device, &queue, (1, 1), &[EMPTY_DEPTH])?;
+        let floor = floor_buffer(&device, &FloorTable::new(|_| Default::default()));
+        let floor_shadow = storage_buffer(
+            &device,
+            "view floor shadows",
+            &FloorShadows::new(&ShadowMaps::default()).entries,
+        );
         let cube_linear = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("view chains, bilinear"),
             mag_filter: wgpu::FilterMode::Linear,
@@ -262,6 +278,8 @@ impl GpuRenderer {
         });
         Ok(GpuRenderer {
             shadow,
+            floor,
+            floor_shadow,
             cube_linear,
             device,
             queue,
@@ -402,9 +420,13 @@ impl GpuRenderer {
         Ok(())
     }
 
-    /// Uploads the lights' shadow maps (none: one empty layer; the frame's `sun` says how
-    /// many the kernels read).
-    pub fn set_shadow(&mut self, maps: &ShadowMaps) -> Result<()> {
+    /// Uploads the lights' shadow maps and their grids on the floor (none: one empty layer;
+    /// the frame's `sun` says how many the kernels read).
+    pub fn set_shadow(&mut self, maps: &ShadowMaps, floor: &FloorShadows) -> Result<()> {
+        self.floor_shadow =
+            with_error_scope(&self.device, "uploading the floor's shadows", || {
+                storage_buffer(&self.device, "view floor shadows", &floor.entries)
+            })?;
         self.shadow = if maps.is_empty() {
             shadow_texture(&self.device, &self.queue, (1, 1), &[EMPTY_DEPTH])?
         } else {
@@ -415,6 +437,14 @@ impl GpuRenderer {
                 &maps.depth,
             )?
         };
+        Ok(())
+    }
+
+    /// Uploads the floor's table.
+    pub fn set_floor(&mut self, table: &FloorTable) -> Result<()> {
+        self.floor = with_error_scope(&self.device, "uploading the floor's table", || {
+            floor_buffer(&self.device, table)
+        })?;
         Ok(())
     }
 

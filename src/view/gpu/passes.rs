@@ -3,9 +3,10 @@
 //! (what each computes: the parent module's docs and the shaders named there). The caller
 //! records them inside its frame's error scope.
 
-use crate::gpu::compute::bind_group;
+use crate::gpu::compute::{bind_group, bind_group_at};
 use crate::gpu::preview::TruthUniform;
 use crate::plan::shading::LightBrdf;
+use crate::view::raster::FLOOR_VERTICES;
 use crate::Result;
 
 use super::{
@@ -24,12 +25,14 @@ impl GpuRenderer {
 
     /// The model (and the ray-cast sphere) drawn into an open pass by `mesh` and `sphere`:
     /// the sphere first, then the model and the floor (`raster::scene_vertices`), nearer
-    /// surfaces before the floor, so that what they hide is not shaded.
+    /// surfaces before the floor, so that what they hide is not shaded. With a `floor`
+    /// pipeline and its bind group, the floor is drawn by that one.
     fn draw_scene(
         &self,
         pass: &mut wgpu::RenderPass<'_>,
         (mesh, sphere): (&wgpu::RenderPipeline, &wgpu::RenderPipeline),
         resources: &[wgpu::BindingResource],
+        floor: Option<(&wgpu::RenderPipeline, &wgpu::BindGroup)>,
     ) -> Result<()> {
         let (_, (vertices, count), _) = self.frame_inputs()?;
         let bind = |pipeline: &wgpu::RenderPipeline| {
@@ -49,7 +52,16 @@ impl GpuRenderer {
         pass.set_pipeline(mesh);
         pass.set_bind_group(0, &bind(mesh), &[]);
         pass.set_vertex_buffer(0, vertices.slice(..));
-        pass.draw(0..count, 0..1);
+        let object = count - FLOOR_VERTICES;
+        match floor {
+            Some((pipeline, group)) => {
+                pass.draw(0..object, 0..1);
+                pass.set_pipeline(pipeline);
+                pass.set_bind_group(0, group, &[]);
+                pass.draw(object..count, 0..1);
+            }
+            None => pass.draw(0..count, 0..1),
+        }
         Ok(())
     }
 
@@ -95,6 +107,20 @@ impl GpuRenderer {
             light.sun_texels.as_entire_binding(),
             wgpu::BindingResource::TextureView(&self.shadow),
         ];
+        // The floor's fragments read the frame, the display's block and the HUD, the point
+        // lights, the floor's table and its shadows alone.
+        let floor_group = bind_group_at(
+            &self.device,
+            &surfaces.floor.get_bind_group_layout(0),
+            &[
+                (0, self.frame.as_entire_binding()),
+                (3, self.present.as_entire_binding()),
+                (4, wgpu::BindingResource::TextureView(&hud)),
+                (8, self.lights.as_entire_binding()),
+                (11, self.floor.as_entire_binding()),
+                (12, self.floor_shadow.as_entire_binding()),
+            ],
+        );
         {
             let mut pass = begin_pass(
                 encoder,
@@ -102,7 +128,12 @@ impl GpuRenderer {
                 &[colour_attachment(target)],
                 Some((&t.depth, false)),
             );
-            let drawn = self.draw_scene(&mut pass, (&surfaces.mesh, &surfaces.sphere), &resources);
+            let drawn = self.draw_scene(
+                &mut pass,
+                (&surfaces.mesh, &surfaces.sphere),
+                &resources,
+                Some((&surfaces.floor, &floor_group)),
+            );
             pass.set_pipeline(&p.background);
             pass.set_bind_group(
                 0,
@@ -136,6 +167,7 @@ impl GpuRenderer {
                 &mut pass,
                 (&self.mesh_pipeline, &self.sphere_pipeline),
                 &[self.frame.as_entire_binding()],
+                None,
             );
             drop(pass);
             self.split_sum.dispatch(
@@ -153,6 +185,8 @@ impl GpuRenderer {
                     t.shaded.as_entire_binding(),
                     light.sun_texels.as_entire_binding(),
                     wgpu::BindingResource::TextureView(&self.shadow),
+                    self.floor.as_entire_binding(),
+                    self.floor_shadow.as_entire_binding(),
                 ],
                 [t.size.0, t.size.1, 1],
             );
@@ -200,6 +234,7 @@ impl GpuRenderer {
                     t.accum.as_entire_binding(),
                     light.sun_texels.as_entire_binding(),
                     wgpu::BindingResource::TextureView(&self.shadow),
+                    self.floor_shadow.as_entire_binding(),
                 ],
                 [t.size.0, t.size.1, 1],
             );

@@ -98,13 +98,16 @@ impl ForwardKey {
     }
 }
 
-/// The forward pass's model and sphere pipelines for one [`ForwardKey`].
+/// The forward pass's depth pre-pass, model, floor and sphere pipelines for one
+/// [`ForwardKey`].
 pub(super) struct ForwardPipelines {
     pub(super) key: ForwardKey,
     /// The mesh's depth alone (the depth pre-pass).
     pub(super) depth: wgpu::RenderPipeline,
-    /// The mesh shaded where the pre-pass left its depth.
+    /// The model shaded where the pre-pass left its depth.
     pub(super) mesh: wgpu::RenderPipeline,
+    /// The floor shaded from its table where the pre-pass left its depth.
+    pub(super) floor: wgpu::RenderPipeline,
     pub(super) sphere: wgpu::RenderPipeline,
 }
 
@@ -170,6 +173,7 @@ impl ForwardPipelines {
             key,
             depth: depth_pipeline(device, forward, &[Some(layout.clone())]),
             mesh: surface("fs_mesh", Depth::Equal),
+            floor: surface("fs_floor", Depth::Equal),
             sphere: surface("fs_sphere", Depth::Nearest),
         }
     }
