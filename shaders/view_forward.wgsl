@@ -1,7 +1,8 @@
-// The viewer's split-sum frame in one render pass (vertex and fragment stages), what the
-// window draws while the split-sum view is shown: each object and floor fragment shaded
-// as the deferred kernel shades a G-buffer pixel (`object_radiance`, `floor_radiance`,
-// common/view_shade.wgsl), the background where nothing nearer was drawn
+// The viewer's split-sum frame in one render pass (vertex and fragment stages) after the
+// object's G-buffer, what the window draws while the split-sum view is shown: each object
+// pixel and floor fragment shaded as the deferred kernel shades a G-buffer pixel
+// (`object_radiance`, `floor_radiance`, common/view_shade.wgsl), the background where
+// nothing nearer was drawn
 // (`background_radiance`), then displayed with the HUD over it as the present pass shows
 // a split-sum pixel (common/view_display.wgsl). The same functions of the same surface as
 // the deferred path (view_gbuffer, view_split_sum, view_present), which the truth and
@@ -25,6 +26,8 @@
 @group(0) @binding(10) var shadow_map: texture_2d_array<f32>;
 @group(0) @binding(11) var<storage, read> floor_table: array<vec4<f32>>;
 @group(0) @binding(12) var<storage, read> floor_shadow: array<f32>;
+@group(0) @binding(13) var gbuffer_position: texture_2d<f32>;
+@group(0) @binding(14) var gbuffer_normal: texture_2d<f32>;
 
 // The frame's light counts (frame.light_count, frame.sun.x), constants of the pipeline
 // (src/view/gpu/mod.rs, `ForwardKey`): with them constant, the compiler unrolls the
@@ -33,53 +36,24 @@
 override POINT_LIGHTS: u32 = 0u;
 override SUN_LIGHTS: u32 = 0u;
 
-// The displayed split-sum colour of the object's surface `s` at the pixel centred at
-// `centre`.
-fn shade_fragment(centre: vec2<f32>, s: Surface) -> vec4<f32> {
-    return with_hud(display(object_radiance(surface_view(centre, s), POINT_LIGHTS, SUN_LIGHTS)), vec2<u32>(centre));
+// The object's pixels, each shaded once from the G-buffer the pass before this one wrote
+// of the object alone (view_gbuffer.wgsl's stages): one triangle over the frame, drawn
+// where that pass left a depth (src/view/gpu/pipelines.rs, `Depth::Covered`).
+@fragment
+fn fs_object(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    let pixel = vec2<u32>(position.xy);
+    return with_hud(display(object_radiance(pixel_view(pixel), POINT_LIGHTS, SUN_LIGHTS)), pixel);
 }
 
-// The surface of a mesh fragment.
-fn mesh_surface(v: VertexOut) -> Surface {
+// The floor's fragments, drawn after the object (whose depth hides what it covers).
+@fragment
+fn fs_floor(v: VertexOut) -> @location(0) vec4<f32> {
     var s: Surface;
     s.id = u32(round(v.id));
     s.p = v.world;
     s.n = normalize(v.normal);
-    return s;
-}
-
-// The model's fragments (the floor has a pipeline of its own, `fs_floor`, so that
-// neither pays for the other's shading on a rasteriser that runs both sides of a branch).
-@fragment
-fn fs_mesh(v: VertexOut) -> @location(0) vec4<f32> {
-    return shade_fragment(v.clip.xy, mesh_surface(v));
-}
-
-@fragment
-fn fs_floor(v: VertexOut) -> @location(0) vec4<f32> {
-    let px = surface_view(v.clip.xy, mesh_surface(v));
+    let px = surface_view(v.clip.xy, s);
     return with_hud(display(floor_radiance(px, POINT_LIGHTS, SUN_LIGHTS)), vec2<u32>(v.clip.xy));
-}
-
-struct SphereFragment {
-    @location(0) colour: vec4<f32>,
-    @builtin(frag_depth) depth: f32,
-}
-
-@fragment
-fn fs_sphere(v: VertexOut) -> SphereFragment {
-    let h = sphere_hit(v.clip.xy);
-    if (!h.hit) {
-        discard;
-    }
-    var s: Surface;
-    s.id = 1u;
-    s.p = h.p;
-    s.n = h.n;
-    var o: SphereFragment;
-    o.colour = shade_fragment(v.clip.xy, s);
-    o.depth = h.depth;
-    return o;
 }
 
 // The background: one triangle on the far plane, drawn last where the depth is still the

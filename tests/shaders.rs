@@ -380,8 +380,8 @@ fn viewer_shaders_validate_and_match_rust() {
             forward.as_str(),
             &[
                 "vs_main",
-                "fs_mesh",
-                "fs_sphere",
+                "fs_object",
+                "fs_floor",
                 "vs_background",
                 "fs_background",
             ][..],

@@ -9,9 +9,7 @@ struct VertexIn {
 }
 
 struct VertexOut {
-    // Invariant: the forward pass's depth pre-pass and its shaded pass must meet the same
-    // depths (src/view/gpu/pipelines.rs, `Depth::Equal`).
-    @builtin(position) @invariant clip: vec4<f32>,
+    @builtin(position) clip: vec4<f32>,
     @location(0) world: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) @interpolate(flat) id: f32,

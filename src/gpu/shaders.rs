@@ -159,7 +159,7 @@ pub const VIEW_PRESENT_BODY: &str = render_source!("view_present.wgsl", ["view_d
 
 /// `shaders/view_forward.wgsl` with brdf, sampling, cubemap, cube_filter_bordered,
 /// cube_sample, material, split_sum, filtered, view_frame, view_surface, ltc, view_sun,
-/// view_floor_shadow, view_floor, view_shade,
+/// view_floor_shadow, view_floor, view_gbuffer_read, view_shade,
 /// view_raster, view_display,
 /// without the constants the viewer writes before it (`view::gpu::forward_source`).
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
@@ -181,6 +181,7 @@ pub const VIEW_FORWARD_BODY: &str = render_source!(
         "view_sun.wgsl",
         "view_floor_shadow.wgsl",
         "view_floor.wgsl",
+        "view_gbuffer_read.wgsl",
         "view_shade.wgsl",
         "view_raster.wgsl",
         "view_display.wgsl"

@@ -14,6 +14,11 @@ use super::{
     MAX_TRUTH_POINTS,
 };
 
+/// A texture view as a binding.
+fn view(v: &wgpu::TextureView) -> wgpu::BindingResource<'_> {
+    wgpu::BindingResource::TextureView(v)
+}
+
 impl GpuRenderer {
     /// What every pass of a frame reads: the light, the model's vertices and the targets.
     pub(super) fn frame_inputs(&self) -> Result<(&LightTextures, (&wgpu::Buffer, u32), &Targets)> {
@@ -24,15 +29,15 @@ impl GpuRenderer {
     }
 
     /// The model (and the ray-cast sphere) drawn into an open pass by `mesh` and `sphere`:
-    /// the sphere first, then the model and the floor (`raster::scene_vertices`), nearer
-    /// surfaces before the floor, so that what they hide is not shaded. With a `floor`
-    /// pipeline and its bind group, the floor is drawn by that one.
+    /// the sphere first, then the model and, with `floor`, the floor
+    /// (`raster::scene_vertices`), nearer surfaces before the floor, so that what they
+    /// hide is not shaded.
     fn draw_scene(
         &self,
         pass: &mut wgpu::RenderPass<'_>,
         (mesh, sphere): (&wgpu::RenderPipeline, &wgpu::RenderPipeline),
         resources: &[wgpu::BindingResource],
-        floor: Option<(&wgpu::RenderPipeline, &wgpu::BindGroup)>,
+        floor: bool,
     ) -> Result<()> {
         let (_, (vertices, count), _) = self.frame_inputs()?;
         let bind = |pipeline: &wgpu::RenderPipeline| {
@@ -52,61 +57,58 @@ impl GpuRenderer {
         pass.set_pipeline(mesh);
         pass.set_bind_group(0, &bind(mesh), &[]);
         pass.set_vertex_buffer(0, vertices.slice(..));
-        let object = count - FLOOR_VERTICES;
-        match floor {
-            Some((pipeline, group)) => {
-                pass.draw(0..object, 0..1);
-                pass.set_pipeline(pipeline);
-                pass.set_bind_group(0, group, &[]);
-                pass.draw(object..count, 0..1);
-            }
-            None => pass.draw(0..count, 0..1),
-        }
+        pass.draw(0..if floor { count } else { count - FLOOR_VERTICES }, 0..1);
         Ok(())
     }
 
-    /// The forward pass: the model, the floor and the background shaded and displayed.
+    /// The forward pass: the object's G-buffer (its pixels' position and normal, the
+    /// G-buffer pass's pipelines drawing the object alone), then the object shaded from it
+    /// by one triangle over the frame drawn where a surface left its depth, so that each of
+    /// its pixels is shaded once, in full blocks of a software rasteriser's lanes, where its
+    /// small triangles would leave most lanes idle and be shaded again where they overlap;
+    /// then the floor from its caches and the background, each displayed.
     pub(super) fn encode_forward(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         (target, key): (&wgpu::TextureView, ForwardKey),
     ) -> Result<()> {
-        let (light, _, t) = self.frame_inputs()?;
+        let (light, (vertices, count), t) = self.frame_inputs()?;
         let p = self.compiled_display(key.format)?;
         let surfaces = self.compiled_forward(key)?;
         let hud = t.hud.create_view(&Default::default());
-        // The depth pre-pass: the model's and the floor's depth alone, so that the shaded
-        // pass below (`Depth::Equal`) shades each pixel once, where a software rasteriser
-        // would otherwise shade every fragment of a small-triangle model that is nearer
-        // than what was drawn before it (docs/accuracy.md, "The viewer").
         {
-            let (_, (vertices, count), _) = self.frame_inputs()?;
-            let mut pass = begin_pass(encoder, "view depth pre-pass", &[], Some((&t.depth, true)));
-            pass.set_pipeline(&surfaces.depth);
-            // Its vertex stage reads the frame (binding 0) alone.
-            let group = bind_group(
-                &self.device,
-                None,
-                &surfaces.depth.get_bind_group_layout(0),
-                &[self.frame.as_entire_binding()],
+            let mut pass = begin_pass(
+                encoder,
+                "view object gbuffer",
+                &[kept_attachment(&t.position), kept_attachment(&t.normal)],
+                Some((&t.depth, true)),
             );
-            pass.set_bind_group(0, &group, &[]);
-            pass.set_vertex_buffer(0, vertices.slice(..));
-            pass.draw(0..count, 0..1);
+            self.draw_scene(
+                &mut pass,
+                (&self.mesh_pipeline, &self.sphere_pipeline),
+                &[self.frame.as_entire_binding()],
+                false,
+            )?;
         }
-        let resources = [
-            self.frame.as_entire_binding(),
-            light.split_sum.as_entire_binding(),
-            wgpu::BindingResource::TextureView(&light.specular),
-            self.present.as_entire_binding(),
-            wgpu::BindingResource::TextureView(&hud),
-            wgpu::BindingResource::Sampler(&self.cube_linear),
-            wgpu::BindingResource::TextureView(&light.irradiance),
-            wgpu::BindingResource::TextureView(&light.lut),
-            self.lights.as_entire_binding(),
-            light.sun_texels.as_entire_binding(),
-            wgpu::BindingResource::TextureView(&self.shadow),
-        ];
+        let object_group = bind_group_at(
+            &self.device,
+            &surfaces.object.get_bind_group_layout(0),
+            &[
+                (0, self.frame.as_entire_binding()),
+                (1, light.split_sum.as_entire_binding()),
+                (2, view(&light.specular)),
+                (3, self.present.as_entire_binding()),
+                (4, view(&hud)),
+                (5, wgpu::BindingResource::Sampler(&self.cube_linear)),
+                (6, view(&light.irradiance)),
+                (7, view(&light.lut)),
+                (8, self.lights.as_entire_binding()),
+                (9, light.sun_texels.as_entire_binding()),
+                (10, view(&self.shadow)),
+                (13, view(&t.position)),
+                (14, view(&t.normal)),
+            ],
+        );
         // The floor's fragments read the frame, the display's block and the HUD, the point
         // lights, the floor's table and its shadows alone.
         let floor_group = bind_group_at(
@@ -115,39 +117,42 @@ impl GpuRenderer {
             &[
                 (0, self.frame.as_entire_binding()),
                 (3, self.present.as_entire_binding()),
-                (4, wgpu::BindingResource::TextureView(&hud)),
+                (4, view(&hud)),
                 (8, self.lights.as_entire_binding()),
                 (11, self.floor.as_entire_binding()),
                 (12, self.floor_shadow.as_entire_binding()),
             ],
         );
-        {
-            let mut pass = begin_pass(
-                encoder,
-                "view forward",
-                &[colour_attachment(target)],
-                Some((&t.depth, false)),
-            );
-            let drawn = self.draw_scene(
-                &mut pass,
-                (&surfaces.mesh, &surfaces.sphere),
-                &resources,
-                Some((&surfaces.floor, &floor_group)),
-            );
-            pass.set_pipeline(&p.background);
-            pass.set_bind_group(
-                0,
-                &bind_group(
-                    &self.device,
-                    None,
-                    &p.background.get_bind_group_layout(0),
-                    &resources[..BACKGROUND_BINDINGS],
-                ),
-                &[],
-            );
-            pass.draw(0..3, 0..1);
-            drawn
-        }
+        let background_group = bind_group(
+            &self.device,
+            None,
+            &p.background.get_bind_group_layout(0),
+            &[
+                self.frame.as_entire_binding(),
+                light.split_sum.as_entire_binding(),
+                view(&light.specular),
+                self.present.as_entire_binding(),
+                view(&hud),
+                wgpu::BindingResource::Sampler(&self.cube_linear),
+            ][..BACKGROUND_BINDINGS],
+        );
+        let mut pass = begin_pass(
+            encoder,
+            "view forward",
+            &[colour_attachment(target)],
+            Some((&t.depth, false)),
+        );
+        pass.set_pipeline(&surfaces.object);
+        pass.set_bind_group(0, &object_group, &[]);
+        pass.draw(0..3, 0..1);
+        pass.set_pipeline(&surfaces.floor);
+        pass.set_bind_group(0, &floor_group, &[]);
+        pass.set_vertex_buffer(0, vertices.slice(..));
+        pass.draw(count - FLOOR_VERTICES..count, 0..1);
+        pass.set_pipeline(&p.background);
+        pass.set_bind_group(0, &background_group, &[]);
+        pass.draw(0..3, 0..1);
+        Ok(())
     }
 
     /// The G-buffer pass, then the split-sum kernel into the split-sum buffer.
@@ -167,7 +172,7 @@ impl GpuRenderer {
                 &mut pass,
                 (&self.mesh_pipeline, &self.sphere_pipeline),
                 &[self.frame.as_entire_binding()],
-                None,
+                true,
             );
             drop(pass);
             self.split_sum.dispatch(
@@ -280,6 +285,20 @@ fn colour_attachment(view: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAt
         resolve_target: None,
         ops: wgpu::Operations {
             load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+            store: wgpu::StoreOp::Store,
+        },
+        depth_slice: None,
+    })
+}
+
+/// A colour attachment kept as it is and stored: a target whose pixels the pass does not
+/// cover are not read afterwards.
+fn kept_attachment(view: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachment<'_>> {
+    Some(wgpu::RenderPassColorAttachment {
+        view,
+        resolve_target: None,
+        ops: wgpu::Operations {
+            load: wgpu::LoadOp::Load,
             store: wgpu::StoreOp::Store,
         },
         depth_slice: None,

@@ -98,17 +98,14 @@ impl ForwardKey {
     }
 }
 
-/// The forward pass's depth pre-pass, model, floor and sphere pipelines for one
-/// [`ForwardKey`].
+/// The forward pass's object and floor pipelines for one [`ForwardKey`].
 pub(super) struct ForwardPipelines {
     pub(super) key: ForwardKey,
-    /// The mesh's depth alone (the depth pre-pass).
-    pub(super) depth: wgpu::RenderPipeline,
-    /// The model shaded where the pre-pass left its depth.
-    pub(super) mesh: wgpu::RenderPipeline,
-    /// The floor shaded from its table where the pre-pass left its depth.
+    /// The object shaded from its G-buffer: one triangle over the frame, drawn where a
+    /// surface left its depth.
+    pub(super) object: wgpu::RenderPipeline,
+    /// The floor shaded from its caches.
     pub(super) floor: wgpu::RenderPipeline,
-    pub(super) sphere: wgpu::RenderPipeline,
 }
 
 impl DisplayPipelines {
@@ -145,36 +142,38 @@ impl DisplayPipelines {
 }
 
 impl ForwardPipelines {
-    /// The forward pass's model and sphere pipelines (`forward`'s module) for `key`.
+    /// The forward pass's object and floor pipelines (`forward`'s module) for `key`.
     pub(super) fn new(
         device: &wgpu::Device,
         forward: &wgpu::ShaderModule,
         key: ForwardKey,
     ) -> ForwardPipelines {
         let targets = [Some(key.format.into())];
-        let layout = vertex_layout();
         let constants = [
             ("POINT_LIGHTS", key.point_lights as f64),
             ("SUN_LIGHTS", key.sun_lights as f64),
             ("AREA_LIGHTS", key.area_lights as f64),
         ];
-        let surface = |fragment, depth| {
-            render_pipeline(
-                device,
-                forward,
-                ("vs_main", fragment),
-                &targets,
-                &[Some(layout.clone())],
-                depth,
-                &constants,
-            )
-        };
         ForwardPipelines {
             key,
-            depth: depth_pipeline(device, forward, &[Some(layout.clone())]),
-            mesh: surface("fs_mesh", Depth::Equal),
-            floor: surface("fs_floor", Depth::Equal),
-            sphere: surface("fs_sphere", Depth::Nearest),
+            object: render_pipeline(
+                device,
+                forward,
+                ("vs_background", "fs_object"),
+                &targets,
+                &[],
+                Depth::Covered,
+                &constants,
+            ),
+            floor: render_pipeline(
+                device,
+                forward,
+                ("vs_main", "fs_floor"),
+                &targets,
+                &[Some(vertex_layout())],
+                Depth::Nearest,
+                &constants,
+            ),
         }
     }
 }
@@ -213,9 +212,9 @@ pub(super) enum Depth {
     /// Drawn where nothing nearer is (less or equal), not written: the forward pass's
     /// background on the far plane.
     Behind,
-    /// Drawn where the depth is the fragment's own (equal), not written: the forward
-    /// pass's mesh after its depth pre-pass, so that each pixel is shaded once.
-    Equal,
+    /// Drawn where a surface left its depth (the stored depth nearer than the fragment's
+    /// on the far plane), not written: the forward pass's object from its G-buffer.
+    Covered,
 }
 
 fn depth_state(write: bool, compare: wgpu::CompareFunction) -> wgpu::DepthStencilState {
@@ -226,31 +225,6 @@ fn depth_state(write: bool, compare: wgpu::CompareFunction) -> wgpu::DepthStenci
         stencil: Default::default(),
         bias: Default::default(),
     }
-}
-
-/// The depth pre-pass: `module`'s `vs_main` (whose position is `@invariant`, so that the
-/// shaded pass meets the same depths) with no fragment stage, tested (less) and written.
-fn depth_pipeline(
-    device: &wgpu::Device,
-    module: &wgpu::ShaderModule,
-    vertex_buffers: &[Option<wgpu::VertexBufferLayout>],
-) -> wgpu::RenderPipeline {
-    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some("depth pre-pass"),
-        layout: None,
-        vertex: wgpu::VertexState {
-            module,
-            entry_point: Some("vs_main"),
-            compilation_options: Default::default(),
-            buffers: vertex_buffers,
-        },
-        primitive: wgpu::PrimitiveState::default(),
-        depth_stencil: Some(depth_state(true, wgpu::CompareFunction::Less)),
-        multisample: Default::default(),
-        fragment: None,
-        multiview_mask: None,
-        cache: None,
-    })
 }
 
 /// A render pipeline of `module`'s `vertex` and `fragment` entry points, the fragment
@@ -278,7 +252,7 @@ pub(super) fn render_pipeline(
             Depth::None => None,
             Depth::Nearest => Some(depth_state(true, wgpu::CompareFunction::Less)),
             Depth::Behind => Some(depth_state(false, wgpu::CompareFunction::LessEqual)),
-            Depth::Equal => Some(depth_state(false, wgpu::CompareFunction::Equal)),
+            Depth::Covered => Some(depth_state(false, wgpu::CompareFunction::Greater)),
         },
         multisample: Default::default(),
         fragment: Some(wgpu::FragmentState {
