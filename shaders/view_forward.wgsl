@@ -25,7 +25,7 @@
 @group(0) @binding(9) var<storage, read> sun_texels: array<vec4<f32>>;
 @group(0) @binding(10) var shadow_map: texture_2d_array<f32>;
 @group(0) @binding(11) var<storage, read> floor_table: array<vec4<f32>>;
-@group(0) @binding(12) var<storage, read> floor_shadow: array<f32>;
+@group(0) @binding(12) var<storage, read> floor_shadow: array<vec4<f32>>;
 @group(0) @binding(13) var gbuffer_position: texture_2d<f32>;
 @group(0) @binding(14) var gbuffer_normal: texture_2d<f32>;
 

@@ -16,7 +16,7 @@
 @group(0) @binding(9) var<storage, read> sun_texels: array<vec4<f32>>;
 @group(0) @binding(10) var shadow_map: texture_2d_array<f32>;
 @group(0) @binding(11) var<storage, read> floor_table: array<vec4<f32>>;
-@group(0) @binding(12) var<storage, read> floor_shadow: array<f32>;
+@group(0) @binding(12) var<storage, read> floor_shadow: array<vec4<f32>>;
 
 @compute @workgroup_size(WORKGROUP_X, WORKGROUP_Y, WORKGROUP_Z)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {

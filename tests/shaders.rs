@@ -465,10 +465,6 @@ fn view_area_light_constants_match_rust() {
             splitsum::view::frame::MAX_SHADOW_MAPS as u32,
         ),
         (
-            "FLOOR_SHADOW_PARAMS",
-            splitsum::view::floor_shadow::FLOOR_SHADOW_PARAMS as u32,
-        ),
-        (
             "FLOOR_SHADOW_HEADER",
             splitsum::view::floor_shadow::FLOOR_SHADOW_HEADER as u32,
         ),

@@ -120,15 +120,14 @@ fn lights_visibility(
     count: u32,
 ) -> [f32; MAX_SHADOW_MAPS] {
     let mut visibility = [1.0; MAX_SHADOW_MAPS];
-    for (k, v) in visibility
-        .iter_mut()
-        .enumerate()
-        .take(count.min(frame.sun[2]) as usize)
-    {
-        *v = match px.surface {
-            Surface::Floor => shadow.floor.visibility(k, px.p),
-            _ => shadow::layer_visibility(&frame.shadow, frame.sun[3], shadow.maps, k, px.p, px.n),
-        };
+    let lit = count.min(frame.sun[2]) as usize;
+    if px.surface == Surface::Floor {
+        let grid = shadow.floor.visibilities(px.p);
+        visibility[..lit].copy_from_slice(&grid[..lit]);
+        return visibility;
+    }
+    for (k, v) in visibility.iter_mut().enumerate().take(lit) {
+        *v = shadow::layer_visibility(&frame.shadow, frame.sun[3], shadow.maps, k, px.p, px.n);
     }
     visibility
 }
