@@ -1,16 +1,18 @@
 //! The viewer's GPU renderer, two paths to one picture:
 //!
-//! - **forward** (the split-sum view while it changes, as when the camera moves): one
-//!   render pass (`shaders/view_forward.wgsl`) shades each fragment of the model and the
-//!   floor, then the background, and writes the displayed colour with the HUD over it;
+//! - **forward** (the split-sum view while it changes, as when the camera moves): the
+//!   object's G-buffer (the G-buffer pass's pipelines, the object alone), then one render
+//!   pass (`shaders/view_forward.wgsl`) shades each object pixel from it, each floor
+//!   fragment from the floor's caches (`view::floor`, `view::floor_shadow`), then the
+//!   background, and writes the displayed colour with the HUD over it;
 //! - **deferred** (the truth and heat views, the HDR a test reads back, and a split-sum
 //!   view standing still): the G-buffer raster pass (`view_gbuffer.wgsl`), the split-sum
 //!   and truth kernels (`view_split_sum.wgsl`, `view_truth.wgsl`) into per-pixel buffers,
 //!   and the present pass (`view_present.wgsl`), which alone redraws a still view.
 //!
 //! Both call the same WGSL functions on the same surface. The forward path skips writing
-//! and reading the per-pixel buffers, which on a software rasteriser cost more than the
-//! shading. It is compiled for the frame's light counts (`ForwardKey` in `pipelines`),
+//! and reading the per-pixel buffers of the floor and the sky, which on a software
+//! rasteriser cost more than their shading. It is compiled for the frame's light counts (`ForwardKey` in `pipelines`),
 //! and it reads the chains through the sampler's bilinear filter: one `textureSampleLevel`
 //! where the deferred kernels fetch four texels, the same texels and weights up to the
 //! hardware's sub-texel precision. Together these take a third off its frame on lavapipe
