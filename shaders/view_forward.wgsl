@@ -9,8 +9,8 @@
 // heat views and the HDR readback use; both give the same picture (tests/view.rs). CPU
 // mirror: src/view/cpu.rs through the deferred path.
 
-// Bindings 0 to 5 are what the background reads, so its bind group is the first six of
-// the surfaces' (src/view/gpu/mod.rs, `BACKGROUND_BINDINGS`). The chains are read through
+// Bindings 0 to 5 are what the background reads; the object's and the floor's bind
+// groups name the bindings each reads (src/view/gpu/passes.rs). The chains are read through
 // the sampler's bilinear filter (common/cube_filter_bordered.wgsl), where the deferred
 // kernels fetch four texels (common/cube_bilinear.wgsl).
 @group(0) @binding(0) var<uniform> frame: FrameParams;

@@ -50,10 +50,10 @@ struct FloorCell {
     fw: f32,
 }
 
-/// The view direction of column `i`, row `j`.
-pub fn floor_direction(i: usize, j: usize) -> Vec3 {
-    let phi = 2.0 * PI * (i as f32 + 0.5) / FLOOR_AZIMUTHS as f32 - PI;
-    let theta = FRAC_PI_2 * j as f32 / (FLOOR_POLAR_ANGLES - 1) as f32;
+/// The view direction of column `i`, row `j` of a grid of `w` × `h`.
+pub fn floor_direction(i: usize, j: usize, (w, h): (usize, usize)) -> Vec3 {
+    let phi = 2.0 * PI * (i as f32 + 0.5) / w as f32 - PI;
+    let theta = FRAC_PI_2 * j as f32 / (h - 1) as f32;
     Vec3::new(
         theta.sin() * phi.cos(),
         theta.cos(),
@@ -61,16 +61,18 @@ pub fn floor_direction(i: usize, j: usize) -> Vec3 {
     )
 }
 
-fn floor_cell(v: Vec3) -> FloorCell {
-    let (w, h) = (FLOOR_AZIMUTHS as f32, FLOOR_POLAR_ANGLES as f32);
+/// The cell of `v` in a grid of `w` × `h`.
+fn floor_cell(v: Vec3, (w, h): (usize, usize)) -> FloorCell {
+    let columns = w;
+    let (w, h) = (w as f32, h as f32);
     let x = (v.z.atan2(v.x) + PI) / (2.0 * PI) * w - 0.5;
     let xf = x.floor();
-    let i0 = (xf as i32).rem_euclid(FLOOR_AZIMUTHS as i32) as usize;
+    let i0 = (xf as i32).rem_euclid(columns as i32) as usize;
     let y = v.y.clamp(0.0, 1.0).acos() / FRAC_PI_2 * (h - 1.0);
     let j0 = y.floor().min(h - 2.0);
     FloorCell {
         i0,
-        i1: (i0 + 1) % FLOOR_AZIMUTHS,
+        i1: (i0 + 1) % columns,
         j0: j0 as usize,
         fu: x - xf,
         fw: y - j0,
@@ -80,10 +82,22 @@ fn floor_cell(v: Vec3) -> FloorCell {
 impl FloorTable {
     /// The table of `shade`, which gives each layer's radiance for a view direction.
     pub fn new(shade: impl Fn(Vec3) -> [Vec3; FLOOR_LAYERS] + Sync) -> FloorTable {
-        let (w, h) = (FLOOR_AZIMUTHS, FLOOR_POLAR_ANGLES);
+        FloorTable::of_size((FLOOR_AZIMUTHS, FLOOR_POLAR_ANGLES), shade)
+    }
+
+    /// A table of 2 × 2 directions holding no light: what a renderer holds before it is
+    /// given a light's table.
+    pub fn empty() -> FloorTable {
+        FloorTable::of_size((2, 2), |_| [Vec3::ZERO; FLOOR_LAYERS])
+    }
+
+    fn of_size(
+        (w, h): (usize, usize),
+        shade: impl Fn(Vec3) -> [Vec3; FLOOR_LAYERS] + Sync,
+    ) -> FloorTable {
         let texels: Vec<[Vec3; FLOOR_LAYERS]> = (0..w * h)
             .into_par_iter()
-            .map(|k| shade(floor_direction(k % w, k / w)))
+            .map(|k| shade(floor_direction(k % w, k / w, (w, h))))
             .collect();
         let mut entries = vec![[w as f32, h as f32, FLOOR_LAYERS as f32, 0.0]];
         for l in 0..FLOOR_LAYERS {
@@ -92,9 +106,14 @@ impl FloorTable {
         FloorTable { entries }
     }
 
+    /// The grid's columns and rows, from the header.
+    fn size(&self) -> (usize, usize) {
+        (self.entries[0][0] as usize, self.entries[0][1] as usize)
+    }
+
     /// Layer `l` at `c`, bilinear.
     fn layer(&self, c: &FloorCell, l: usize) -> Vec3 {
-        let (w, h) = (FLOOR_AZIMUTHS, FLOOR_POLAR_ANGLES);
+        let (w, h) = self.size();
         let at = |i: usize, j: usize| Vec3::from_slice(&self.entries[1 + (l * h + j) * w + i][..3]);
         let row = |j: usize| at(c.i0, j) + (at(c.i1, j) - at(c.i0, j)) * c.fu;
         let (a, b) = (row(c.j0), row(c.j0 + 1));
@@ -105,7 +124,7 @@ impl FloorTable {
     /// lights: T₀ plus each of the first `count` lights' maps' layer times its
     /// `visibility` (`floor_table_radiance` in view_floor.wgsl).
     pub fn radiance(&self, v: Vec3, visibility: &[f32; MAX_SHADOW_MAPS], count: u32) -> Vec3 {
-        let c = floor_cell(v);
+        let c = floor_cell(v, self.size());
         let mut sum = self.layer(&c, 0);
         for (k, vis) in visibility
             .iter()
@@ -144,7 +163,7 @@ mod tests {
         let vis = [1.0; MAX_SHADOW_MAPS];
         let sum = |v: Vec3| f(v).iter().copied().sum::<Vec3>();
         for (i, j) in [(0, 0), (5, 7), (FLOOR_AZIMUTHS - 1, FLOOR_POLAR_ANGLES - 1)] {
-            let v = floor_direction(i, j);
+            let v = floor_direction(i, j, (FLOOR_AZIMUTHS, FLOOR_POLAR_ANGLES));
             assert!(
                 (t.radiance(v, &vis, 4) - sum(v)).abs().max_element() < 1e-4,
                 "{i} {j}"

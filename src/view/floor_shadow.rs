@@ -58,24 +58,28 @@ fn sigma_max() -> f32 {
     warp(FLOOR_HALF_EXTENT)
 }
 
-/// The floor point of node (i, j).
-fn node(i: usize, j: usize) -> Vec3 {
-    let at =
-        |k: usize| unwarp(sigma_max() * (2.0 * k as f32 / (FLOOR_SHADOW_NODES - 1) as f32 - 1.0));
+/// The floor point of node (i, j) of a grid of `n` nodes a side.
+fn node(i: usize, j: usize, n: usize) -> Vec3 {
+    let at = |k: usize| unwarp(sigma_max() * (2.0 * k as f32 / (n - 1) as f32 - 1.0));
     centre() + Vec3::new(at(i), 0.0, at(j))
 }
 
 impl FloorShadows {
-    /// The grid of every light with a map in `maps`.
+    /// The grid of every light with a map in `maps`: [`FLOOR_SHADOW_NODES`] a side, or 2
+    /// where no light has a map (every node 1: the floor is lit everywhere).
     pub fn new(maps: &ShadowMaps) -> FloorShadows {
-        let n = FLOOR_SHADOW_NODES;
+        let n = if maps.is_empty() {
+            2
+        } else {
+            FLOOR_SHADOW_NODES
+        };
         let c = centre();
         let mut entries = vec![
             [n as f32, FLOOR_SHADOW_WARP, sigma_max(), 0.0],
             [c.x, c.z, 0.0, 0.0],
         ];
         entries.par_extend((0..n * n).into_par_iter().map(|k| {
-            let p = node(k % n, k / n);
+            let p = node(k % n, k / n, n);
             std::array::from_fn(|light| {
                 if light < maps.len() {
                     layer_visibility(&maps.blocks, maps.size, &maps.depth, light, p, Vec3::Y)
@@ -135,7 +139,7 @@ mod tests {
             layer_visibility(&maps.blocks, maps.size, &maps.depth, k, p, Vec3::Y)
         };
         for (i, j) in [(0, 0), (300, 400), (511, 700), (FLOOR_SHADOW_NODES - 1, 5)] {
-            let p = node(i, j);
+            let p = node(i, j, FLOOR_SHADOW_NODES);
             let got = grid.visibilities(p);
             for (k, v) in got.iter().enumerate().take(2) {
                 assert!((v - exact(k, p)).abs() < 1e-4, "light {k} node {i} {j}");

@@ -41,7 +41,6 @@ pub const FLOOR_VERTICES: u32 = 6;
 /// GPU draws them in this order, so the floor's fragments behind the model fail the depth
 /// test before they are shaded (nearer first; the picture does not depend on the order).
 pub fn scene_vertices(model: &Model) -> Vec<Vertex> {
-    const _: () = assert!(FLOOR_VERTICES == 6);
     let (y, h, cz) = (FLOOR_Y, FLOOR_HALF_EXTENT, OBJECT_CENTRE[2]);
     let corners = [
         Vec3::new(-h, y, cz - h),
@@ -49,9 +48,11 @@ pub fn scene_vertices(model: &Model) -> Vec<Vertex> {
         Vec3::new(h, y, cz + h),
         Vec3::new(-h, y, cz + h),
     ];
+    // The floor's two triangles, as corner indices.
+    let floor: [usize; FLOOR_VERTICES as usize] = [0, 1, 2, 0, 2, 3];
     let mut out = object_vertices(model);
     out.extend(
-        [0, 1, 2, 0, 2, 3]
+        floor
             .iter()
             .map(|&k| vertex(corners[k], Vec3::Y, Surface::Floor)),
     );

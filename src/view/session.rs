@@ -126,7 +126,7 @@ impl Viewer {
             light,
             heat_mean: None,
             shadow: ShadowMaps::default(),
-            floor: FloorTable::new(|_| Default::default()),
+            floor: FloorTable::empty(),
             floor_shadows: FloorShadows::new(&ShadowMaps::default()),
             models,
             points_per_estimate: DEFAULT_POINTS_PER_ESTIMATE,

@@ -52,9 +52,6 @@ pub use pipelines::{forward_source, present_source};
 const WORKGROUP: [u32; 3] = [8, 8, 1];
 /// Most quadrature points one truth estimate uses.
 pub const MAX_TRUTH_POINTS: u32 = 256;
-/// How many of the forward pass's first bindings its background reads
-/// (`shaders/view_forward.wgsl`).
-const BACKGROUND_BINDINGS: usize = 6;
 /// The G-buffer's formats: (position, id) and (normal, 0) in full floats, depth.
 const GBUFFER_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -131,6 +128,10 @@ pub struct GpuRenderer {
 
 fn floor_buffer(device: &wgpu::Device, table: &FloorTable) -> wgpu::Buffer {
     storage_buffer(device, "view floor table", &table.entries)
+}
+
+fn floor_shadow_buffer(device: &wgpu::Device, grid: &FloorShadows) -> wgpu::Buffer {
+    storage_buffer(device, "view floor shadows", &grid.entries)
 }
 
 /// An r32float array texture of `layers` layers of `size`² `depth` texels (the shadow
@@ -266,12 +267,8 @@ impl GpuRenderer {
             wgpu::BufferUsages::VERTEX,
         );
         let shadow = shadow_texture(&device, &queue, (1, 1), &[EMPTY_DEPTH])?;
-        let floor = floor_buffer(&device, &FloorTable::new(|_| Default::default()));
-        let floor_shadow = storage_buffer(
-            &device,
-            "view floor shadows",
-            &FloorShadows::new(&ShadowMaps::default()).entries,
-        );
+        let floor = floor_buffer(&device, &FloorTable::empty());
+        let floor_shadow = floor_shadow_buffer(&device, &FloorShadows::new(&ShadowMaps::default()));
         let cube_linear = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("view chains, bilinear"),
             mag_filter: wgpu::FilterMode::Linear,
@@ -427,7 +424,7 @@ impl GpuRenderer {
     pub fn set_shadow(&mut self, maps: &ShadowMaps, floor: &FloorShadows) -> Result<()> {
         self.floor_shadow =
             with_error_scope(&self.device, "uploading the floor's shadows", || {
-                storage_buffer(&self.device, "view floor shadows", &floor.entries)
+                floor_shadow_buffer(&self.device, floor)
             })?;
         self.shadow = if maps.is_empty() {
             shadow_texture(&self.device, &self.queue, (1, 1), &[EMPTY_DEPTH])?

@@ -9,10 +9,7 @@ use crate::plan::shading::LightBrdf;
 use crate::view::raster::FLOOR_VERTICES;
 use crate::Result;
 
-use super::{
-    gpu_error, ForwardKey, GpuRenderer, LightTextures, Targets, BACKGROUND_BINDINGS,
-    MAX_TRUTH_POINTS,
-};
+use super::{gpu_error, ForwardKey, GpuRenderer, LightTextures, Targets, MAX_TRUTH_POINTS};
 
 /// A texture view as a binding.
 fn view(v: &wgpu::TextureView) -> wgpu::BindingResource<'_> {
@@ -80,7 +77,7 @@ impl GpuRenderer {
             let mut pass = begin_pass(
                 encoder,
                 "view object gbuffer",
-                &[kept_attachment(&t.position), kept_attachment(&t.normal)],
+                &[kept(&t.position), kept(&t.normal)],
                 Some((&t.depth, true)),
             );
             self.draw_scene(
@@ -134,12 +131,12 @@ impl GpuRenderer {
                 self.present.as_entire_binding(),
                 view(&hud),
                 wgpu::BindingResource::Sampler(&self.cube_linear),
-            ][..BACKGROUND_BINDINGS],
+            ],
         );
         let mut pass = begin_pass(
             encoder,
             "view forward",
-            &[colour_attachment(target)],
+            &[cleared(target)],
             Some((&t.depth, false)),
         );
         pass.set_pipeline(&surfaces.object);
@@ -165,7 +162,7 @@ impl GpuRenderer {
             let mut pass = begin_pass(
                 encoder,
                 "view gbuffer",
-                &[colour_attachment(&t.position), colour_attachment(&t.normal)],
+                &[cleared(&t.position), cleared(&t.normal)],
                 Some((&t.depth, true)),
             );
             let drawn = self.draw_scene(
@@ -269,7 +266,7 @@ impl GpuRenderer {
                     wgpu::BindingResource::TextureView(&hud),
                 ],
             );
-            let mut pass = begin_pass(encoder, "view present", &[colour_attachment(target)], None);
+            let mut pass = begin_pass(encoder, "view present", &[cleared(target)], None);
             pass.set_pipeline(&p.present);
             pass.set_bind_group(0, &group, &[]);
             pass.draw(0..3, 0..1);
@@ -278,31 +275,31 @@ impl GpuRenderer {
     }
 }
 
-/// A colour attachment cleared to transparent black and stored.
-fn colour_attachment(view: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachment<'_>> {
+/// A colour attachment loaded with `load` and stored.
+fn colour_attachment(
+    view: &wgpu::TextureView,
+    load: wgpu::LoadOp<wgpu::Color>,
+) -> Option<wgpu::RenderPassColorAttachment<'_>> {
     Some(wgpu::RenderPassColorAttachment {
         view,
         resolve_target: None,
         ops: wgpu::Operations {
-            load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+            load,
             store: wgpu::StoreOp::Store,
         },
         depth_slice: None,
     })
 }
 
-/// A colour attachment kept as it is and stored: a target whose pixels the pass does not
-/// cover are not read afterwards.
-fn kept_attachment(view: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachment<'_>> {
-    Some(wgpu::RenderPassColorAttachment {
-        view,
-        resolve_target: None,
-        ops: wgpu::Operations {
-            load: wgpu::LoadOp::Load,
-            store: wgpu::StoreOp::Store,
-        },
-        depth_slice: None,
-    })
+/// A colour attachment cleared to transparent black.
+fn cleared(view: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachment<'_>> {
+    colour_attachment(view, wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT))
+}
+
+/// A colour attachment kept as it is: a target whose pixels the pass does not cover are
+/// not read afterwards.
+fn kept(view: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachment<'_>> {
+    colour_attachment(view, wgpu::LoadOp::Load)
 }
 
 /// A render pass into `colours` and `depth` when given: (its view, whether it is cleared
