@@ -18,7 +18,7 @@
 //! hardware's sub-texel precision. Together these take a third off its frame on lavapipe
 //! (docs/accuracy.md, "The viewer"). The deferred path is the exact one: CPU twin
 //! [`crate::view::cpu`] with [`crate::view::raster`]. Pipelines and buffers:
-//! `pipelines`; reading frames back: `readback`.
+//! `pipelines`; the per-size targets: `targets`; reading frames back: `readback`.
 
 use image::RgbaImage;
 
@@ -42,11 +42,13 @@ use crate::{Error, Result};
 mod passes;
 mod pipelines;
 mod readback;
+mod targets;
 
 use pipelines::{
     buffer, render_pipeline, vertex_layout, Depth, DisplayPipelines, ForwardKey, ForwardPipelines,
 };
 pub use pipelines::{forward_source, present_source};
+use targets::Targets;
 
 /// Workgroup of the shading kernels.
 const WORKGROUP: [u32; 3] = [8, 8, 1];
@@ -70,17 +72,6 @@ struct LightTextures {
     sun_texels: wgpu::Buffer,
     truth_env_size: u32,
     hot_count: u32,
-}
-
-/// The per-size targets.
-struct Targets {
-    size: (u32, u32),
-    position: wgpu::TextureView,
-    normal: wgpu::TextureView,
-    depth: wgpu::TextureView,
-    shaded: wgpu::Buffer,
-    accum: wgpu::Buffer,
-    hud: wgpu::Texture,
 }
 
 /// The viewer's renderer on one device.
@@ -463,43 +454,6 @@ impl GpuRenderer {
         Ok(())
     }
 
-    fn targets(&mut self, size: (u32, u32)) -> Result<&Targets> {
-        if self.targets.as_ref().map(|t| t.size) != Some(size) {
-            let device = &self.device;
-            let texture = |label: &str, format: wgpu::TextureFormat, usage: wgpu::TextureUsages| {
-                create_texture_2d(device, label, (size.0, size.1, 1), format, usage)
-            };
-            let pixels = size.0 as u64 * size.1 as u64;
-            let gusage =
-                wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
-            let storage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC;
-            let targets = with_error_scope(device, "creating the viewer's targets", || Targets {
-                size,
-                position: texture("view position", GBUFFER_FORMAT, gusage)
-                    .create_view(&Default::default()),
-                normal: texture("view normal", GBUFFER_FORMAT, gusage)
-                    .create_view(&Default::default()),
-                depth: texture(
-                    "view depth",
-                    DEPTH_FORMAT,
-                    wgpu::TextureUsages::RENDER_ATTACHMENT,
-                )
-                .create_view(&Default::default()),
-                shaded: buffer(device, "view shaded", 16 * pixels, storage),
-                accum: buffer(device, "view accum", 16 * pixels, storage),
-                hud: texture(
-                    "view hud",
-                    wgpu::TextureFormat::Rgba8Unorm,
-                    wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-                ),
-            })?;
-            self.targets = Some(targets);
-        }
-        self.targets
-            .as_ref()
-            .ok_or_else(|| gpu_error("viewer targets", "missing"))
-    }
-
     /// Records and submits one frame into `target`: the forward pass in the split-sum view
     /// when `geometry_changed` (and [`GpuRenderer::set_forward`] left it on); else the
     /// G-buffer and split-sum passes when `geometry_changed` or the buffers hold an older
@@ -571,17 +525,6 @@ impl GpuRenderer {
             self.deferred_current = true;
         }
         Ok(())
-    }
-
-    fn upload_hud(&self, image: &RgbaImage, size: (u32, u32)) {
-        let Some(t) = &self.targets else { return };
-        write_texels(
-            &self.queue,
-            &t.hud,
-            (0, 0),
-            (size.0, size.1, 1),
-            image.as_raw(),
-        );
     }
 
     /// Waits for the submitted work (so a frame's time is measured, and a lost device
