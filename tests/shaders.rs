@@ -441,7 +441,7 @@ fn viewer_shaders_validate_and_match_rust() {
                 width,
                 height,
                 mode,
-                target_is_srgb,
+                reserved,
                 exposure,
                 heat_lo,
                 heat_hi,

@@ -461,3 +461,50 @@ fn forward_and_deferred_pictures_are_the_same() {
         }
     }
 }
+
+/// A target that stores sRGB itself gets linear values from the display passes, which it
+/// encodes on store: the same picture as a plain 8-bit target, which gets the encoded
+/// values (whether the target stores sRGB is a constant of each display pipeline, one a
+/// target format). Within one step, the store's own rounding of the encoding; a pipeline
+/// made for the other kind of target would encode twice or not at all, tens of steps off.
+/// The forward pass (the first frame) and the present pass alone (the third) both.
+#[test]
+fn an_srgb_target_shows_the_same_picture() {
+    let Some(ctx) = gpu() else { return };
+    let (baked, lut) = bake(&CpuBackend);
+    let light = venice_light(&baked, lut);
+    let size = (160, 90);
+    let viewer = || {
+        let r = GpuRenderer::new(ctx.device.clone(), ctx.queue.clone()).unwrap();
+        let mut v = Viewer::new(
+            light.clone(),
+            Model::bundled().unwrap(),
+            Renderer::Gpu(Box::new(r)),
+            "test",
+        )
+        .unwrap();
+        v.state.hud = false;
+        v
+    };
+    let format = wgpu::TextureFormat::Rgba8UnormSrgb;
+    let texture = splitsum::gpu::texture::create_texture_2d(
+        &ctx.device,
+        "srgb target",
+        (size.0, size.1, 1),
+        format,
+        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+    );
+    let view = texture.create_view(&Default::default());
+    let (mut srgb, mut plain) = (viewer(), viewer());
+    for frame in 0..3 {
+        srgb.render_to(size, (&view, format)).unwrap();
+        let bytes =
+            splitsum::gpu::compute::read_texture_bytes(&ctx.device, &ctx.queue, &texture, 0)
+                .unwrap();
+        let stored = image::RgbaImage::from_raw(size.0, size.1, bytes).unwrap();
+        let expected = plain.render_image(size).unwrap();
+        let (worst, differing) = step_differences(&stored, &expected);
+        println!("frame {frame}: {differing} pixels differ, by up to {worst} steps");
+        assert!(worst <= 1, "frame {frame}: up to {worst} steps off");
+    }
+}

@@ -10,7 +10,7 @@ struct PresentParams {
     width: u32,
     height: u32,
     mode: u32,
-    target_is_srgb: u32,
+    reserved: u32,
     exposure: f32,
     heat_lo: f32,
     heat_hi: f32,
@@ -66,12 +66,18 @@ fn display(c: vec3<f32>) -> vec3<f32> {
 }
 
 
+// 1 when the target stores sRGB itself, a constant of each pipeline (one a target format,
+// src/view/gpu/pipelines.rs): read from the uniform block, lavapipe ran the decoding
+// below for every target, as it runs both sides of an `if` (docs/accuracy.md, "The
+// viewer").
+override TARGET_IS_SRGB: u32 = 0u;
+
 // The sRGB-encoded colour c of `pixel` with the HUD over it, as the target stores it (an
 // sRGB target encodes again on store, so its value is decoded first).
 fn with_hud(c_in: vec3<f32>, pixel: vec2<u32>) -> vec4<f32> {
     let h = textureLoad(hud, pixel, 0);
     var c = mix(c_in, h.rgb, h.a);
-    if (present.target_is_srgb == 1u) {
+    if (TARGET_IS_SRGB == 1u) {
         c = vec3<f32>(srgb_to_linear(c.r), srgb_to_linear(c.g), srgb_to_linear(c.b));
     }
     return vec4<f32>(c, 1.0);

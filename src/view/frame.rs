@@ -523,8 +523,9 @@ pub struct PresentUniform {
     pub height: u32,
     /// [`Mode`].
     pub mode: u32,
-    /// 1 when the target stores sRGB itself (the pass then writes linear values).
-    pub target_is_srgb: u32,
+    /// Unused, 0 (keeps the block's size; whether the target stores sRGB itself is a
+    /// constant of each pipeline, `TARGET_IS_SRGB` in `shaders/common/view_display.wgsl`).
+    pub reserved: u32,
     /// Linear exposure scale.
     pub exposure: f32,
     /// log10 of the heat map's ends (`HEAT_LOG10_RANGE`).
@@ -537,17 +538,12 @@ pub struct PresentUniform {
 
 impl PresentUniform {
     /// The block for a frame.
-    pub fn new(
-        (width, height): (u32, u32),
-        mode: Mode,
-        exposure: f32,
-        target_is_srgb: bool,
-    ) -> Self {
+    pub fn new((width, height): (u32, u32), mode: Mode, exposure: f32) -> Self {
         PresentUniform {
             width,
             height,
             mode: mode as u32,
-            target_is_srgb: target_is_srgb as u32,
+            reserved: 0,
             exposure,
             heat_lo: HEAT_LOG10_RANGE[0],
             heat_hi: HEAT_LOG10_RANGE[1],

@@ -278,9 +278,9 @@ impl Viewer {
     }
 
     /// The present pass's block for a `size` frame.
-    pub fn present_uniform(&self, size: (u32, u32), target_is_srgb: bool) -> PresentUniform {
+    pub fn present_uniform(&self, size: (u32, u32)) -> PresentUniform {
         let exposure = self.light.exposure * 2f32.powf(self.state.exposure_ev);
-        PresentUniform::new(size, self.state.mode, exposure, target_is_srgb)
+        PresentUniform::new(size, self.state.mode, exposure)
     }
 
     /// The HUD's lines (none with the HUD off). Line 1 is the material's.
@@ -453,12 +453,11 @@ impl Viewer {
         size: (u32, u32),
         target: (&wgpu::TextureView, wgpu::TextureFormat),
     ) -> Result<()> {
-        let target_is_srgb = target.1.is_srgb();
         let started = Instant::now();
         let (frame, changed) = self.next_frame(size);
         let points = self.truth_points();
         self.count_estimate(&points);
-        let present = self.present_uniform(size, target_is_srgb);
+        let present = self.present_uniform(size);
         let hud = self.hud_image(size)?;
         let Renderer::Gpu(g) = &mut self.renderer else {
             return Err(Error::Gpu {
@@ -484,7 +483,7 @@ impl Viewer {
         let (frame, changed) = self.next_frame(size);
         let points = self.truth_points();
         self.count_estimate(&points);
-        let present_block = self.present_uniform(size, false);
+        let present_block = self.present_uniform(size);
         self.last_hud = None;
         let hud = self.hud_image(size)?;
         let image = match &mut self.renderer {

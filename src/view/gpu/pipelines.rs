@@ -117,6 +117,7 @@ impl DisplayPipelines {
         format: wgpu::TextureFormat,
     ) -> DisplayPipelines {
         let targets = [Some(format.into())];
+        let constants = [target_constant(format)];
         DisplayPipelines {
             format,
             present: render_pipeline(
@@ -126,7 +127,7 @@ impl DisplayPipelines {
                 &targets,
                 &[],
                 Depth::None,
-                &[],
+                &constants,
             ),
             background: render_pipeline(
                 device,
@@ -135,7 +136,7 @@ impl DisplayPipelines {
                 &targets,
                 &[],
                 Depth::Behind,
-                &[],
+                &constants,
             ),
         }
     }
@@ -153,6 +154,7 @@ impl ForwardPipelines {
             ("POINT_LIGHTS", key.point_lights as f64),
             ("SUN_LIGHTS", key.sun_lights as f64),
             ("AREA_LIGHTS", key.area_lights as f64),
+            target_constant(key.format),
         ];
         ForwardPipelines {
             key,
@@ -176,6 +178,12 @@ impl ForwardPipelines {
             ),
         }
     }
+}
+
+/// The display's constant for a target of `format`: whether it stores sRGB itself
+/// (`TARGET_IS_SRGB` in `shaders/common/view_display.wgsl`).
+fn target_constant(format: wgpu::TextureFormat) -> (&'static str, f64) {
+    ("TARGET_IS_SRGB", u32::from(format.is_srgb()) as f64)
 }
 
 /// The present pass's source: the Rust constants it needs, then `view_present.wgsl`.
