@@ -28,6 +28,9 @@
 @group(0) @binding(12) var<storage, read> floor_shadow: array<vec4<f32>>;
 @group(0) @binding(13) var gbuffer_position: texture_2d<f32>;
 @group(0) @binding(14) var gbuffer_normal: texture_2d<f32>;
+@group(0) @binding(15) var floor_table_texels: texture_2d_array<f32>;
+@group(0) @binding(16) var floor_shadow_texels: texture_2d<f32>;
+@group(0) @binding(17) var floor_repeat: sampler;
 
 // The frame's light counts (frame.light_count, frame.sun.x), constants of the pipeline
 // (src/view/gpu/mod.rs, `ForwardKey`): with them constant, the compiler unrolls the
@@ -45,7 +48,8 @@ fn fs_object(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     return with_hud(display(object_radiance(pixel_view(pixel), POINT_LIGHTS, SUN_LIGHTS)), pixel);
 }
 
-// The floor's fragments, drawn after the object (whose depth hides what it covers).
+// The floor's fragments, drawn after the object (whose depth hides what it covers), its
+// caches read through the sampler (common/view_floor_filter.wgsl).
 @fragment
 fn fs_floor(v: VertexOut) -> @location(0) vec4<f32> {
     var s: Surface;
@@ -53,7 +57,7 @@ fn fs_floor(v: VertexOut) -> @location(0) vec4<f32> {
     s.p = v.world;
     s.n = normalize(v.normal);
     let px = surface_view(v.clip.xy, s);
-    return with_hud(display(floor_radiance(px, POINT_LIGHTS, SUN_LIGHTS)), vec2<u32>(v.clip.xy));
+    return with_hud(display(floor_radiance_filtered(px, POINT_LIGHTS, SUN_LIGHTS)), vec2<u32>(v.clip.xy));
 }
 
 // The background: one triangle on the far plane, drawn last where the depth is still the

@@ -15,14 +15,22 @@ struct FloorCell {
     fw: f32,
 }
 
-// Column i at azimuth 2 pi (i + 1/2) / W - pi, wrapping; row j at polar angle
+// Where view direction v falls in a table of `size` (columns W, rows H), in columns and
+// rows: column i at azimuth 2 pi (i + 1/2) / W - pi, wrapping; row j at polar angle
 // (pi / 2) j / (H - 1), clamped at the horizon.
+fn floor_table_position(v: vec3<f32>, size: vec2<f32>) -> vec2<f32> {
+    let x = (atan2(v.z, v.x) + PI) / (2.0 * PI) * size.x - 0.5;
+    let y = acos(clamp(v.y, 0.0, 1.0)) / (0.5 * PI) * (size.y - 1.0);
+    return vec2<f32>(x, y);
+}
+
 fn floor_cell(v: vec3<f32>) -> FloorCell {
     let w = floor_table[0].x;
     let h = floor_table[0].y;
-    let x = (atan2(v.z, v.x) + PI) / (2.0 * PI) * w - 0.5;
+    let position = floor_table_position(v, vec2<f32>(w, h));
+    let x = position.x;
     let xf = floor(x);
-    let y = acos(clamp(v.y, 0.0, 1.0)) / (0.5 * PI) * (h - 1.0);
+    let y = position.y;
     let j0 = min(floor(y), h - 2.0);
     var c: FloorCell;
     c.i0 = u32((i32(xf) + i32(w)) % i32(w));

@@ -17,11 +17,17 @@ fn floor_shadow_coordinate(d: f32) -> f32 {
     return clamp((sigma + sigma_max) / (2.0 * sigma_max) * (n - 1.0), 0.0, n - 1.0);
 }
 
+// Floor point p's node coordinates (i along x, j along z).
+fn floor_shadow_position(p: vec3<f32>) -> vec2<f32> {
+    return vec2<f32>(floor_shadow_coordinate(p.x - floor_shadow[1].x), floor_shadow_coordinate(p.z - floor_shadow[1].y));
+}
+
 // Each light's visibility at floor point p, bilinear between the grid's nodes.
 fn floor_visibilities(p: vec3<f32>) -> vec4<f32> {
     let n = floor_shadow[0].x;
-    let x = floor_shadow_coordinate(p.x - floor_shadow[1].x);
-    let y = floor_shadow_coordinate(p.z - floor_shadow[1].y);
+    let position = floor_shadow_position(p);
+    let x = position.x;
+    let y = position.y;
     let i = min(floor(x), n - 2.0);
     let j = min(floor(y), n - 2.0);
     let w = u32(n);
@@ -34,8 +40,13 @@ fn floor_visibilities(p: vec3<f32>) -> vec4<f32> {
 // The floor's visibility by light: from the grid for the first `count` lights that have
 // a map (`frame.sun.z`), 1 for the rest.
 fn floor_lights_visibility(px: PixelView, count: u32) -> vec4<f32> {
+    return floor_lit(floor_visibilities(px.s.p), count);
+}
+
+// The grid's `visibilities` for the first `count` lights that have a map, 1 for the rest.
+fn floor_lit(visibilities: vec4<f32>, count: u32) -> vec4<f32> {
     let lit = min(count, frame.sun.z);
-    return select(vec4<f32>(1.0), floor_visibilities(px.s.p), vec4<u32>(0u, 1u, 2u, 3u) < vec4<u32>(lit));
+    return select(vec4<f32>(1.0), visibilities, vec4<u32>(0u, 1u, 2u, 3u) < vec4<u32>(lit));
 }
 
 // A surface's visibility by light: the floor's from its grid, the object's from the maps.

@@ -159,7 +159,7 @@ pub const VIEW_PRESENT_BODY: &str = render_source!("view_present.wgsl", ["view_d
 
 /// `shaders/view_forward.wgsl` with brdf, sampling, cubemap, cube_filter_bordered,
 /// cube_sample, material, split_sum, filtered, view_frame, view_surface, ltc, view_sun,
-/// view_floor_shadow, view_floor, view_gbuffer_read, view_shade,
+/// view_floor_shadow, view_floor, view_gbuffer_read, view_shade, view_floor_filter,
 /// view_raster, view_display,
 /// without the constants the viewer writes before it (`view::gpu::forward_source`).
 #[cfg_attr(not(feature = "view"), allow(dead_code))]
@@ -183,6 +183,7 @@ pub const VIEW_FORWARD_BODY: &str = render_source!(
         "view_floor.wgsl",
         "view_gbuffer_read.wgsl",
         "view_shade.wgsl",
+        "view_floor_filter.wgsl",
         "view_raster.wgsl",
         "view_display.wgsl"
     ]

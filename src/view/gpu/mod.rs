@@ -3,7 +3,8 @@
 //! - **forward** (the split-sum view while it changes, as when the camera moves): the
 //!   object's G-buffer (the G-buffer pass's pipelines, the object alone), then one render
 //!   pass (`shaders/view_forward.wgsl`) shades each object pixel from it, each floor
-//!   fragment from the floor's caches (`view::floor`, `view::floor_shadow`), then the
+//!   fragment from the floor's caches (`view::floor`, `view::floor_shadow`, read through
+//!   the sampler as textures, `caches`), then the
 //!   background, and writes the displayed colour with the HUD over it;
 //! - **deferred** (the truth and heat views, the HDR a test reads back, and a split-sum
 //!   view standing still): the G-buffer raster pass (`view_gbuffer.wgsl`), the split-sum
@@ -18,7 +19,8 @@
 //! hardware's sub-texel precision. Together these take a third off its frame on lavapipe
 //! (docs/accuracy.md, "The viewer"). The deferred path is the exact one: CPU twin
 //! [`crate::view::cpu`] with [`crate::view::raster`]. Pipelines and buffers:
-//! `pipelines`; the per-size targets: `targets`; reading frames back: `readback`.
+//! `pipelines`; the per-size targets: `targets`; the light's and the floor's uploads:
+//! `caches`; reading frames back: `readback`.
 
 use image::RgbaImage;
 
@@ -27,9 +29,7 @@ use crate::gpu::compute::{
 };
 use crate::gpu::preview::{SplitSumUniform, TruthUniform};
 use crate::gpu::shaders;
-use crate::gpu::texture::{
-    create_texture_2d, upload_bordered_cube, upload_lut_pairs, write_texels,
-};
+use crate::gpu::texture::{upload_bordered_cube, upload_lut_pairs};
 use crate::view::floor::FloorTable;
 use crate::view::floor_shadow::FloorShadows;
 use crate::view::frame::{heat_table, light_table, FrameUniform, Mode, PresentUniform, ViewLight};
@@ -39,11 +39,15 @@ use crate::view::scene::POINT_LIGHTS;
 use crate::view::shadow::{ShadowMaps, EMPTY_DEPTH};
 use crate::{Error, Result};
 
+mod caches;
 mod passes;
 mod pipelines;
 mod readback;
 mod targets;
 
+use caches::{
+    floor_buffer, floor_shadow_buffer, floor_shadow_texture, floor_table_texture, shadow_texture,
+};
 use pipelines::{
     buffer, render_pipeline, vertex_layout, Depth, DisplayPipelines, ForwardKey, ForwardPipelines,
 };
@@ -111,48 +115,16 @@ pub struct GpuRenderer {
     floor: wgpu::Buffer,
     /// The shadow maps' grids on the floor (`view::floor_shadow`; none until set).
     floor_shadow: wgpu::Buffer,
+    /// The table and the grid as textures, which the forward pass reads through the
+    /// sampler (`floor_table_texture`, `floor_shadow_texture`).
+    floor_texels: (wgpu::TextureView, wgpu::TextureView),
+    /// The forward pass's sampler of the floor's table: bilinear, repeating across its
+    /// columns (the azimuth), clamped across its rows.
+    floor_repeat: wgpu::Sampler,
     vertices: Option<(wgpu::Buffer, u32)>,
     sphere_box: wgpu::Buffer,
     sphere: bool,
     targets: Option<Targets>,
-}
-
-fn floor_buffer(device: &wgpu::Device, table: &FloorTable) -> wgpu::Buffer {
-    storage_buffer(device, "view floor table", &table.entries)
-}
-
-fn floor_shadow_buffer(device: &wgpu::Device, grid: &FloorShadows) -> wgpu::Buffer {
-    storage_buffer(device, "view floor shadows", &grid.entries)
-}
-
-/// An r32float array texture of `layers` layers of `size`² `depth` texels (the shadow
-/// maps), viewed as an array however many layers it has.
-fn shadow_texture(
-    device: &wgpu::Device,
-    queue: &wgpu::Queue,
-    (size, layers): (u32, u32),
-    depth: &[f32],
-) -> Result<wgpu::TextureView> {
-    with_error_scope(device, "uploading the lights' shadow maps", || {
-        let texture = create_texture_2d(
-            device,
-            "view shadow maps",
-            (size, size, layers),
-            wgpu::TextureFormat::R32Float,
-            wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-        );
-        write_texels(
-            queue,
-            &texture,
-            (0, 0),
-            (size, size, layers),
-            bytemuck::cast_slice(depth),
-        );
-        texture.create_view(&wgpu::TextureViewDescriptor {
-            dimension: Some(wgpu::TextureViewDimension::D2Array),
-            ..Default::default()
-        })
-    })
 }
 
 fn gpu_error(stage: &str, message: impl Into<String>) -> Error {
@@ -258,8 +230,23 @@ impl GpuRenderer {
             wgpu::BufferUsages::VERTEX,
         );
         let shadow = shadow_texture(&device, &queue, (1, 1), &[EMPTY_DEPTH])?;
-        let floor = floor_buffer(&device, &FloorTable::empty());
-        let floor_shadow = floor_shadow_buffer(&device, &FloorShadows::new(&ShadowMaps::default()));
+        let (table, grid) = (
+            FloorTable::empty(),
+            FloorShadows::new(&ShadowMaps::default()),
+        );
+        let floor = floor_buffer(&device, &table);
+        let floor_shadow = floor_shadow_buffer(&device, &grid);
+        let floor_texels = (
+            floor_table_texture(&device, &queue, &table)?,
+            floor_shadow_texture(&device, &queue, &grid)?,
+        );
+        let floor_repeat = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("view floor table, bilinear, repeating across columns"),
+            address_mode_u: wgpu::AddressMode::Repeat,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
         let cube_linear = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("view chains, bilinear"),
             mag_filter: wgpu::FilterMode::Linear,
@@ -270,6 +257,8 @@ impl GpuRenderer {
             shadow,
             floor,
             floor_shadow,
+            floor_texels,
+            floor_repeat,
             cube_linear,
             device,
             queue,
@@ -417,6 +406,7 @@ impl GpuRenderer {
             with_error_scope(&self.device, "uploading the floor's shadows", || {
                 floor_shadow_buffer(&self.device, floor)
             })?;
+        self.floor_texels.1 = floor_shadow_texture(&self.device, &self.queue, floor)?;
         self.shadow = if maps.is_empty() {
             shadow_texture(&self.device, &self.queue, (1, 1), &[EMPTY_DEPTH])?
         } else {
@@ -435,6 +425,7 @@ impl GpuRenderer {
         self.floor = with_error_scope(&self.device, "uploading the floor's table", || {
             floor_buffer(&self.device, table)
         })?;
+        self.floor_texels.0 = floor_table_texture(&self.device, &self.queue, table)?;
         Ok(())
     }
 

@@ -107,7 +107,8 @@ impl GpuRenderer {
             ],
         );
         // The floor's fragments read the frame, the display's block and the HUD, the point
-        // lights, the floor's table and its shadows alone.
+        // lights, the floor's table and its shadows through the sampler (and the grid's
+        // header from storage) alone.
         let floor_group = bind_group_at(
             &self.device,
             &surfaces.floor.get_bind_group_layout(0),
@@ -115,9 +116,12 @@ impl GpuRenderer {
                 (0, self.frame.as_entire_binding()),
                 (3, self.present.as_entire_binding()),
                 (4, view(&hud)),
+                (5, wgpu::BindingResource::Sampler(&self.cube_linear)),
                 (8, self.lights.as_entire_binding()),
-                (11, self.floor.as_entire_binding()),
                 (12, self.floor_shadow.as_entire_binding()),
+                (15, view(&self.floor_texels.0)),
+                (16, view(&self.floor_texels.1)),
+                (17, wgpu::BindingResource::Sampler(&self.floor_repeat)),
             ],
         );
         let background_group = bind_group(
