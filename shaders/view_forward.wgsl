@@ -1,18 +1,19 @@
 // The viewer's split-sum frame in one render pass (vertex and fragment stages) after the
 // object's G-buffer, what the window draws while the split-sum view is shown: each object
 // pixel and floor fragment shaded as the deferred kernel shades a G-buffer pixel
-// (`object_radiance`, `floor_radiance`, common/view_shade.wgsl), the background where
-// nothing nearer was drawn
-// (`background_radiance`), then displayed with the HUD over it as the present pass shows
+// (`object_radiance`, common/view_shade.wgsl, and `floor_radiance_filtered`,
+// common/view_floor_filter.wgsl, its `floor_radiance`), the background where nothing
+// nearer was drawn (`background_radiance`), then displayed with the HUD over it as the present pass shows
 // a split-sum pixel (common/view_display.wgsl). The same functions of the same surface as
 // the deferred path (view_gbuffer, view_split_sum, view_present), which the truth and
 // heat views and the HDR readback use; both give the same picture (tests/view.rs). CPU
 // mirror: src/view/cpu.rs through the deferred path.
 
 // Bindings 0 to 5 are what the background reads; the object's and the floor's bind
-// groups name the bindings each reads (src/view/gpu/passes.rs). The chains are read through
-// the sampler's bilinear filter (common/cube_filter_bordered.wgsl), where the deferred
-// kernels fetch four texels (common/cube_bilinear.wgsl).
+// groups name the bindings each reads (src/view/gpu/passes.rs). The chains and the floor's
+// caches are read through the sampler's bilinear filter (common/cube_filter_bordered.wgsl,
+// common/view_floor_filter.wgsl), where the deferred kernels fetch four texels or entries
+// (common/cube_bilinear.wgsl, common/view_floor.wgsl, common/view_floor_shadow.wgsl).
 @group(0) @binding(0) var<uniform> frame: FrameParams;
 @group(0) @binding(1) var<uniform> light: SplitSumParams;
 @group(0) @binding(2) var specular: texture_2d_array<f32>;
