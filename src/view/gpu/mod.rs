@@ -115,9 +115,12 @@ pub struct GpuRenderer {
     floor: wgpu::Buffer,
     /// The shadow maps' grids on the floor (`view::floor_shadow`; none until set).
     floor_shadow: wgpu::Buffer,
-    /// The table and the grid as textures, which the forward pass reads through the
-    /// sampler (`floor_table_texture`, `floor_shadow_texture`).
-    floor_texels: (wgpu::TextureView, wgpu::TextureView),
+    /// The table as a texture, which the forward pass reads through the sampler
+    /// (`floor_table_texture`; uploaded only where the forward pass can draw, a 2 × 2
+    /// table of zeros elsewhere).
+    floor_table_texels: wgpu::TextureView,
+    /// The grid as a texture, as `floor_table_texels` (`floor_shadow_texture`).
+    floor_shadow_texels: wgpu::TextureView,
     /// The forward pass's sampler of the floor's table: bilinear, repeating across its
     /// columns (the azimuth), clamped across its rows.
     floor_repeat: wgpu::Sampler,
@@ -236,10 +239,8 @@ impl GpuRenderer {
         );
         let floor = floor_buffer(&device, &table);
         let floor_shadow = floor_shadow_buffer(&device, &grid);
-        let floor_texels = (
-            floor_table_texture(&device, &queue, &table)?,
-            floor_shadow_texture(&device, &queue, &grid)?,
-        );
+        let floor_table_texels = floor_table_texture(&device, &queue, &table)?;
+        let floor_shadow_texels = floor_shadow_texture(&device, &queue, &grid)?;
         let floor_repeat = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("view floor table, bilinear, repeating across columns"),
             address_mode_u: wgpu::AddressMode::Repeat,
@@ -257,7 +258,8 @@ impl GpuRenderer {
             shadow,
             floor,
             floor_shadow,
-            floor_texels,
+            floor_table_texels,
+            floor_shadow_texels,
             floor_repeat,
             cube_linear,
             device,
@@ -340,11 +342,15 @@ impl GpuRenderer {
     /// rgba32float textures (`FLOAT32_FILTERABLE`; without it every frame is drawn by the
     /// deferred passes).
     pub fn draws_forward(&self) -> bool {
-        self.forward
-            && self
-                .device
-                .features()
-                .contains(wgpu::Features::FLOAT32_FILTERABLE)
+        self.forward && self.can_draw_forward()
+    }
+
+    /// Whether this device can draw the forward pass at all (it filters rgba32float
+    /// textures): where it cannot, the floor's caches are not uploaded as textures.
+    fn can_draw_forward(&self) -> bool {
+        self.device
+            .features()
+            .contains(wgpu::Features::FLOAT32_FILTERABLE)
     }
 
     /// Uploads the baked light.
@@ -406,7 +412,9 @@ impl GpuRenderer {
             with_error_scope(&self.device, "uploading the floor's shadows", || {
                 floor_shadow_buffer(&self.device, floor)
             })?;
-        self.floor_texels.1 = floor_shadow_texture(&self.device, &self.queue, floor)?;
+        if self.can_draw_forward() {
+            self.floor_shadow_texels = floor_shadow_texture(&self.device, &self.queue, floor)?;
+        }
         self.shadow = if maps.is_empty() {
             shadow_texture(&self.device, &self.queue, (1, 1), &[EMPTY_DEPTH])?
         } else {
@@ -425,7 +433,9 @@ impl GpuRenderer {
         self.floor = with_error_scope(&self.device, "uploading the floor's table", || {
             floor_buffer(&self.device, table)
         })?;
-        self.floor_texels.0 = floor_table_texture(&self.device, &self.queue, table)?;
+        if self.can_draw_forward() {
+            self.floor_table_texels = floor_table_texture(&self.device, &self.queue, table)?;
+        }
         Ok(())
     }
 

@@ -119,8 +119,8 @@ impl GpuRenderer {
                 (5, wgpu::BindingResource::Sampler(&self.cube_linear)),
                 (8, self.lights.as_entire_binding()),
                 (12, self.floor_shadow.as_entire_binding()),
-                (15, view(&self.floor_texels.0)),
-                (16, view(&self.floor_texels.1)),
+                (15, view(&self.floor_table_texels)),
+                (16, view(&self.floor_shadow_texels)),
                 (17, wgpu::BindingResource::Sampler(&self.floor_repeat)),
             ],
         );
